@@ -1,0 +1,125 @@
+// The `mvr` command line: info, render, compare (DESIGN.md's contract).
+// Every user error is an mvr::Error caught here: one line, exit status 1.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "apps/args.h"
+#include "apps/render_command.h"
+#include "mvr/compare.h"
+#include "mvr/error.h"
+#include "mvr/gl_context.h"
+
+namespace mvr::app {
+namespace {
+
+const char* const kUsage =
+    "usage: mvr <command> [options]\n"
+    "  info                       GL version and renderer per context platform\n"
+    "  render [SCENE] [options]   render a view set (mvr render --help)\n"
+    "  compare DIR_A DIR_B        per image PSNR / max error / identical pixels\n";
+
+const char* const kCompareHelp =
+    "usage: mvr compare DIR_A DIR_B [--json]\n"
+    "Pairs view_* and epi_* images by name and prints, per image, PSNR (dB over\n"
+    "RGB), the largest channel error (0..1) and the fraction of identical pixels.\n"
+    "Exits non-zero when the sets differ in names or image sizes.\n";
+
+const char* const kInfoHelp =
+    "usage: mvr info\nTries each GL platform (egl, osmesa, glfw) and prints its GL version\n"
+    "and renderer, or why it is unavailable.\n";
+
+bool wantsHelp(int argc, char** argv) {
+  for (int i = 2; i < argc; ++i)
+    if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") return true;
+  return false;
+}
+
+int runInfo() {
+  int available = 0;
+  for (GlPlatform p : {GlPlatform::Egl, GlPlatform::OsMesa, GlPlatform::Glfw}) {
+    try {
+      auto ctx = GlContext::create(p);
+      std::printf("%s\n", ctx->describe().c_str());
+      ++available;
+    } catch (const Error& e) {
+      std::printf("%s: unavailable (%s)\n", glPlatformName(p), e.what());
+    }
+  }
+  return available > 0 ? 0 : 1;
+}
+
+int runCompare(int argc, char** argv) {
+  Args args(argc, argv, 2, {}, {"json"});
+  if (args.positional().size() != 2) fail("compare", "needs two folders (see --help)");
+  auto diffs = compareSets(args.positional()[0], args.positional()[1]);
+  double worstPsnr = INFINITY, minIdentical = 1.0, maxError = 0.0;
+  for (const auto& d : diffs) {
+    worstPsnr = std::min(worstPsnr, d.psnr);
+    minIdentical = std::min(minIdentical, d.identicalFraction);
+    maxError = std::max(maxError, d.maxError);
+  }
+  if (args.has("json")) {
+    nlohmann::json j;
+    j["images"] = nlohmann::json::array();
+    for (const auto& d : diffs)
+      j["images"].push_back({{"name", d.name}, {"psnr_db", std::isinf(d.psnr) ? -1.0 : d.psnr},
+                             {"max_error", d.maxError},
+                             {"identical_fraction", d.identicalFraction}});
+    j["min_psnr_db"] = std::isinf(worstPsnr) ? -1.0 : worstPsnr;  // -1: identical
+    j["min_identical_fraction"] = minIdentical;
+    j["max_error"] = maxError;
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::printf("%-28s %10s %10s %10s\n", "image", "PSNR_dB", "max_err", "identical");
+    for (const auto& d : diffs)
+      std::printf("%-28s %10.2f %10.4f %10.6f\n", d.name.c_str(), d.psnr, d.maxError,
+                  d.identicalFraction);
+    std::printf("%zu images: min PSNR %.2f dB, max error %.4f, min identical %.6f\n",
+                diffs.size(), worstPsnr, maxError, minIdentical);
+  }
+  return 0;
+}
+
+int dispatch(int argc, char** argv) {
+  if (argc < 2) {
+    std::fputs(kUsage, stderr);
+    return 2;
+  }
+  const std::string cmd = argv[1];
+  if (cmd == "--help" || cmd == "-h" || cmd == "help") {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  if (cmd == "info") {
+    if (wantsHelp(argc, argv)) return std::fputs(kInfoHelp, stdout), 0;
+    return runInfo();
+  }
+  if (cmd == "render") {
+    if (wantsHelp(argc, argv)) return std::fputs(kRenderHelp, stdout), 0;
+    return runRender(argc, argv);
+  }
+  if (cmd == "compare") {
+    if (wantsHelp(argc, argv)) return std::fputs(kCompareHelp, stdout), 0;
+    return runCompare(argc, argv);
+  }
+  fail("mvr", "unknown command '" + cmd + "' (expected info, render or compare)");
+}
+
+}  // namespace
+}  // namespace mvr::app
+
+int main(int argc, char** argv) {
+  try {
+    return mvr::app::dispatch(argc, argv);
+  } catch (const mvr::Error& e) {
+    std::fprintf(stderr, "mvr: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mvr: internal error: %s\n", e.what());
+    return 3;
+  }
+}

@@ -1,0 +1,25 @@
+#pragma once
+// `mvr render`: scene + camera + back end -> image set with manifest.
+#include <memory>
+#include <string>
+
+#include "mvr/image.h"
+#include "mvr/renderer.h"
+#include "mvr/scene.h"
+
+namespace mvr::app {
+
+extern const char* const kRenderHelp;
+
+int runRender(int argc, char** argv);
+
+struct BackendChoice {
+  std::string backend = "svr";  // mvr | svr | svr-layered | deferred
+  std::string pst = "strip";    // quad | strip | exact | cpu (mvr only)
+};
+
+// Throws mvr::Error for unknown names. Needs a current GL context.
+std::unique_ptr<Renderer> makeRenderer(const BackendChoice& choice, const Scene& scene,
+                                       PixelType type);
+
+}  // namespace mvr::app

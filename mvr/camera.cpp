@@ -1,0 +1,106 @@
+#include "mvr/camera.h"
+
+#include <cmath>
+#include <string>
+
+#include "mvr/error.h"
+#include "mvr/scene.h"
+
+namespace mvr {
+namespace {
+
+void require(bool ok, const std::string& what) {
+  if (!ok) fail("camera", what);
+}
+
+bool finite(double v) { return std::isfinite(v); }
+
+}  // namespace
+
+ShearingCamera::ShearingCamera(const CameraSpec& s, int width, int height, int views, int rows)
+    : spec_(s), width_(width), height_(height), views_(views), rows_(rows) {
+  require(width >= 1 && height >= 1 && width <= 16384 && height <= 16384,
+          "image size " + std::to_string(width) + "x" + std::to_string(height) +
+              " outside 1..16384");
+  require(views >= 1 && views <= 65536, "view count must be 1..65536");
+  require(rows >= 1 && rows <= 4096, "row count must be 1..4096");
+  for (double v : {s.distance, s.planeWidth, s.planeHeight, s.trackLeft, s.trackRight, s.rowTop,
+                   s.rowBottom, s.nearDistance, s.farDistance})
+    require(finite(v), "non-finite value");
+  require(s.distance > 0, "distance must be positive");
+  require(s.planeWidth > 0, "image plane width must be positive");
+  require(s.planeHeight >= 0, "image plane height must not be negative");
+  require(s.nearDistance > 0, "near distance must be positive");
+  require(s.farDistance > s.nearDistance, "far distance must exceed near distance");
+  require(s.trackRight >= s.trackLeft, "track right end lies left of its left end");
+  planeWidth_ = s.planeWidth;
+  planeHeight_ = s.planeHeight > 0 ? s.planeHeight : s.planeWidth * height / width;
+}
+
+double ShearingCamera::viewX(int view) const {
+  if (views_ == 1) return 0.5 * (spec_.trackLeft + spec_.trackRight);
+  return spec_.trackLeft + view * (spec_.trackRight - spec_.trackLeft) / (views_ - 1);
+}
+
+double ShearingCamera::rowY(int row) const {
+  if (rows_ == 1) return 0.5 * (spec_.rowTop + spec_.rowBottom);
+  return spec_.rowTop + row * (spec_.rowBottom - spec_.rowTop) / (rows_ - 1);
+}
+
+double ShearingCamera::viewSpacing() const {
+  return views_ == 1 ? 0.0 : (spec_.trackRight - spec_.trackLeft) / (views_ - 1);
+}
+
+glm::dmat4 ShearingCamera::viewProjection(int view, int row) const {
+  return viewProjectionAt(viewX(view), rowY(row));
+}
+
+glm::dmat4 ShearingCamera::viewProjectionAt(double cx, double cy) const {
+  const double D = spec_.distance, n = spec_.nearDistance, f = spec_.farDistance;
+  const double sx = 2.0 / planeWidth_, sy = 2.0 / planeHeight_;
+  glm::dmat4 m(0.0);  // column-major: m[column][row]
+  // x_clip = sx (D X - cx Z)
+  m[0][0] = sx * D;
+  m[2][0] = -sx * cx;
+  // y_clip = -sy (D Y - cy Z): negated so that window row 0 is the top.
+  m[1][1] = -sy * D;
+  m[2][1] = sy * cy;
+  // Reversed zero-to-one depth: z_clip = n (f - d) / (f - n), d = D - Z.
+  m[2][2] = n / (f - n);
+  m[3][2] = n * (f - D) / (f - n);
+  // w = d = D - Z
+  m[2][3] = -1.0;
+  m[3][3] = D;
+  return m;
+}
+
+glm::dvec3 ShearingCamera::project(const glm::dvec3& p, int view, int row) const {
+  glm::dvec4 c = viewProjection(view, row) * glm::dvec4(p, 1.0);
+  return {(c.x / c.w + 1.0) * 0.5 * width_, (c.y / c.w + 1.0) * 0.5 * height_, c.z / c.w};
+}
+
+double ShearingCamera::disparityPerUnitTrack(double z) const {
+  return -(width_ / planeWidth_) * z / (spec_.distance - z);
+}
+
+CameraSpec ShearingCamera::frame(const Bounds& b, int width, int height) {
+  const glm::dvec3 lo(b.min), hi(b.max);
+  const glm::dvec3 extent = glm::max(glm::abs(lo), glm::abs(hi));
+  double radius = glm::length(extent);
+  if (!(radius > 0)) radius = 1.0;
+  const double aspect = double(width) / height;
+  CameraSpec s;
+  s.distance = 4.0 * radius;
+  // Geometry in front of the plane looks larger; 1.4 leaves room for it.
+  double halfWidth = 1.4 * std::max(extent.x, extent.y * aspect);
+  if (!(halfWidth > 0)) halfWidth = radius;
+  s.planeWidth = 2.0 * halfWidth;
+  s.planeHeight = s.planeWidth / aspect;
+  s.trackLeft = -0.25 * s.distance;
+  s.trackRight = 0.25 * s.distance;
+  s.nearDistance = s.distance - 1.5 * radius;
+  s.farDistance = s.distance + 1.5 * radius;
+  return s;
+}
+
+}  // namespace mvr

@@ -1,0 +1,67 @@
+#pragma once
+// The regular-shearing camera (Halle 1997, ch. 3 and 5; DESIGN.md):
+// image plane z = 0 holding a plane_width x plane_height rectangle centred
+// on the origin; cameras on the plane z = distance looking along -z, view i
+// at x = track_left + i (track_right - track_left) / (N - 1). Every view's
+// frustum is sheared so the rectangle fills the image, so a point on the
+// image plane has the same pixel position in every view.
+//
+// Pixel coordinates: x right, y down (row 0 is the top of the image), pixel
+// (i, j) has its centre at (i + 0.5, j + 0.5). Clip space uses GL's
+// zero-to-one depth with reversed Z (near -> 1, far -> 0) for precision.
+#include <glm/glm.hpp>
+
+namespace mvr {
+
+struct Bounds;
+
+struct CameraSpec {
+  double distance = 4.0;     // D: camera plane to image plane
+  double planeWidth = 2.0;   // image-plane rectangle, world units
+  double planeHeight = 0.0;  // 0: from the image aspect ratio
+  double trackLeft = -1.0;   // camera x of view 0
+  double trackRight = 1.0;   // camera x of view N - 1
+  double rowTop = 0.0;       // camera y of row 0 (full parallax)
+  double rowBottom = 0.0;    // camera y of row M - 1
+  double nearDistance = 1.0; // clip distances from the camera plane
+  double farDistance = 8.0;
+};
+
+class ShearingCamera {
+ public:
+  // Throws mvr::Error for an impossible camera.
+  ShearingCamera(const CameraSpec& spec, int width, int height, int views, int rows = 1);
+
+  const CameraSpec& spec() const { return spec_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int views() const { return views_; }
+  int rows() const { return rows_; }
+  double planeWidth() const { return planeWidth_; }
+  double planeHeight() const { return planeHeight_; }
+
+  double viewX(int view) const;  // camera x of view i
+  double rowY(int row) const;    // camera y of row r
+  double viewSpacing() const;    // x distance between neighbouring views
+
+  // World -> clip for one view. Only the x row depends on the view:
+  // x_clip = (2/Wp)(D X - cx Z), w = D - Z.
+  glm::dmat4 viewProjection(int view, int row = 0) const;
+  glm::dmat4 viewProjectionAt(double cameraX, double cameraY) const;
+  // World point -> (pixel x, pixel y, window depth) in one view.
+  glm::dvec3 project(const glm::dvec3& p, int view, int row = 0) const;
+  // Pixel x movement of a point at depth z per unit of camera x:
+  // -(W / Wp) z / (D - z). Zero on the image plane.
+  double disparityPerUnitTrack(double z) const;
+
+  // A camera that frames the given bounds, with the image-plane rectangle
+  // at the origin, a track half as wide as the camera distance.
+  static CameraSpec frame(const Bounds& bounds, int width, int height);
+
+ private:
+  CameraSpec spec_;
+  int width_, height_, views_, rows_;
+  double planeWidth_, planeHeight_;
+};
+
+}  // namespace mvr

@@ -1,0 +1,180 @@
+// Deferred shading baseline (as in de Quilletes 2018): per view a G-buffer
+// of albedo, normal and depth, then a full-screen pass lights every pixel.
+// Lighting is per pixel here, so its images differ slightly from Gouraud.
+#include "mvr/baselines.h"
+#include "mvr/error.h"
+#include "mvr/gl_program.h"
+#include "mvr/progress.h"
+#include "mvr/render_target.h"
+#include "mvr/scene_buffers.h"
+#include "shading/lighting.h"
+
+namespace mvr {
+namespace {
+
+const char* const kGeometryVertex = R"(
+uniform mat4 uViewProj;
+out vec3 vNormal;
+out vec3 vAlbedo;
+flat out float vCull;
+void main() {
+  gl_Position = uViewProj * vec4(aPosition, 1.0);
+  vNormal = aNormal;
+  vAlbedo = aAlbedo;
+  vCull = aCull;
+}
+)";
+
+const char* const kGeometryFragment = R"(
+in vec3 vNormal;
+in vec3 vAlbedo;
+flat in float vCull;
+layout(location = 0) out vec4 oAlbedo;  // a = 1 marks covered pixels
+layout(location = 1) out vec4 oNormal;
+void main() {
+  if (!gl_FrontFacing && vCull > 0.5) discard;
+  oAlbedo = vec4(vAlbedo, 1.0);
+  oNormal = vec4(gl_FrontFacing ? vNormal : -vNormal, 0.0);
+}
+)";
+
+const char* const kLightingVertex = R"(
+void main() {  // one triangle covering the screen
+  vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+  gl_Position = vec4(p * 2.0 - 1.0, 0.5, 1.0);
+}
+)";
+
+const char* const kLightingFragment = R"(
+layout(binding = 0) uniform sampler2D uAlbedo;
+layout(binding = 1) uniform sampler2D uNormal;
+layout(binding = 2) uniform sampler2D uDepth;
+uniform mat4 uInverseViewProj;
+uniform vec2 uSize;
+layout(location = 0) out vec4 oColor;
+void main() {
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  vec4 albedo = texelFetch(uAlbedo, px, 0);
+  if (albedo.a == 0.0) discard;
+  float depth = texelFetch(uDepth, px, 0).r;  // zero-to-one clip depth
+  vec4 ndc = vec4(gl_FragCoord.xy / uSize * 2.0 - 1.0, depth, 1.0);
+  vec4 world = uInverseViewProj * ndc;
+  vec3 n = normalize(texelFetch(uNormal, px, 0).xyz);
+  oColor = vec4(diffuseLight(albedo.rgb, world.xyz / world.w, n), 1.0);
+}
+)";
+
+class GBuffer {
+ public:
+  GBuffer(int w, int h)
+      : albedo_(GL_TEXTURE_2D), normal_(GL_TEXTURE_2D), depth_(GL_TEXTURE_2D),
+        fbo_(gl::Framebuffer::create()) {
+    gl::TextureStorage2D(albedo_.id(), 1, GL_RGBA8, w, h);
+    gl::TextureStorage2D(normal_.id(), 1, GL_RGBA16F, w, h);
+    gl::TextureStorage2D(depth_.id(), 1, GL_DEPTH_COMPONENT32F, w, h);
+    gl::NamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, albedo_.id(), 0);
+    gl::NamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT1, normal_.id(), 0);
+    gl::NamedFramebufferTexture(fbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    gl::NamedFramebufferDrawBuffers(fbo_.id(), 2, buffers);
+    if (gl::CheckNamedFramebufferStatus(fbo_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      fail("GL", "G-buffer is incomplete");
+    gl::Viewport(0, 0, w, h);
+  }
+  void bindForWriting() const {
+    gl::BindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+    const float zero[4] = {0, 0, 0, 0};
+    gl::ClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zero);
+    gl::ClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 1, zero);
+    gl::ClearNamedFramebufferfi(fbo_.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
+  }
+  void bindForReading() const {
+    gl::BindTextureUnit(0, albedo_.id());
+    gl::BindTextureUnit(1, normal_.id());
+    gl::BindTextureUnit(2, depth_.id());
+  }
+
+ private:
+  gl::Texture albedo_, normal_, depth_;
+  gl::Framebuffer fbo_;
+};
+
+class DeferredRenderer final : public Renderer {
+ public:
+  DeferredRenderer(const Scene& scene, PixelType type)
+      : scene_(scene), type_(type),
+        buffers_(scene, shading::vertexAlbedo(scene), shading::vertexCullFlags(scene)),
+        geometry_(gl::linkProgram(
+            "deferred-geometry",
+            {{GL_VERTEX_SHADER, gl::glslHeader() + kSceneVertexInputs + kGeometryVertex},
+             {GL_FRAGMENT_SHADER, gl::glslHeader() + kGeometryFragment}})),
+        lighting_(gl::linkProgram(
+            "deferred-lighting",
+            {{GL_VERTEX_SHADER, gl::glslHeader() + kLightingVertex},
+             {GL_FRAGMENT_SHADER,
+              gl::glslHeader() + shading::glslLighting() + kLightingFragment}})),
+        emptyVao_(gl::VertexArray::create()) {
+    shading::setLightUniforms(lighting_, scene_);
+  }
+  std::string name() const override { return "deferred"; }
+  FrameOrder order() const override { return FrameOrder::View; }
+
+  void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
+    RenderTarget target(cam.width(), cam.height(), type_);
+    GBuffer gbuffer(cam.width(), cam.height());
+    setDepthConvention();
+    gl::FrontFace(GL_CW);
+    gl::setUniform(lighting_, "uSize", glm::vec2(cam.width(), cam.height()));
+    Progress progress("deferred", long(cam.rows()) * cam.views());
+    for (int row = 0; row < cam.rows(); ++row) {
+      for (int view = 0; view < cam.views(); ++view) {
+        const glm::dmat4 viewProj = cam.viewProjection(view, row);
+        {
+          ScopedStage s(stats.times, "geometry");
+          gbuffer.bindForWriting();
+          gl::Enable(GL_DEPTH_TEST);
+          gl::UseProgram(geometry_.id());
+          gl::setUniform(geometry_, "uViewProj", glm::mat4(viewProj));
+          buffers_.bind();
+          buffers_.draw();
+          gl::Finish();
+        }
+        {
+          ScopedStage s(stats.times, "lighting");
+          target.bind();
+          target.clear();
+          gl::Disable(GL_DEPTH_TEST);
+          gl::UseProgram(lighting_.id());
+          gl::setUniform(lighting_, "uInverseViewProj", glm::mat4(glm::inverse(viewProj)));
+          gbuffer.bindForReading();
+          gl::BindVertexArray(emptyVao_.id());
+          gl::DrawArrays(GL_TRIANGLES, 0, 3);
+          gl::Finish();
+        }
+        Image img;
+        {
+          ScopedStage s(stats.times, "readback");
+          img = target.read();
+        }
+        sink.putView(row, view, img);
+        progress.step();
+      }
+    }
+    gl::checkError("deferred render");
+  }
+
+ private:
+  const Scene& scene_;
+  PixelType type_;
+  SceneBuffers buffers_;
+  gl::Program geometry_, lighting_;
+  gl::VertexArray emptyVao_;
+};
+
+}  // namespace
+
+std::unique_ptr<Renderer> makeDeferredRenderer(const Scene& scene, PixelType type) {
+  return std::make_unique<DeferredRenderer>(scene, type);
+}
+
+}  // namespace mvr

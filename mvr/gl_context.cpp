@@ -1,0 +1,67 @@
+#include "mvr/gl_context.h"
+
+#include "mvr/error.h"
+#include "mvr/gl_api.h"
+
+namespace mvr {
+
+GlPlatform parseGlPlatform(const std::string& name) {
+  if (name == "auto") return GlPlatform::Auto;
+  if (name == "egl") return GlPlatform::Egl;
+  if (name == "osmesa") return GlPlatform::OsMesa;
+  if (name == "glfw") return GlPlatform::Glfw;
+  fail("--gl", "unknown platform '" + name + "' (expected egl, osmesa or glfw)");
+}
+
+const char* glPlatformName(GlPlatform platform) {
+  switch (platform) {
+    case GlPlatform::Auto: return "auto";
+    case GlPlatform::Egl: return "egl";
+    case GlPlatform::OsMesa: return "osmesa";
+    case GlPlatform::Glfw: return "glfw";
+  }
+  return "?";
+}
+
+std::string GlContext::renderer() const {
+  return reinterpret_cast<const char*>(gl::GetString(GL_RENDERER));
+}
+
+std::string GlContext::version() const {
+  return reinterpret_cast<const char*>(gl::GetString(GL_VERSION));
+}
+
+std::string GlContext::describe() const {
+  return std::string(glPlatformName(platform_)) + ": " + version() + " | " + renderer();
+}
+
+void GlContext::finishSetup() {
+  GLint major = 0, minor = 0;
+  gl::GetIntegerv(GL_MAJOR_VERSION, &major);
+  gl::GetIntegerv(GL_MINOR_VERSION, &minor);
+  if (major * 10 + minor < 45)
+    fail(glPlatformName(platform_), "GL " + std::to_string(major) + "." + std::to_string(minor) +
+                                        " context, 4.5 core required");
+}
+
+std::unique_ptr<GlContext> GlContext::create(GlPlatform platform) {
+  switch (platform) {
+    case GlPlatform::Egl: return createEglContext();
+    case GlPlatform::OsMesa: return createOsMesaContext();
+    case GlPlatform::Glfw: return createGlfwContext(64, 64, false);
+    case GlPlatform::Auto: break;
+  }
+  std::string eglProblem;
+  try {
+    return createEglContext();
+  } catch (const Error& e) {
+    eglProblem = e.what();
+  }
+  try {
+    return createOsMesaContext();
+  } catch (const Error& e) {
+    fail("GL", std::string("no headless context (") + eglProblem + "; " + e.what() + ")");
+  }
+}
+
+}  // namespace mvr

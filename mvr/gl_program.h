@@ -1,0 +1,31 @@
+#pragma once
+// Shader compilation and linking with errors that name the shader.
+#include <initializer_list>
+#include <string>
+#include <string_view>
+
+#include <glm/glm.hpp>
+
+#include "mvr/gl_handles.h"
+
+namespace mvr::gl {
+
+struct ShaderStage {
+  GLenum type;
+  std::string source;
+};
+
+// name appears in errors: "shader 'svr' (vertex): 0:12(3): error: ..."
+Program linkProgram(std::string_view name, std::initializer_list<ShaderStage> stages);
+
+// "#version 450 core\n" plus defines, so one source serves several variants.
+std::string glslHeader(std::initializer_list<std::string_view> defines = {});
+
+void setUniform(const Program& p, const char* name, int v);
+void setUniform(const Program& p, const char* name, float v);
+void setUniform(const Program& p, const char* name, const glm::vec2& v);
+void setUniform(const Program& p, const char* name, const glm::vec3& v);
+void setUniform(const Program& p, const char* name, const glm::vec4& v);
+void setUniform(const Program& p, const char* name, const glm::mat4& v);
+
+}  // namespace mvr::gl

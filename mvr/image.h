@@ -1,0 +1,34 @@
+#pragma once
+// RGBA images, 8-bit or float, rows top first; file IO through OpenImageIO.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace mvr {
+
+enum class PixelType { U8, F32 };
+
+struct Image {
+  int width = 0, height = 0;
+  PixelType type = PixelType::U8;
+  std::vector<uint8_t> bytes;  // width * height * 4 * bytesPerChannel
+
+  Image() = default;
+  Image(int w, int h, PixelType t)
+      : width(w), height(h), type(t), bytes(size_t(w) * h * 4 * channelBytes(t)) {}
+  static size_t channelBytes(PixelType t) { return t == PixelType::U8 ? 1 : 4; }
+  size_t rowBytes() const { return size_t(width) * 4 * channelBytes(type); }
+  uint8_t* row(int y) { return bytes.data() + y * rowBytes(); }
+  const uint8_t* row(int y) const { return bytes.data() + y * rowBytes(); }
+  // Channel value scaled to [0, 1].
+  glm::vec4 pixel(int x, int y) const;
+};
+
+// Writes png (8-bit; float images are quantised), tiff or exr (float).
+// Writes to a temporary name and renames, so a failed write leaves nothing.
+void writeImage(const Image& image, const std::string& path);
+Image readImage(const std::string& path);  // 4 channels, U8 or F32
+
+}  // namespace mvr

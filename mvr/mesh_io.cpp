@@ -1,0 +1,101 @@
+#include "mvr/mesh_io.h"
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/System/omstream.hh>
+
+#include <cmath>
+#include <filesystem>
+
+#include "mvr/error.h"
+
+namespace mvr {
+namespace {
+
+struct Traits : OpenMesh::DefaultTraits {
+  VertexAttributes(OpenMesh::Attributes::Normal | OpenMesh::Attributes::Color |
+                   OpenMesh::Attributes::TexCoord2D);
+  FaceAttributes(OpenMesh::Attributes::Normal);
+};
+using TriMesh = OpenMesh::TriMesh_ArrayKernelT<Traits>;
+
+void silenceOpenMesh() {
+  // OpenMesh reports read problems on its own streams; ours are one line.
+  omerr().disable();
+  omlog().disable();
+  omout().disable();
+}
+
+}  // namespace
+
+Scene loadMesh(const std::string& path) {
+  silenceOpenMesh();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such mesh file");
+  TriMesh mesh;
+  OpenMesh::IO::Options opt = OpenMesh::IO::Options::VertexNormal |
+                              OpenMesh::IO::Options::VertexColor |
+                              OpenMesh::IO::Options::VertexTexCoord;
+  if (!OpenMesh::IO::read_mesh(mesh, path, opt))
+    fail(path, "cannot read mesh (unsupported format or broken file)");
+  if (mesh.n_faces() == 0) fail(path, "mesh has no triangles");
+  if (!opt.vertex_has_normal()) {
+    mesh.update_face_normals();
+    mesh.update_vertex_normals();
+  }
+  Scene s;
+  s.source = path;
+  s.positions.reserve(mesh.n_vertices());
+  for (auto v : mesh.vertices()) {
+    auto p = mesh.point(v);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      fail(path, "vertex " + std::to_string(v.idx()) + " has a non-finite coordinate");
+    auto n = mesh.normal(v);
+    glm::vec3 normal(n[0], n[1], n[2]);
+    float len = glm::length(normal);
+    s.positions.emplace_back(p[0], p[1], p[2]);
+    s.normals.push_back(std::isfinite(len) && len > 0 ? normal / len : glm::vec3(0, 0, 1));
+    if (opt.vertex_has_color()) {
+      auto c = mesh.color(v);
+      s.colors.push_back(glm::vec3(c[0], c[1], c[2]) / 255.0f);
+    } else {
+      s.colors.emplace_back(1.0f);
+    }
+    if (opt.vertex_has_texcoord()) {
+      auto t = mesh.texcoord2D(v);
+      s.uvs.emplace_back(t[0], t[1]);
+    }
+  }
+  for (auto f : mesh.faces()) {
+    glm::uvec3 t;
+    int k = 0;
+    for (auto v : mesh.fv_range(f)) t[k++] = unsigned(v.idx());
+    s.triangles.push_back(t);
+  }
+  s.materialIds.assign(s.triangles.size(), 0);
+  s.materials.emplace_back();
+  return s;
+}
+
+void saveMeshPly(const Scene& scene, const std::string& path) {
+  silenceOpenMesh();
+  TriMesh mesh;
+  std::vector<TriMesh::VertexHandle> handles;
+  for (size_t i = 0; i < scene.positions.size(); ++i) {
+    const glm::vec3& p = scene.positions[i];
+    auto h = mesh.add_vertex({p.x, p.y, p.z});
+    const glm::vec3& n = scene.normals[i];
+    mesh.set_normal(h, {n.x, n.y, n.z});
+    const glm::vec3& c = scene.colors[i];
+    glm::vec3 q = glm::round(glm::clamp(c, 0.0f, 1.0f) * 255.0f);
+    mesh.set_color(h, TriMesh::Color(q.r, q.g, q.b));
+    handles.push_back(h);
+  }
+  for (const glm::uvec3& t : scene.triangles)
+    mesh.add_face(handles[t.x], handles[t.y], handles[t.z]);
+  OpenMesh::IO::Options opt = OpenMesh::IO::Options::Binary | OpenMesh::IO::Options::VertexNormal |
+                              OpenMesh::IO::Options::VertexColor;
+  if (!OpenMesh::IO::write_mesh(mesh, path, opt)) fail(path, "cannot write mesh");
+}
+
+}  // namespace mvr

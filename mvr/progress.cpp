@@ -1,0 +1,34 @@
+#include "mvr/progress.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace mvr {
+namespace {
+bool gEnabled = true;
+}
+
+void setProgressEnabled(bool enabled) { gEnabled = enabled; }
+
+Progress::Progress(std::string label, long total)
+    : label_(std::move(label)), total_(total), tty_(isatty(STDERR_FILENO)) {}
+
+Progress::~Progress() {
+  if (printed_ && tty_) std::fputc('\n', stderr);
+}
+
+void Progress::step(long n) {
+  done_ += n;
+  if (!gEnabled || total_ < 20) return;
+  int tenth = int(10 * done_ / total_);
+  if (tty_) {
+    std::fprintf(stderr, "\r%s: %ld/%ld", label_.c_str(), done_, total_);
+    printed_ = true;
+  } else if (tenth > lastTenth_) {
+    std::fprintf(stderr, "%s: %d%%\n", label_.c_str(), tenth * 10);
+  }
+  lastTenth_ = tenth;
+}
+
+}  // namespace mvr

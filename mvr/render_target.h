@@ -1,0 +1,37 @@
+#pragma once
+// An offscreen colour + depth target (optionally layered) and the GL state
+// every renderer shares: reversed zero-to-one depth in a float buffer.
+#include "mvr/gl_handles.h"
+#include "mvr/image.h"
+
+namespace mvr {
+
+class RenderTarget {
+ public:
+  // layers = 0: plain 2D; otherwise a 2D array of that many layers.
+  RenderTarget(int width, int height, PixelType type, int layers = 0);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  PixelType type() const { return type_; }
+  GLuint framebuffer() const { return fbo_.id(); }
+  GLuint colorTexture() const { return color_.id(); }
+
+  void bind() const;           // binds, sets the viewport
+  void clear() const;          // colour 0, depth 0 (far in reversed Z)
+  Image read() const;          // 2D target: whole image, rows top first
+  Image readLayer(int layer) const;
+  // Rows [y, y + h) into an existing image of the target's width.
+  void readRows(int y, int h, Image& out, int outY) const;
+
+ private:
+  int width_, height_, layers_;
+  PixelType type_;
+  gl::Texture color_, depth_;
+  gl::Framebuffer fbo_;
+};
+
+// Reversed Z: depth test GREATER, clear to 0, zero-to-one clip depth.
+void setDepthConvention();
+
+}  // namespace mvr

@@ -1,0 +1,50 @@
+#pragma once
+// The public rendering API: every back end renders the same Scene through
+// the same ShearingCamera and hands finished frames to a FrameSink.
+#include <map>
+#include <memory>
+#include <string>
+
+#include "mvr/camera.h"
+#include "mvr/image.h"
+#include "mvr/timer.h"
+
+namespace mvr {
+
+// Receives frames as a back end finishes them. View renderers (SVR,
+// deferred) produce views; EPI renderers (MVR, interp) produce EPIs, one
+// scanline seen from every view of a row: W x N pixels, row i = view i.
+// Adaptors in epi/volume.h turn one order into the other.
+class FrameSink {
+ public:
+  virtual ~FrameSink() = default;
+  virtual void putView(int row, int view, const Image& image);
+  virtual void putEpi(int row, int scanline, const Image& epi);
+  virtual void finish() {}
+};
+
+// Discards frames (benchmarks that only time the rendering).
+class NullSink final : public FrameSink {
+ public:
+  void putView(int, int, const Image&) override {}
+  void putEpi(int, int, const Image&) override {}
+};
+
+struct RenderStats {
+  StageTimes times;
+  std::map<std::string, double> counters;  // slices, bytes, layers, ...
+  std::map<std::string, std::string> notes; // passes run, options
+};
+
+enum class FrameOrder { View, Epi };
+
+class Renderer {
+ public:
+  virtual ~Renderer() = default;
+  virtual std::string name() const = 0;
+  virtual FrameOrder order() const = 0;
+  // All rows x views of the camera, in the renderer's natural order.
+  virtual void render(const ShearingCamera& camera, FrameSink& sink, RenderStats& stats) = 0;
+};
+
+}  // namespace mvr

@@ -1,0 +1,55 @@
+#include "mvr/scene.h"
+
+#include <limits>
+
+namespace mvr {
+
+Bounds Scene::bounds() const {
+  if (positions.empty()) return {};
+  Bounds b{glm::vec3(std::numeric_limits<float>::max()),
+           glm::vec3(std::numeric_limits<float>::lowest())};
+  for (const glm::vec3& p : positions) {
+    b.min = glm::min(b.min, p);
+    b.max = glm::max(b.max, p);
+  }
+  return b;
+}
+
+void Scene::append(const Scene& other) {
+  const auto base = uint32_t(positions.size());
+  const auto materialBase = uint32_t(materials.size());
+  positions.insert(positions.end(), other.positions.begin(), other.positions.end());
+  normals.insert(normals.end(), other.normals.begin(), other.normals.end());
+  colors.insert(colors.end(), other.colors.begin(), other.colors.end());
+  // uvs stay either empty or one per vertex.
+  if (!other.uvs.empty() || !uvs.empty()) {
+    uvs.resize(base, glm::vec2(0.0f));
+    if (other.uvs.empty())
+      uvs.resize(positions.size(), glm::vec2(0.0f));
+    else
+      uvs.insert(uvs.end(), other.uvs.begin(), other.uvs.end());
+  }
+  for (const glm::uvec3& t : other.triangles) triangles.push_back(t + glm::uvec3(base));
+  for (uint32_t m : other.materialIds) materialIds.push_back(m + materialBase);
+  materials.insert(materials.end(), other.materials.begin(), other.materials.end());
+}
+
+}  // namespace mvr
+
+namespace mvr {
+
+void computeVertexNormals(Scene& scene) {
+  std::vector<glm::vec3> sum(scene.vertexCount(), glm::vec3(0.0f));
+  for (const glm::uvec3& t : scene.triangles) {
+    const glm::vec3 &a = scene.positions[t.x], &b = scene.positions[t.y], &c = scene.positions[t.z];
+    glm::vec3 n = glm::cross(b - a, c - a);  // length = twice the area
+    for (int k = 0; k < 3; ++k) sum[t[k]] += n;
+  }
+  scene.normals.resize(scene.vertexCount());
+  for (size_t v = 0; v < sum.size(); ++v) {
+    float len = glm::length(sum[v]);
+    scene.normals[v] = len > 0 ? sum[v] / len : glm::vec3(0, 0, 1);
+  }
+}
+
+}  // namespace mvr

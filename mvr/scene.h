@@ -1,0 +1,64 @@
+#pragma once
+// The scene as flat arrays (structure of arrays): what every back end reads.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "mvr/camera.h"
+
+namespace mvr {
+
+struct Material {
+  std::string name = "default";
+  glm::vec3 diffuse{0.8f};
+  std::string texture;        // image file, empty for none
+  glm::vec3 specular{0.0f};   // zero: no view-dependent pass needed
+  float shininess = 32.0f;
+  std::string reflectionMap;  // empty for none
+  bool twoSided = true;       // false: back faces are culled
+};
+
+struct Light {
+  enum class Type { Directional, Point };
+  Type type = Type::Directional;
+  glm::vec3 vector{0.0f, 0.0f, -1.0f};  // direction light travels, or position
+  glm::vec3 color{1.0f};
+};
+
+struct Bounds {
+  glm::vec3 min{0.0f}, max{0.0f};
+  glm::vec3 center() const { return 0.5f * (min + max); }
+};
+
+struct Scene {
+  // Per vertex.
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec3> colors;  // vertex colours, multiplied by the material's
+  std::vector<glm::vec2> uvs;     // empty when no mesh has texture coordinates
+  // Per triangle.
+  std::vector<glm::uvec3> triangles;
+  std::vector<uint32_t> materialIds;
+
+  std::vector<Material> materials;
+  std::vector<Light> lights;
+  glm::vec3 ambient{0.15f};
+  std::optional<CameraSpec> camera;  // from the scene file, if it had one
+  std::string source;                // file it came from, for manifests
+
+  size_t vertexCount() const { return positions.size(); }
+  size_t triangleCount() const { return triangles.size(); }
+  Bounds bounds() const;
+  // Appends another scene's geometry and materials (lights stay ours).
+  void append(const Scene& other);
+};
+
+}  // namespace mvr
+
+namespace mvr {
+// Area-weighted vertex normals from the triangles (meshes without normals).
+void computeVertexNormals(Scene& scene);
+}  // namespace mvr

@@ -1,0 +1,26 @@
+#pragma once
+// The scene's vertex data on the GPU, as the view renderers draw it:
+// position, normal, albedo, cull flag per vertex; triangles as indices.
+#include "mvr/gl_handles.h"
+#include "mvr/scene.h"
+
+namespace mvr {
+
+class SceneBuffers {
+ public:
+  SceneBuffers(const Scene& scene, const std::vector<glm::vec3>& albedo,
+               const std::vector<float>& cullFlags);
+  void bind() const { gl::BindVertexArray(vao_.id()); }
+  void draw(int instances = 1) const;
+  GLsizei indexCount() const { return indexCount_; }
+
+ private:
+  gl::Buffer positions_, normals_, albedo_, cull_, indices_;
+  gl::VertexArray vao_;
+  GLsizei indexCount_;
+};
+
+// GLSL attribute declarations matching SceneBuffers' layout.
+extern const char* const kSceneVertexInputs;
+
+}  // namespace mvr

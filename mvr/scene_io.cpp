@@ -1,0 +1,249 @@
+#include "mvr/scene_io.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
+
+#include "mvr/error.h"
+#include "mvr/mesh_io.h"
+
+#ifndef MVR_ASSET_DIR
+#define MVR_ASSET_DIR "assets"
+#endif
+
+namespace mvr {
+namespace {
+
+using Json = nlohmann::json;
+namespace fs = std::filesystem;
+
+// Reads one scene file, remembering the file name for every error.
+class SceneReader {
+ public:
+  explicit SceneReader(std::string path) : path_(std::move(path)) {}
+
+  Scene read() {
+    Json root = parse();
+    expectObject(root, "", {"meshes", "materials", "lights", "ambient", "camera"});
+    Scene scene;
+    scene.source = path_;
+    if (root.contains("materials")) readMaterials(root["materials"]);
+    if (!root.contains("meshes")) fail(path_, "no \"meshes\"");
+    const Json& meshes = root["meshes"];
+    if (!meshes.is_array() || meshes.empty()) bad("meshes", "must be a non-empty array");
+    for (size_t i = 0; i < meshes.size(); ++i)
+      scene.append(readMesh(meshes[i], "meshes[" + std::to_string(i) + "]"));
+    if (root.contains("lights")) readLights(root["lights"], scene);
+    else scene.lights = defaultLights();
+    if (root.contains("ambient")) scene.ambient = vec3(root["ambient"], "ambient");
+    if (root.contains("camera")) scene.camera = readCamera(root["camera"]);
+    return scene;
+  }
+
+ private:
+  [[noreturn]] void bad(const std::string& where, const std::string& what) const {
+    fail(path_, where + ": " + what);
+  }
+
+  Json parse() const {
+    std::ifstream in(path_);
+    if (!in) fail(path_, "cannot open scene file");
+    try {
+      return Json::parse(in);
+    } catch (const Json::parse_error& e) {
+      fail(path_, std::string("bad JSON: ") + e.what());
+    }
+  }
+
+  void expectObject(const Json& j, const std::string& where,
+                    std::initializer_list<const char*> keys) const {
+    if (!j.is_object()) bad(where.empty() ? "top level" : where, "must be an object");
+    std::set<std::string> allowed(keys.begin(), keys.end());
+    for (auto it = j.begin(); it != j.end(); ++it)
+      if (!allowed.count(it.key()))
+        bad(where.empty() ? "top level" : where, "unknown key \"" + it.key() + "\"");
+  }
+
+  double number(const Json& j, const std::string& where) const {
+    if (!j.is_number()) bad(where, "must be a number");
+    double v = j.get<double>();
+    if (!std::isfinite(v)) bad(where, "must be finite");
+    return v;
+  }
+
+  glm::vec3 vec3(const Json& j, const std::string& where) const {
+    if (!j.is_array() || j.size() != 3) bad(where, "must be an array of 3 numbers");
+    return {float(number(j[0], where)), float(number(j[1], where)), float(number(j[2], where))};
+  }
+
+  std::string relative(const Json& j, const std::string& where) const {
+    if (!j.is_string() || j.get<std::string>().empty()) bad(where, "must be a file name");
+    fs::path p(j.get<std::string>());
+    return p.is_absolute() ? p.string() : (fs::path(path_).parent_path() / p).string();
+  }
+
+  Material readMaterial(const Json& j, const std::string& where) const {
+    expectObject(j, where,
+                 {"diffuse", "texture", "specular", "shininess", "reflection_map", "two_sided"});
+    Material m;
+    if (j.contains("diffuse")) m.diffuse = vec3(j["diffuse"], where + ".diffuse");
+    if (j.contains("texture")) m.texture = relative(j["texture"], where + ".texture");
+    if (j.contains("specular")) m.specular = vec3(j["specular"], where + ".specular");
+    if (j.contains("shininess")) m.shininess = float(number(j["shininess"], where + ".shininess"));
+    if (j.contains("reflection_map"))
+      m.reflectionMap = relative(j["reflection_map"], where + ".reflection_map");
+    if (j.contains("two_sided")) {
+      if (!j["two_sided"].is_boolean()) bad(where + ".two_sided", "must be true or false");
+      m.twoSided = j["two_sided"].get<bool>();
+    }
+    return m;
+  }
+
+  void readMaterials(const Json& j) {
+    if (!j.is_object()) bad("materials", "must be an object of named materials");
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      Material m = readMaterial(it.value(), "materials." + it.key());
+      m.name = it.key();
+      materials_[it.key()] = m;
+    }
+  }
+
+  glm::mat4 readTransform(const Json& j, const std::string& where) const {
+    expectObject(j, where, {"translate", "scale", "rotate"});
+    glm::mat4 m(1.0f);
+    if (j.contains("translate")) m = glm::translate(m, vec3(j["translate"], where + ".translate"));
+    if (j.contains("rotate")) {
+      const Json& r = j["rotate"];
+      if (!r.is_array() || r.size() != 4) bad(where + ".rotate", "must be [degrees, x, y, z]");
+      glm::vec3 axis(float(number(r[1], where)), float(number(r[2], where)),
+                     float(number(r[3], where)));
+      if (glm::length(axis) == 0) bad(where + ".rotate", "axis must not be zero");
+      m = glm::rotate(m, glm::radians(float(number(r[0], where))), glm::normalize(axis));
+    }
+    if (j.contains("scale")) {
+      const Json& s = j["scale"];
+      glm::vec3 v = s.is_array() ? vec3(s, where + ".scale") : glm::vec3(float(number(s, where)));
+      if (v.x == 0 || v.y == 0 || v.z == 0) bad(where + ".scale", "must not be zero");
+      m = glm::scale(m, v);
+    }
+    return m;
+  }
+
+  Scene readMesh(const Json& j, const std::string& where) const {
+    expectObject(j, where, {"file", "transform", "material"});
+    if (!j.contains("file")) bad(where, "no \"file\"");
+    Scene mesh = loadMesh(relative(j["file"], where + ".file"));
+    if (j.contains("transform")) applyTransform(mesh, readTransform(j["transform"], where + ".transform"));
+    if (j.contains("material")) {
+      const Json& m = j["material"];
+      if (m.is_string()) {
+        auto it = materials_.find(m.get<std::string>());
+        if (it == materials_.end()) bad(where + ".material", "no material \"" + m.get<std::string>() + "\"");
+        mesh.materials[0] = it->second;
+      } else {
+        mesh.materials[0] = readMaterial(m, where + ".material");
+        mesh.materials[0].name = where;
+      }
+    }
+    return mesh;
+  }
+
+  static void applyTransform(Scene& mesh, const glm::mat4& m) {
+    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
+    for (glm::vec3& p : mesh.positions) p = glm::vec3(m * glm::vec4(p, 1.0f));
+    for (glm::vec3& n : mesh.normals) n = glm::normalize(normalMatrix * n);
+  }
+
+  void readLights(const Json& j, Scene& scene) const {
+    if (!j.is_array()) bad("lights", "must be an array");
+    for (size_t i = 0; i < j.size(); ++i) {
+      const std::string where = "lights[" + std::to_string(i) + "]";
+      expectObject(j[i], where, {"type", "direction", "position", "color"});
+      Light light;
+      std::string type = j[i].value("type", "directional");
+      if (type == "directional") {
+        light.type = Light::Type::Directional;
+        if (!j[i].contains("direction")) bad(where, "directional light needs \"direction\"");
+        light.vector = vec3(j[i]["direction"], where + ".direction");
+        if (glm::length(light.vector) == 0) bad(where + ".direction", "must not be zero");
+        light.vector = glm::normalize(light.vector);
+      } else if (type == "point") {
+        light.type = Light::Type::Point;
+        if (!j[i].contains("position")) bad(where, "point light needs \"position\"");
+        light.vector = vec3(j[i]["position"], where + ".position");
+      } else {
+        bad(where + ".type", "must be \"directional\" or \"point\"");
+      }
+      if (j[i].contains("color")) light.color = vec3(j[i]["color"], where + ".color");
+      scene.lights.push_back(light);
+    }
+  }
+
+  CameraSpec readCamera(const Json& j) const {
+    expectObject(j, "camera", {"distance", "image_plane", "track", "rows", "near", "far"});
+    CameraSpec c;
+    auto pair = [&](const char* key, double& a, double& b) {
+      const Json& v = j[key];
+      if (!v.is_array() || v.size() != 2) bad(std::string("camera.") + key, "must be [a, b]");
+      a = number(v[0], std::string("camera.") + key);
+      b = number(v[1], std::string("camera.") + key);
+    };
+    for (const char* key : {"distance", "image_plane", "track", "near", "far"})
+      if (!j.contains(key)) bad("camera", std::string("no \"") + key + "\"");
+    c.distance = number(j["distance"], "camera.distance");
+    const Json& plane = j["image_plane"];
+    if (plane.is_number()) c.planeWidth = number(plane, "camera.image_plane");
+    else pair("image_plane", c.planeWidth, c.planeHeight);
+    pair("track", c.trackLeft, c.trackRight);
+    if (j.contains("rows")) pair("rows", c.rowTop, c.rowBottom);
+    c.nearDistance = number(j["near"], "camera.near");
+    c.farDistance = number(j["far"], "camera.far");
+    try {
+      ShearingCamera check(c, 1, 1, 1);
+    } catch (const Error& e) {
+      fail(path_, e.what());
+    }
+    return c;
+  }
+
+  std::string path_;
+  std::map<std::string, Material> materials_;
+
+ public:
+  static std::vector<Light> defaultLights() {
+    Light key;
+    key.vector = glm::normalize(glm::vec3(-0.4f, -0.6f, -1.0f));
+    key.color = glm::vec3(0.85f);
+    return {key};
+  }
+
+};
+
+}  // namespace
+
+Scene loadScene(const std::string& path) {
+  if (fs::path(path).extension() != ".json") {
+    Scene mesh = loadMesh(path);
+    const glm::vec3 c = mesh.bounds().center();
+    for (glm::vec3& p : mesh.positions) p -= c;
+    mesh.lights = SceneReader::defaultLights();
+    return mesh;
+  }
+  return SceneReader(path).read();
+}
+
+std::string defaultScenePath() {
+  const char* env = std::getenv("MVR_ASSETS");
+  return (fs::path(env ? env : MVR_ASSET_DIR) / "default.json").string();
+}
+
+CameraSpec cameraFor(const Scene& scene, int width, int height) {
+  return scene.camera ? *scene.camera : ShearingCamera::frame(scene.bounds(), width, height);
+}
+
+}  // namespace mvr

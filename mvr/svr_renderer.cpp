@@ -1,0 +1,233 @@
+// Single viewpoint rendering: the baseline MVR must beat. Lighting runs in
+// the vertex shader for every view, as a conventional renderer does.
+#include <algorithm>
+
+#include "mvr/baselines.h"
+#include "mvr/error.h"
+#include "mvr/gl_program.h"
+#include "mvr/progress.h"
+#include "mvr/render_target.h"
+#include "mvr/scene_buffers.h"
+#include "shading/lighting.h"
+
+namespace mvr {
+namespace {
+
+// Vertex stage shared by svr and svr-layered; LAYERED picks the per-view
+// matrix from an array by instance.
+const char* const kSvrVertex = R"(
+#ifdef LAYERED
+layout(std430, binding = 0) readonly buffer Views { mat4 uViewProjs[]; };
+uniform int uLayerBase;
+#ifndef VS_LAYER
+flat out int vLayer;
+#endif
+#else
+uniform mat4 uViewProj;
+#endif
+out vec3 vFront;
+out vec3 vBack;
+flat out float vCull;
+void main() {
+#ifdef LAYERED
+  mat4 viewProj = uViewProjs[uLayerBase + gl_InstanceID];
+#ifdef VS_LAYER
+  gl_Layer = gl_InstanceID;
+#else
+  vLayer = gl_InstanceID;
+#endif
+#else
+  mat4 viewProj = uViewProj;
+#endif
+  gl_Position = viewProj * vec4(aPosition, 1.0);
+  vFront = diffuseLight(aAlbedo, aPosition, aNormal);
+  vBack = diffuseLight(aAlbedo, aPosition, -aNormal);
+  vCull = aCull;
+}
+)";
+
+const char* const kSvrFragment = R"(
+in vec3 vFront;
+in vec3 vBack;
+flat in float vCull;
+layout(location = 0) out vec4 oColor;
+void main() {
+  if (!gl_FrontFacing && vCull > 0.5) discard;
+  oColor = vec4(gl_FrontFacing ? vFront : vBack, 1.0);
+}
+)";
+
+// Without ARB_shader_viewport_layer_array a geometry shader routes layers.
+const char* const kLayerGeometry = R"(
+layout(triangles) in;
+layout(triangle_strip, max_vertices = 3) out;
+flat in int vLayer[];
+in vec3 vFront[];
+in vec3 vBack[];
+flat in float vCull[];
+out vec3 gFront;
+out vec3 gBack;
+flat out float gCull;
+void main() {
+  for (int i = 0; i < 3; ++i) {
+    gl_Layer = vLayer[0];
+    gl_Position = gl_in[i].gl_Position;
+    gFront = vFront[i];
+    gBack = vBack[i];
+    gCull = vCull[i];
+    EmitVertex();
+  }
+}
+)";
+
+std::string vertexSource(std::initializer_list<std::string_view> defines) {
+  std::string header = gl::glslHeader(defines);
+  // #extension must precede every declaration.
+  for (std::string_view d : defines)
+    if (d == "VS_LAYER") header += "#extension GL_ARB_shader_viewport_layer_array : require\n";
+  return header + kSceneVertexInputs + shading::glslLighting() + kSvrVertex;
+}
+
+class SvrRenderer final : public Renderer {
+ public:
+  SvrRenderer(const Scene& scene, PixelType type)
+      : scene_(scene), type_(type),
+        buffers_(scene, shading::vertexAlbedo(scene), shading::vertexCullFlags(scene)),
+        program_(gl::linkProgram("svr", {{GL_VERTEX_SHADER, vertexSource({})},
+                                         {GL_FRAGMENT_SHADER, gl::glslHeader() + kSvrFragment}})) {
+    shading::setLightUniforms(program_, scene_);
+  }
+  std::string name() const override { return "svr"; }
+  FrameOrder order() const override { return FrameOrder::View; }
+
+  void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
+    RenderTarget target(cam.width(), cam.height(), type_);
+    setDepthConvention();
+    // The projection flips y (row 0 on top), which turns world-CCW into
+    // window-CW: declare CW as front so gl_FrontFacing means camera-facing.
+    gl::FrontFace(GL_CW);
+    target.bind();
+    gl::UseProgram(program_.id());
+    buffers_.bind();
+    Progress progress("svr", long(cam.rows()) * cam.views());
+    for (int row = 0; row < cam.rows(); ++row) {
+      for (int view = 0; view < cam.views(); ++view) {
+        {
+          ScopedStage s(stats.times, "draw");
+          gl::setUniform(program_, "uViewProj", glm::mat4(cam.viewProjection(view, row)));
+          target.clear();
+          buffers_.draw();
+          gl::Finish();
+        }
+        Image img;
+        {
+          ScopedStage s(stats.times, "readback");
+          img = target.read();
+        }
+        sink.putView(row, view, img);
+        progress.step();
+      }
+    }
+    gl::checkError("svr render");
+    stats.counters["draw_calls"] = double(cam.rows()) * cam.views();
+  }
+
+ private:
+  const Scene& scene_;
+  PixelType type_;
+  SceneBuffers buffers_;
+  gl::Program program_;
+};
+
+class LayeredSvrRenderer final : public Renderer {
+ public:
+  LayeredSvrRenderer(const Scene& scene, PixelType type)
+      : scene_(scene), type_(type),
+        buffers_(scene, shading::vertexAlbedo(scene), shading::vertexCullFlags(scene)),
+        vsLayer_(gl::hasExtension("GL_ARB_shader_viewport_layer_array")) {
+    if (vsLayer_) {
+      program_ = gl::linkProgram(
+          "svr-layered", {{GL_VERTEX_SHADER, vertexSource({"LAYERED", "VS_LAYER"})},
+                          {GL_FRAGMENT_SHADER, gl::glslHeader() + kSvrFragment}});
+    } else {
+      std::string fragment = std::string(kSvrFragment);
+      program_ = gl::linkProgram(
+          "svr-layered", {{GL_VERTEX_SHADER, vertexSource({"LAYERED"})},
+                          {GL_GEOMETRY_SHADER, gl::glslHeader() + kLayerGeometry},
+                          {GL_FRAGMENT_SHADER, gl::glslHeader({"vFront gFront", "vBack gBack",
+                                                               "vCull gCull"}) + fragment}});
+    }
+    shading::setLightUniforms(program_, scene_);
+  }
+  std::string name() const override { return "svr-layered"; }
+  FrameOrder order() const override { return FrameOrder::View; }
+
+  void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
+    const int batch = batchSize(cam);
+    RenderTarget target(cam.width(), cam.height(), type_, batch);
+    std::vector<glm::mat4> matrices;
+    for (int row = 0; row < cam.rows(); ++row)
+      for (int view = 0; view < cam.views(); ++view)
+        matrices.emplace_back(cam.viewProjection(view, row));
+    gl::Buffer views = gl::makeBuffer(matrices.data(), matrices.size());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, views.id());
+    setDepthConvention();
+    gl::FrontFace(GL_CW);
+    target.bind();
+    gl::UseProgram(program_.id());
+    buffers_.bind();
+    Progress progress("svr-layered", long(matrices.size()));
+    const int total = int(matrices.size());
+    for (int first = 0; first < total; first += batch) {
+      const int count = std::min(batch, total - first);
+      {
+        ScopedStage s(stats.times, "draw");
+        gl::setUniform(program_, "uLayerBase", first);
+        target.clear();
+        buffers_.draw(count);
+        gl::Finish();
+      }
+      for (int k = 0; k < count; ++k) {
+        Image img;
+        {
+          ScopedStage s(stats.times, "readback");
+          img = target.readLayer(k);
+        }
+        sink.putView((first + k) / cam.views(), (first + k) % cam.views(), img);
+        progress.step();
+      }
+    }
+    gl::checkError("svr-layered render");
+    stats.counters["layers_per_draw"] = batch;
+    stats.notes["layer_routing"] = vsLayer_ ? "vertex shader" : "geometry shader";
+  }
+
+ private:
+  int batchSize(const ShearingCamera& cam) const {
+    GLint maxLayers = 256;
+    gl::GetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+    const size_t perLayer = size_t(cam.width()) * cam.height() * (4 * Image::channelBytes(type_) + 4);
+    const size_t budget = size_t(512) << 20;  // bytes of colour + depth per batch
+    size_t n = std::max<size_t>(1, budget / perLayer);
+    n = std::min({n, size_t(maxLayers), size_t(cam.views()) * cam.rows()});
+    return int(n);
+  }
+
+  const Scene& scene_;
+  PixelType type_;
+  SceneBuffers buffers_;
+  bool vsLayer_;
+  gl::Program program_;
+};
+
+}  // namespace
+
+std::unique_ptr<Renderer> makeSvrRenderer(const Scene& scene, PixelType type) {
+  return std::make_unique<SvrRenderer>(scene, type);
+}
+
+std::unique_ptr<Renderer> makeLayeredSvrRenderer(const Scene& scene, PixelType type) {
+  return std::make_unique<LayeredSvrRenderer>(scene, type);
+}
+
+}  // namespace mvr

@@ -1,0 +1,86 @@
+#include "shading/lighting.h"
+
+#include <string>
+
+#include "mvr/error.h"
+#include "mvr/gl_program.h"
+
+namespace mvr::shading {
+
+std::vector<glm::vec3> vertexAlbedo(const Scene& scene) {
+  std::vector<glm::vec3> albedo(scene.colors);
+  // A vertex belongs to one mesh, so any of its triangles names its material.
+  std::vector<uint32_t> material(scene.vertexCount(), 0);
+  for (size_t t = 0; t < scene.triangleCount(); ++t)
+    for (int k = 0; k < 3; ++k) material[scene.triangles[t][k]] = scene.materialIds[t];
+  for (size_t v = 0; v < albedo.size(); ++v) albedo[v] *= scene.materials[material[v]].diffuse;
+  return albedo;
+}
+
+std::vector<float> vertexCullFlags(const Scene& scene) {
+  std::vector<float> flags(scene.vertexCount(), 0.0f);
+  for (size_t t = 0; t < scene.triangleCount(); ++t)
+    if (!scene.materials[scene.materialIds[t]].twoSided)
+      for (int k = 0; k < 3; ++k) flags[scene.triangles[t][k]] = 1.0f;
+  return flags;
+}
+
+// Keep in step with the GLSL below.
+glm::vec3 diffuse(const Scene& scene, const glm::vec3& albedo, const glm::vec3& p,
+                  const glm::vec3& n) {
+  glm::vec3 sum = scene.ambient;
+  for (const Light& light : scene.lights) {
+    glm::vec3 l = light.type == Light::Type::Directional ? -light.vector
+                                                         : glm::normalize(light.vector - p);
+    sum += light.color * glm::max(glm::dot(n, l), 0.0f);
+  }
+  return glm::clamp(albedo * sum, 0.0f, 1.0f);
+}
+
+VertexColors litVertexColors(const Scene& scene) {
+  std::vector<glm::vec3> albedo = vertexAlbedo(scene);
+  VertexColors c;
+  c.front.resize(scene.vertexCount());
+  c.back.resize(scene.vertexCount());
+  for (size_t v = 0; v < scene.vertexCount(); ++v) {
+    c.front[v] = diffuse(scene, albedo[v], scene.positions[v], scene.normals[v]);
+    c.back[v] = diffuse(scene, albedo[v], scene.positions[v], -scene.normals[v]);
+  }
+  return c;
+}
+
+const std::string& glslLighting() {
+  static const std::string src = R"(
+uniform int uLightCount;
+uniform vec4 uLightVector[8];  // w = 0: direction light travels; w = 1: position
+uniform vec3 uLightColor[8];
+uniform vec3 uAmbient;
+
+vec3 diffuseLight(vec3 albedo, vec3 p, vec3 n) {
+  vec3 sum = uAmbient;
+  for (int i = 0; i < uLightCount; ++i) {
+    vec3 l = uLightVector[i].w == 0.0 ? -uLightVector[i].xyz
+                                      : normalize(uLightVector[i].xyz - p);
+    sum += uLightColor[i] * max(dot(n, l), 0.0);
+  }
+  return clamp(albedo * sum, 0.0, 1.0);
+}
+)";
+  return src;
+}
+
+void setLightUniforms(const gl::Program& program, const Scene& scene) {
+  if (scene.lights.size() > size_t(kMaxLights))
+    fail(scene.source, "more than " + std::to_string(kMaxLights) + " lights");
+  gl::setUniform(program, "uLightCount", int(scene.lights.size()));
+  gl::setUniform(program, "uAmbient", scene.ambient);
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& l = scene.lights[i];
+    const std::string idx = "[" + std::to_string(i) + "]";
+    float w = l.type == Light::Type::Directional ? 0.0f : 1.0f;
+    gl::setUniform(program, ("uLightVector" + idx).c_str(), glm::vec4(l.vector, w));
+    gl::setUniform(program, ("uLightColor" + idx).c_str(), l.color);
+  }
+}
+
+}  // namespace mvr::shading

@@ -1,0 +1,37 @@
+#pragma once
+// View-independent lighting (ambient + Lambert diffuse over point and
+// directional lights), shared by every back end: once per vertex on the CPU
+// for MVR, per vertex per view in SVR's vertex shader, per pixel in the
+// deferred pipeline. One formula, written twice (C++ and GLSL) side by side.
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "mvr/gl_handles.h"
+#include "mvr/scene.h"
+
+namespace mvr::shading {
+
+constexpr int kMaxLights = 8;
+
+// Per vertex: material diffuse times vertex colour.
+std::vector<glm::vec3> vertexAlbedo(const Scene& scene);
+// Per vertex: 1 where the vertex's material culls back faces, else 0.
+std::vector<float> vertexCullFlags(const Scene& scene);
+
+glm::vec3 diffuse(const Scene& scene, const glm::vec3& albedo, const glm::vec3& position,
+                  const glm::vec3& normal);
+
+// Front and back colours per vertex (back: normal flipped, two-sided).
+struct VertexColors {
+  std::vector<glm::vec3> front, back;
+};
+VertexColors litVertexColors(const Scene& scene);
+
+// GLSL: uniforms and `vec3 diffuseLight(vec3 albedo, vec3 p, vec3 n)`.
+const std::string& glslLighting();
+// Sets the uniforms glslLighting() declares; throws if too many lights.
+void setLightUniforms(const gl::Program& program, const Scene& scene);
+
+}  // namespace mvr::shading
