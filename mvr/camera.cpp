@@ -1,5 +1,6 @@
 #include "mvr/camera.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -91,13 +92,21 @@ CameraSpec ShearingCamera::frame(const Bounds& b, int width, int height) {
   const double aspect = double(width) / height;
   CameraSpec s;
   s.distance = 4.0 * radius;
-  // Geometry in front of the plane looks larger; 1.4 leaves room for it.
-  double halfWidth = 1.4 * std::max(extent.x, extent.y * aspect);
-  if (!(halfWidth > 0)) halfWidth = radius;
-  s.planeWidth = 2.0 * halfWidth;
-  s.planeHeight = s.planeWidth / aspect;
   s.trackLeft = -0.25 * s.distance;
   s.trackRight = 0.25 * s.distance;
+  // Size the plane so every corner of the bounds, seen from either end of
+  // the track, lands inside the image: X' = cx + (X - cx) D / (D - Z).
+  double halfX = 0, halfY = 0;
+  for (int c = 0; c < 8; ++c) {
+    const glm::dvec3 p(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
+    const double scale = s.distance / (s.distance - p.z);
+    for (double cx : {s.trackLeft, s.trackRight})
+      halfX = std::max(halfX, std::abs(cx + (p.x - cx) * scale));
+    halfY = std::max(halfY, std::abs(p.y * scale));
+  }
+  const double halfWidth = 1.05 * std::max({halfX, halfY * aspect, 1e-6 * radius});
+  s.planeWidth = 2.0 * halfWidth;
+  s.planeHeight = s.planeWidth / aspect;
   s.nearDistance = s.distance - 1.5 * radius;
   s.farDistance = s.distance + 1.5 * radius;
   return s;

@@ -137,7 +137,12 @@ class SceneReader {
   Scene readMesh(const Json& j, const std::string& where) const {
     expectObject(j, where, {"file", "transform", "material"});
     if (!j.contains("file")) bad(where, "no \"file\"");
-    Scene mesh = loadMesh(relative(j["file"], where + ".file"));
+    Scene mesh;
+    try {
+      mesh = loadMesh(relative(j["file"], where + ".file"));
+    } catch (const Error& e) {
+      bad(where + ".file", e.what());
+    }
     if (j.contains("transform")) applyTransform(mesh, readTransform(j["transform"], where + ".transform"));
     if (j.contains("material")) {
       const Json& m = j["material"];

@@ -1,0 +1,102 @@
+// The `mvr` program end to end, as a user runs it.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int status;
+  std::string err;
+};
+
+Result run(const std::string& args) {
+  const fs::path errFile = fs::temp_directory_path() / "mvr_cli_stderr.txt";
+  const std::string cmd = std::string(MVR_BINARY) + " " + args + " >/dev/null 2>" + errFile.string();
+  int rc = std::system(cmd.c_str());
+  std::stringstream ss;
+  ss << std::ifstream(errFile).rdbuf();
+  return {WEXITSTATUS(rc), ss.str()};
+}
+
+fs::path outDir(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / ("mvr_cli_" + name);
+  fs::remove_all(d);
+  return d;
+}
+
+void expectSet(const fs::path& dir, int views, const std::string& backend) {
+  for (int i = 0; i < views; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "view_%04d.png", i);
+    EXPECT_TRUE(fs::exists(dir / name)) << dir / name;
+  }
+  ASSERT_TRUE(fs::exists(dir / "manifest.json"));
+  auto m = nlohmann::json::parse(std::ifstream(dir / "manifest.json"));
+  EXPECT_EQ(m["backend"], backend);
+  EXPECT_EQ(m["views"], views);
+  EXPECT_TRUE(m["timings_s"].contains("total"));
+}
+
+TEST(Cli, RendersDefaultSceneUnderEgl) {
+  fs::path d = outDir("egl");
+  Result r = run("render --gl egl --views 4 --size 48x36 --out " + d.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  expectSet(d, 4, "svr");
+}
+
+TEST(Cli, RendersDefaultSceneUnderOsMesa) {
+  fs::path d = outDir("osmesa");
+  Result r = run("render --gl osmesa --views 3 --size 40x30 --out " + d.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  expectSet(d, 3, "svr");
+}
+
+TEST(Cli, EveryBaselineWritesItsSet) {
+  for (std::string b : {"svr-layered", "deferred"}) {
+    fs::path d = outDir(b);
+    Result r = run("render --backend " + b + " --views 3 --size 40x30 --out " + d.string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    expectSet(d, 3, b);
+  }
+}
+
+TEST(Cli, CompareReportsIdenticalAndRejectsMismatch) {
+  fs::path a = outDir("cmp_a"), b = outDir("cmp_b"), c = outDir("cmp_c");
+  ASSERT_EQ(run("render --views 2 --size 40x30 --out " + a.string()).status, 0);
+  ASSERT_EQ(run("render --views 2 --size 40x30 --out " + b.string()).status, 0);
+  ASSERT_EQ(run("render --views 2 --size 42x30 --out " + c.string()).status, 0);
+  EXPECT_EQ(run("compare " + a.string() + " " + b.string()).status, 0);
+  Result mismatch = run("compare " + a.string() + " " + c.string());
+  EXPECT_NE(mismatch.status, 0);
+  EXPECT_NE(mismatch.err.find("size mismatch"), std::string::npos) << mismatch.err;
+}
+
+TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
+  fs::path d = outDir("bad");
+  for (std::string args : std::vector<std::string>{"render /nonexistent/scene.json --out " + d.string(),
+                           "render --views 0 --out " + d.string(),
+                           "render --size 10 --out " + d.string(),
+                           "render --backend nope --out " + d.string(),
+                           "render --gl vulkan --out " + d.string(), "frobnicate"}) {
+    Result r = run(args);
+    EXPECT_NE(r.status, 0) << args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("mvr: ", 0), 0u) << r.err;
+    EXPECT_FALSE(fs::exists(d / "manifest.json")) << args;
+  }
+}
+
+TEST(Cli, HelpForEverySubcommand) {
+  for (std::string c : {"info", "render", "compare"}) EXPECT_EQ(run(c + " --help").status, 0) << c;
+}
+
+}  // namespace

@@ -1,0 +1,89 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "mvr/compare.h"
+#include "mvr/error.h"
+#include "mvr/image_set.h"
+
+#include <nlohmann/json.hpp>
+
+namespace mvr {
+namespace {
+
+namespace fs = std::filesystem;
+
+Image gradient(int w, int h, int bump) {
+  Image img(w, h, PixelType::U8);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      uint8_t* p = img.row(y) + x * 4;
+      p[0] = uint8_t(x * 7 + bump * (x == 3 && y == 2));
+      p[1] = uint8_t(y * 11);
+      p[2] = 100;
+      p[3] = 255;
+    }
+  return img;
+}
+
+fs::path makeSet(const std::string& name, int bump, int w = 8) {
+  fs::path dir = fs::temp_directory_path() / ("mvr_compare_" + name);
+  fs::remove_all(dir);
+  ImageSetWriter writer(dir.string(), "png", 2, 1, 6);
+  writer.putView(0, 0, gradient(w, 6, 0));
+  writer.putView(0, 1, gradient(w, 6, bump));
+  writer.commit(nlohmann::json{{"test", true}});
+  return dir;
+}
+
+TEST(Compare, IdenticalSetsAreIdentical) {
+  auto d = compareSets(makeSet("a", 0).string(), makeSet("b", 0).string());
+  ASSERT_EQ(d.size(), 2u);
+  for (const auto& x : d) {
+    EXPECT_TRUE(std::isinf(x.psnr));
+    EXPECT_EQ(x.identicalFraction, 1.0);
+    EXPECT_EQ(x.maxError, 0.0);
+  }
+}
+
+TEST(Compare, OneChangedPixelIsCountedAndMeasured) {
+  auto d = compareSets(makeSet("c", 0).string(), makeSet("d", 51).string());
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_EQ(d[1].name, "view_0001.png");
+  EXPECT_EQ(d[1].differingPixels, 1);
+  EXPECT_NEAR(d[1].identicalFraction, 47.0 / 48.0, 1e-12);
+  EXPECT_NEAR(d[1].maxError, 0.2, 1e-6);
+  // MSE = 0.2^2 / (3 * 48) -> PSNR = 10 log10(144 / 0.04)
+  EXPECT_NEAR(d[1].psnr, 10 * std::log10(144 / 0.04), 1e-3);
+}
+
+TEST(Compare, SizeMismatchIsAnError) {
+  EXPECT_THROW(compareSets(makeSet("e", 0).string(), makeSet("f", 0, 9).string()), Error);
+}
+
+TEST(Compare, MissingFolderIsAnError) {
+  EXPECT_THROW(compareSets("/nonexistent/a", makeSet("g", 0).string()), Error);
+}
+
+TEST(ImageSetWriter, UncommittedSetIsRemoved) {
+  fs::path dir = fs::temp_directory_path() / "mvr_uncommitted";
+  fs::remove_all(dir);
+  {
+    ImageSetWriter writer(dir.string(), "png", 2, 1, 6);
+    writer.putView(0, 0, gradient(8, 6, 0));
+    EXPECT_TRUE(fs::exists(dir / "view_0000.png"));
+  }
+  EXPECT_FALSE(fs::exists(dir / "view_0000.png"));
+  EXPECT_FALSE(fs::exists(dir / "manifest.json"));
+}
+
+TEST(ImageSetWriter, NamesGrowDigitsWithTheViewCount) {
+  EXPECT_EQ(ImageSetWriter::viewName(0, 7, 100, 1, "png"), "view_0007.png");
+  EXPECT_EQ(ImageSetWriter::viewName(0, 7, 20000, 1, "png"), "view_00007.png");
+  EXPECT_EQ(ImageSetWriter::viewName(2, 7, 100, 3, "exr"), "view_r002_c0007.exr");
+  EXPECT_EQ(ImageSetWriter::epiName(0, 12, 480, 1, "png"), "epi_0012.png");
+}
+
+}  // namespace
+}  // namespace mvr

@@ -1,0 +1,119 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <cmath>
+#include <fstream>
+
+#include "mvr/error.h"
+#include "mvr/scene_io.h"
+#include "tests/support/gl_fixture.h"
+
+namespace mvr {
+namespace {
+
+namespace fs = std::filesystem;
+
+class SceneIo : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("mvr_scene_io_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+            "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+    return (dir_ / name).string();
+  }
+  // Expects loadScene to fail with a message naming the file and containing `what`.
+  void expectError(const std::string& path, const std::string& what) {
+    try {
+      loadScene(path);
+      FAIL() << "no error for " << path;
+    } catch (const Error& e) {
+      std::string msg = e.what();
+      EXPECT_NE(msg.find(fs::path(path).filename().string()), std::string::npos) << msg;
+      EXPECT_NE(msg.find(what), std::string::npos) << msg;
+      EXPECT_EQ(msg.find('\n'), std::string::npos) << "not one line: " << msg;
+    }
+  }
+  std::string cubeJson(const std::string& extra) {
+    fs::copy_file(test::assetPath("cube.obj"), dir_ / "cube.obj", fs::copy_options::overwrite_existing);
+    return write("scene.json", "{\"meshes\": [{\"file\": \"cube.obj\"}]" + extra + "}");
+  }
+  fs::path dir_;
+};
+
+TEST_F(SceneIo, LoadsTheCube) {
+  Scene s = loadScene(test::assetPath("cube.json"));
+  EXPECT_EQ(s.triangleCount(), 12u);
+  EXPECT_EQ(s.vertexCount(), 24u);  // 4 per face: flat shading
+  ASSERT_TRUE(s.camera.has_value());
+  EXPECT_EQ(s.camera->distance, 4.0);
+  EXPECT_EQ(s.materials.at(0).diffuse, glm::vec3(0.9f, 0.6f, 0.3f));
+}
+
+TEST_F(SceneIo, BareMeshIsCentredAndLit) {
+  std::string p = write("offset.obj", "v 10 10 10\nv 12 10 10\nv 10 12 10\nf 1 2 3\n");
+  Scene s = loadScene(p);
+  EXPECT_NEAR(s.bounds().center().x, 0.0f, 1e-6);
+  EXPECT_EQ(s.lights.size(), 1u);
+  EXPECT_FALSE(s.camera.has_value());
+}
+
+TEST_F(SceneIo, MissingFile) { expectError((dir_ / "nothing.obj").string(), "no such mesh file"); }
+
+TEST_F(SceneIo, UnreadableMesh) { expectError(write("junk.ply", "ply\ngarbage\n"), "cannot read mesh"); }
+
+TEST_F(SceneIo, EmptyMesh) { expectError(write("empty.obj", "v 0 0 0\nv 1 0 0\n"), "no triangles"); }
+
+// Binary PLY carries NaN and infinity through to the loader untouched.
+std::string plyTriangle(float bad) {
+  std::string s =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n";
+  const float v[9] = {0, 0, 0, bad, 0, 0, 0, 1, 0};
+  s.append(reinterpret_cast<const char*>(v), sizeof v);
+  const char n = 3;
+  const int32_t idx[3] = {0, 1, 2};
+  s.push_back(n);
+  s.append(reinterpret_cast<const char*>(idx), sizeof idx);
+  return s;
+}
+
+TEST_F(SceneIo, NonFiniteCoordinates) {
+  expectError(write("nan.ply", plyTriangle(NAN)), "non-finite");
+  expectError(write("inf.ply", plyTriangle(INFINITY)), "non-finite");
+}
+
+TEST_F(SceneIo, BadJson) { expectError(write("bad.json", "{\"meshes\": [}"), "bad JSON"); }
+
+TEST_F(SceneIo, UnknownKeys) {
+  expectError(cubeJson(", \"lihgts\": []"), "unknown key \"lihgts\"");
+  expectError(write("m.json", "{\"meshes\": [{\"file\": \"cube.obj\", \"colour\": 1}]}"),
+              "unknown key \"colour\"");
+}
+
+TEST_F(SceneIo, MissingMeshInsideScene) {
+  expectError(write("s.json", "{\"meshes\": [{\"file\": \"absent.obj\"}]}"),
+              "meshes[0].file: " + (dir_ / "absent.obj").string() + ": no such mesh file");
+}
+
+TEST_F(SceneIo, ImpossibleCamera) {
+  expectError(cubeJson(", \"camera\": {\"distance\": 4, \"image_plane\": 2, \"track\": [-1, 1],"
+                       " \"near\": 5, \"far\": 3}"),
+              "far distance must exceed near distance");
+  expectError(cubeJson(", \"camera\": {\"distance\": -4, \"image_plane\": 2, \"track\": [-1, 1],"
+                       " \"near\": 1, \"far\": 3}"),
+              "distance must be positive");
+}
+
+TEST_F(SceneIo, WrongTypes) {
+  expectError(cubeJson(", \"ambient\": [1, 2]"), "ambient: must be an array of 3 numbers");
+  expectError(cubeJson(", \"lights\": [{\"type\": \"spot\"}]"), "lights[0].type");
+}
+
+}  // namespace
+}  // namespace mvr
