@@ -5,6 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/args.h"
+#include "epi/mvr_renderer.h"
+#include "epi/volume.h"
 #include "mvr/baselines.h"
 #include "mvr/error.h"
 #include "mvr/gl_context.h"
@@ -17,20 +19,23 @@ const char* const kRenderHelp =
     "usage: mvr render [SCENE] [options]\n"
     "SCENE is a JSON scene file or a mesh (OBJ, PLY, OFF, STL); without it the\n"
     "bundled default scene is rendered.\n"
-    "  --backend svr|svr-layered|deferred   renderer (default svr)\n"
+    "  --backend mvr|svr|svr-layered|deferred   renderer (default mvr)\n"
+    "  --pst quad|strip|exact|cpu   MVR accuracy mode (default strip)\n"
     "  --views N          views on the horizontal track (default 16)\n"
     "  --rows M           rows of views for full parallax (default 1)\n"
     "  --size WxH         image size in pixels (default 320x240)\n"
     "  --out DIR          output folder (default out)\n"
     "  --format png|exr|tiff   image format (default png; exr renders in float)\n"
+    "  --order view|epi   write views (view_*) or EPIs (epi_*) (default view)\n"
     "  --gl egl|osmesa|glfw    GL platform (default: egl, else osmesa)\n"
     "Writes view_0000.png ... (view_r000_c0000.png for grids) and manifest.json.\n";
 
 std::unique_ptr<Renderer> makeRenderer(const BackendChoice& c, const Scene& scene, PixelType type) {
+  if (c.backend == "mvr") return makeMvrRenderer(scene, parsePstMode(c.pst), type);
   if (c.backend == "svr") return makeSvrRenderer(scene, type);
   if (c.backend == "svr-layered") return makeLayeredSvrRenderer(scene, type);
   if (c.backend == "deferred") return makeDeferredRenderer(scene, type);
-  fail("--backend", "unknown back end '" + c.backend + "' (expected svr, svr-layered or deferred)");
+  fail("--backend", "unknown back end '" + c.backend + "' (expected mvr, svr, svr-layered or deferred)");
 }
 
 namespace {
@@ -54,13 +59,16 @@ int runRender(int argc, char** argv) {
   if (args.positional().size() > 1) fail("render", "takes at most one scene file");
   const std::string scenePath =
       args.positional().empty() ? defaultScenePath() : args.positional()[0];
-  BackendChoice choice{args.get("backend", "svr"), args.get("pst", "strip")};
+  BackendChoice choice{args.get("backend", "mvr"), args.get("pst", "strip")};
   const int views = args.getInt("views", 16, 1, 65536);
   const int rows = args.getInt("rows", 1, 1, 4096);
   const auto [width, height] = args.getSize("size", {320, 240});
   const std::string out = args.get("out", "out");
   const std::string format = args.get("format", "png");
   const PixelType type = format == "png" ? PixelType::U8 : PixelType::F32;
+  const std::string order = args.get("order", "view");
+  if (order != "view" && order != "epi") fail("--order", "expected view or epi, not '" + order + "'");
+  if (choice.backend != "mvr" && args.has("pst")) fail("--pst", "applies to --backend mvr only");
   const GlPlatform platform = parseGlPlatform(args.get("gl", "auto"));
 
   // Input problems first, before any GL or file work.
@@ -70,22 +78,31 @@ int runRender(int argc, char** argv) {
   auto renderer = makeRenderer(choice, scene, type);
 
   ImageSetWriter writer(out, format, views, rows, height);
+  // Reorder only when the renderer's natural order is not the one asked for.
+  std::unique_ptr<FrameSink> adaptor;
+  if (renderer->order() == FrameOrder::Epi && order == "view")
+    adaptor = std::make_unique<EpisToViews>(writer, width, height, views, type);
+  else if (renderer->order() == FrameOrder::View && order == "epi")
+    adaptor = std::make_unique<ViewsToEpis>(writer, width, height, views, type);
+  FrameSink& sink = adaptor ? *adaptor : writer;
   RenderStats stats;
   Stopwatch total;
-  renderer->render(camera, writer, stats);
-  writer.finish();
+  renderer->render(camera, sink, stats);
+  sink.finish();
 
   nlohmann::json m;
   m["scene"] = scene.source;
   m["triangles"] = scene.triangleCount();
   m["backend"] = renderer->name();
+  if (choice.backend == "mvr") m["pst"] = choice.pst;
   m["views"] = views;
   m["rows"] = rows;
   m["width"] = width;
   m["height"] = height;
   m["format"] = format;
-  m["order"] = "view";
-  m["naming"] = rows == 1 ? "view_%04d" : "view_r%03d_c%04d";
+  m["order"] = order;
+  if (order == "view") m["naming"] = rows == 1 ? "view_%04d" : "view_r%03d_c%04d";
+  else m["naming"] = rows == 1 ? "epi_%04d (rows: views)" : "epi_r%03d_%04d (rows: views)";
   m["gl"] = {{"platform", glPlatformName(context->platform())},
              {"version", context->version()},
              {"renderer", context->renderer()}};

@@ -14,7 +14,7 @@ extern const char* const kRenderHelp;
 int runRender(int argc, char** argv);
 
 struct BackendChoice {
-  std::string backend = "svr";  // mvr | svr | svr-layered | deferred
+  std::string backend = "mvr";  // mvr | svr | svr-layered | deferred
   std::string pst = "strip";    // quad | strip | exact | cpu (mvr only)
 };
 

@@ -20,8 +20,11 @@ Progress::~Progress() {
 
 void Progress::step(long n) {
   done_ += n;
-  if (!gEnabled || total_ < 20) return;
   int tenth = int(10 * done_ / total_);
+  if (!gEnabled || clock_.seconds() < 1.0) {
+    lastTenth_ = tenth;
+    return;
+  }
   if (tty_) {
     std::fprintf(stderr, "\r%s: %ld/%ld", label_.c_str(), done_, total_);
     printed_ = true;

@@ -1,7 +1,9 @@
 #pragma once
 // Progress for long work, on stderr only: a live line on a terminal, a line
-// per tenth otherwise, nothing for short jobs.
+// per tenth otherwise; nothing during the first second, so short jobs stay quiet.
 #include <string>
+
+#include "mvr/timer.h"
 
 namespace mvr {
 
@@ -17,6 +19,7 @@ class Progress {
   int lastTenth_ = 0;
   bool tty_;
   bool printed_ = false;
+  Stopwatch clock_;
 };
 
 // Turned off by tests and the benchmark.

@@ -1,0 +1,31 @@
+#pragma once
+// One interface for every way of filling EPIs from a slice table: the GL
+// rasterizer in three accuracy modes and the CPU span rasterizer.
+#include <memory>
+#include <string>
+
+#include "mvr/renderer.h"
+#include "slicing/slice_table.h"
+
+namespace mvr {
+
+enum class PstMode { Quad, Strip, Exact, Cpu };
+
+PstMode parsePstMode(const std::string& name);  // throws on unknown
+const char* pstModeName(PstMode mode);
+
+class EpiRasterizer {
+ public:
+  virtual ~EpiRasterizer() = default;
+  // Fills the EPIs of every scanline of one row of views and hands each to
+  // the sink as sink.putEpi(row, scanline, W x N image).
+  virtual void rasterize(const ExtremeVertices& vertices, const SliceTable& table,
+                         const ShearingCamera& camera, int row, FrameSink& sink,
+                         RenderStats& stats) = 0;
+};
+
+std::unique_ptr<EpiRasterizer> makeSpanRasterizer(PixelType type, int threads);
+// Needs a current GL context.
+std::unique_ptr<EpiRasterizer> makeGlRasterizer(PstMode mode, PixelType type);
+
+}  // namespace mvr

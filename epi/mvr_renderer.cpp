@@ -1,0 +1,65 @@
+#include "epi/mvr_renderer.h"
+
+#include <thread>
+
+#include "shading/lighting.h"
+#include "slicing/extreme_vertices.h"
+#include "slicing/slice_table.h"
+
+namespace mvr {
+namespace {
+
+class MvrRenderer final : public Renderer {
+ public:
+  MvrRenderer(const Scene& scene, PstMode mode, PixelType type, int threads)
+      : scene_(scene), mode_(mode), threads_(threads),
+        rasterizer_(mode == PstMode::Cpu ? makeSpanRasterizer(type, threads)
+                                         : makeGlRasterizer(mode, type)) {}
+
+  std::string name() const override { return "mvr"; }
+  FrameOrder order() const override { return FrameOrder::Epi; }
+
+  void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
+    shading::VertexColors colors;
+    {
+      // Diffuse lighting is view independent: once per sequence (Halle 5.6.2).
+      ScopedStage s(stats.times, "lighting");
+      colors = shading::litVertexColors(scene_);
+    }
+    for (int row = 0; row < cam.rows(); ++row) {
+      ExtremeVertices vertices;
+      {
+        ScopedStage s(stats.times, "transform");
+        vertices = transformToExtremes(scene_, colors, cam, row);
+      }
+      SliceTable table;
+      {
+        ScopedStage s(stats.times, "slicing");
+        table = SliceTable::build(vertices, cam.height(), threads_);
+      }
+      stats.counters["slices"] += double(table.sliceCount());
+      stats.counters["slice_table_bytes"] = std::max(stats.counters["slice_table_bytes"], double(table.bytes()));
+      stats.counters["extreme_vertex_bytes"] = double(vertices.bytes());
+      stats.counters["clipped_triangles"] = double(vertices.triangles.size());
+      rasterizer_->rasterize(vertices, table, cam, row, sink, stats);
+    }
+    stats.notes["pst"] = pstModeName(mode_);
+    stats.notes["passes"] = "diffuse";
+  }
+
+ private:
+  const Scene& scene_;
+  PstMode mode_;
+  int threads_;
+  std::unique_ptr<EpiRasterizer> rasterizer_;
+};
+
+}  // namespace
+
+std::unique_ptr<Renderer> makeMvrRenderer(const Scene& scene, PstMode mode, PixelType type,
+                                          int threads) {
+  if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
+  return std::make_unique<MvrRenderer>(scene, mode, type, threads);
+}
+
+}  // namespace mvr

@@ -1,0 +1,16 @@
+#pragma once
+// Multiple viewpoint rendering (Halle 1997): per row of views, transform
+// once to the extreme views, build the slice table, rasterize every EPI.
+#include <memory>
+
+#include "epi/epi_rasterizer.h"
+#include "mvr/renderer.h"
+#include "mvr/scene.h"
+
+namespace mvr {
+
+// GL modes need a current context; cpu uses `threads` threads.
+std::unique_ptr<Renderer> makeMvrRenderer(const Scene& scene, PstMode mode, PixelType type,
+                                          int threads = 2);
+
+}  // namespace mvr

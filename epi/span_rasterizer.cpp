@@ -1,0 +1,110 @@
+// The CPU back end (Halle's span pseudocode): for every PST and every view
+// row it crosses, one exact horizontal span. It is the test oracle and the
+// renderer for machines without a GPU. Scanlines are independent, so
+// threads take whole scanlines; frames leave in scanline order.
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <thread>
+
+#include "epi/epi_rasterizer.h"
+#include "epi/pst.h"
+#include "mvr/progress.h"
+
+namespace mvr {
+namespace {
+
+class SpanRasterizer final : public EpiRasterizer {
+ public:
+  SpanRasterizer(PixelType type, int threads) : type_(type), threads_(std::max(1, threads)) {}
+
+  void rasterize(const ExtremeVertices& v, const SliceTable& table, const ShearingCamera& cam,
+                 int row, FrameSink& sink, RenderStats& stats) override {
+    const int height = cam.height();
+    const int batch = std::max(1, std::min(height, 4 * threads_));
+    std::vector<Image> epis(batch);
+    Progress progress("mvr cpu", height);
+    for (int first = 0; first < height; first += batch) {
+      const int count = std::min(batch, height - first);
+      {
+        ScopedStage s(stats.times, "raster");
+        std::atomic<int> next{0};
+        auto work = [&] {
+          std::vector<float> depth;
+          for (int k; (k = next++) < count;) epis[k] = fillEpi(v, table, cam, first + k, depth);
+        };
+        std::vector<std::thread> pool;
+        for (int t = 1; t < std::min(threads_, count); ++t) pool.emplace_back(work);
+        work();
+        for (auto& th : pool) th.join();
+      }
+      for (int k = 0; k < count; ++k) {
+        sink.putEpi(row, first + k, epis[k]);
+        progress.step();
+      }
+    }
+  }
+
+ private:
+  Image fillEpi(const ExtremeVertices& v, const SliceTable& table, const ShearingCamera& cam,
+                int j, std::vector<float>& depth) const {
+    const int w = cam.width(), n = cam.views();
+    Image epi(w, n, type_);
+    depth.assign(size_t(w) * n, 0.0f);  // reversed Z: 0 is far
+    for (const Slice& s : table.scanline(j)) {
+      auto [e0, e1] = sliceEnds(v, s);
+      const Pst pst = makePst(e0, e1, n, v.cullBack[s.triangle]);
+      for (int p = 0; p < pst.pieceCount; ++p) fillPiece(pst, pst.pieces[p], epi, depth);
+    }
+    return epi;
+  }
+
+  void fillPiece(const Pst& pst, const PstPiece& piece, Image& epi, std::vector<float>& depth) const {
+    const int w = epi.width, n = epi.height;
+    // Views whose row centre i + 0.5 lies in [rTop, rBottom).
+    const int iFirst = std::max(0, int(std::ceil(piece.rTop - 0.5f)));
+    const int iLast = std::min(n, int(std::ceil(piece.rBottom - 0.5f)));
+    for (int i = iFirst; i < iLast; ++i) {
+      const float r = i + 0.5f;
+      const float xa = pst.x0(r), width = pst.width(r);
+      if (width == 0) continue;
+      const float lo = std::min(xa, xa + width), hi = std::max(xa, xa + width);
+      const int pxFirst = std::max(0, int(std::ceil(lo - 0.5f)));
+      const int pxLast = std::min(w, int(std::ceil(hi - 0.5f)));
+      for (int x = pxFirst; x < pxLast; ++x) {
+        const float u = std::clamp((x + 0.5f - xa) / width, 0.0f, 1.0f);
+        const float z = pstDepth(pst, u);
+        float& dz = depth[size_t(i) * w + x];
+        if (!(z > dz)) continue;
+        dz = z;
+        store(epi, x, i, pstColor(pst, piece.front, u));
+      }
+    }
+  }
+
+  void store(Image& img, int x, int y, const glm::vec3& c) const {
+    const glm::vec3 v = glm::clamp(c, 0.0f, 1.0f);
+    if (type_ == PixelType::U8) {
+      uint8_t* p = img.row(y) + size_t(x) * 4;
+      // GL's float -> unorm8 conversion: round to nearest.
+      p[0] = uint8_t(std::lrint(v.r * 255.0f));
+      p[1] = uint8_t(std::lrint(v.g * 255.0f));
+      p[2] = uint8_t(std::lrint(v.b * 255.0f));
+      p[3] = 255;
+    } else {
+      float* p = reinterpret_cast<float*>(img.row(y)) + size_t(x) * 4;
+      p[0] = v.r, p[1] = v.g, p[2] = v.b, p[3] = 1.0f;
+    }
+  }
+
+  PixelType type_;
+  int threads_;
+};
+
+}  // namespace
+
+std::unique_ptr<EpiRasterizer> makeSpanRasterizer(PixelType type, int threads) {
+  return std::make_unique<SpanRasterizer>(type, threads);
+}
+
+}  // namespace mvr

@@ -1,0 +1,123 @@
+#include "slicing/extreme_vertices.h"
+
+#include <array>
+
+namespace mvr {
+namespace {
+
+// A vertex during clipping: world position and the two lit colours, all
+// linear in 3D, so clipping may interpolate them directly.
+struct ClipVertex {
+  glm::dvec3 p;
+  glm::vec3 front, back;
+};
+
+ClipVertex lerp(const ClipVertex& a, const ClipVertex& b, double t) {
+  return {a.p + (b.p - a.p) * t, glm::mix(a.front, b.front, float(t)),
+          glm::mix(a.back, b.back, float(t))};
+}
+
+// Sutherland-Hodgman against one plane: keep where sign * (D - Z - limit) >= 0.
+int clipPolygon(const ClipVertex* in, int n, ClipVertex* out, double D, double limit, double sign) {
+  int m = 0;
+  for (int i = 0; i < n; ++i) {
+    const ClipVertex &a = in[i], &b = in[(i + 1) % n];
+    const double da = sign * (D - a.p.z - limit), db = sign * (D - b.p.z - limit);
+    if (da >= 0) out[m++] = a;
+    if ((da >= 0) != (db >= 0)) out[m++] = lerp(a, b, da / (da - db));
+  }
+  return m;
+}
+
+class Transformer {
+ public:
+  Transformer(const ShearingCamera& cam, int row, ExtremeVertices& out) : cam_(cam), out_(out) {
+    const CameraSpec& s = cam.spec();
+    D_ = s.distance;
+    n_ = s.nearDistance;
+    f_ = s.farDistance;
+    sx_ = 2.0 / cam.planeWidth();
+    sy_ = 2.0 / cam.planeHeight();
+    cxLeft_ = cam.viewX(0);
+    cxRight_ = cam.viewX(cam.views() - 1);
+    cy_ = cam.rowY(row);
+  }
+
+  void add(const glm::dvec3& p, const glm::vec3& front, const glm::vec3& back) {
+    const double w = D_ - p.z;
+    const double xl = (sx_ * (D_ * p.x - cxLeft_ * p.z) / w + 1.0) * 0.5 * cam_.width();
+    const double xr = (sx_ * (D_ * p.x - cxRight_ * p.z) / w + 1.0) * 0.5 * cam_.width();
+    const double y = (-sy_ * (D_ * p.y - cy_ * p.z) / w + 1.0) * 0.5 * cam_.height();
+    out_.x0.push_back(float(xl));
+    out_.dx.push_back(cam_.views() > 1 ? float((xr - xl) / (cam_.views() - 1)) : 0.0f);
+    out_.y.push_back(float(y));
+    out_.depth.push_back(float(n_ * (f_ - w) / ((f_ - n_) * w)));
+    out_.invW.push_back(float(1.0 / w));
+    out_.frontOverW.push_back(front * float(1.0 / w));
+    out_.backOverW.push_back(back * float(1.0 / w));
+  }
+
+  bool inside(const glm::dvec3& p) const {
+    const double d = D_ - p.z;
+    return d >= n_ && d <= f_;
+  }
+
+  double D() const { return D_; }
+  double nearDistance() const { return n_; }
+  double farDistance() const { return f_; }
+
+ private:
+  const ShearingCamera& cam_;
+  ExtremeVertices& out_;
+  double D_, n_, f_, sx_, sy_, cxLeft_, cxRight_, cy_;
+};
+
+}  // namespace
+
+size_t ExtremeVertices::bytes() const {
+  return x0.size() * (5 * sizeof(float) + 2 * sizeof(glm::vec3)) +
+         triangles.size() * (sizeof(glm::uvec3) + 1);
+}
+
+ExtremeVertices transformToExtremes(const Scene& scene, const shading::VertexColors& colors,
+                                    const ShearingCamera& camera, int row) {
+  ExtremeVertices out;
+  Transformer t(camera, row, out);
+  const size_t nv = scene.vertexCount();
+  for (auto* v : {&out.x0, &out.dx, &out.y, &out.depth, &out.invW}) v->reserve(nv);
+  std::vector<uint8_t> inside(nv);
+  for (size_t v = 0; v < nv; ++v) {
+    const glm::dvec3 p(scene.positions[v]);
+    inside[v] = t.inside(p);
+    // Vertices outside near/far still get a slot so indices stay valid;
+    // only triangles that are wholly inside use them unclipped.
+    glm::dvec3 safe = inside[v] ? p : glm::dvec3(p.x, p.y, t.D() - t.nearDistance());
+    t.add(safe, colors.front[v], colors.back[v]);
+  }
+  out.triangles.reserve(scene.triangleCount());
+  out.cullBack.reserve(scene.triangleCount());
+  for (size_t i = 0; i < scene.triangleCount(); ++i) {
+    const glm::uvec3 tri = scene.triangles[i];
+    const uint8_t cull = scene.materials[scene.materialIds[i]].twoSided ? 0 : 1;
+    if (inside[tri.x] && inside[tri.y] && inside[tri.z]) {
+      out.triangles.push_back(tri);
+      out.cullBack.push_back(cull);
+      continue;
+    }
+    std::array<ClipVertex, 5> a, b;
+    for (int k = 0; k < 3; ++k)
+      a[k] = {glm::dvec3(scene.positions[tri[k]]), colors.front[tri[k]], colors.back[tri[k]]};
+    int n = clipPolygon(a.data(), 3, b.data(), t.D(), t.nearDistance(), +1.0);
+    n = clipPolygon(b.data(), n, a.data(), t.D(), t.farDistance(), -1.0);
+    if (n < 3) continue;
+    const auto base = unsigned(out.vertexCount());
+    for (int k = 0; k < n; ++k) t.add(a[k].p, a[k].front, a[k].back);
+    for (int k = 1; k + 1 < n; ++k) {  // fan keeps the winding
+      out.triangles.push_back({base, base + k, base + k + 1});
+      out.cullBack.push_back(cull);
+    }
+  }
+  return out;
+}
+
+}  // namespace mvr

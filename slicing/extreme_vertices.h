@@ -1,0 +1,38 @@
+#pragma once
+// Halle 5.6: every vertex is transformed once per sequence, to the two
+// extreme views. In a regular-shearing camera only x depends on the view,
+// and linearly, so each vertex keeps x at view 0 and its step per view; y,
+// depth and 1/w are shared by all views. Attributes are stored divided by w
+// for hyperbolic (perspective-correct) interpolation. Cost: O(vertices),
+// independent of the view count.
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "mvr/camera.h"
+#include "mvr/scene.h"
+#include "shading/lighting.h"
+
+namespace mvr {
+
+struct ExtremeVertices {
+  // Per vertex, pixel units. x at EPI row coordinate r (view i is sampled
+  // at r = i + 0.5) is x0 + (r - 0.5) * dx.
+  std::vector<float> x0, dx, y, depth, invW;
+  std::vector<glm::vec3> frontOverW, backOverW;  // lit colour / w, two sides
+  // Triangles after near/far clipping (clipping adds vertices above).
+  std::vector<glm::uvec3> triangles;
+  std::vector<uint8_t> cullBack;  // per triangle: its material culls back faces
+
+  size_t vertexCount() const { return x0.size(); }
+  size_t bytes() const;
+};
+
+// Clips triangles to the near and far planes in world space (view
+// independent: both planes are parallel to the camera plane), then
+// transforms to row `row`'s extreme views.
+ExtremeVertices transformToExtremes(const Scene& scene, const shading::VertexColors& colors,
+                                    const ShearingCamera& camera, int row);
+
+}  // namespace mvr

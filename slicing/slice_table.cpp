@@ -1,0 +1,115 @@
+#include "slicing/slice_table.h"
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+
+namespace mvr {
+
+std::pair<int, int> scanlineRange(float y0, float y1, float y2, int height) {
+  const float lo = std::min({y0, y1, y2}), hi = std::max({y0, y1, y2});
+  // First j with j + 0.5 >= lo; first j with j + 0.5 >= hi ends the range.
+  const int first = std::max(0, int(std::ceil(lo - 0.5f)));
+  const int last = std::min(height, int(std::ceil(hi - 0.5f)));
+  return {first, std::max(first, last)};
+}
+
+namespace {
+
+struct Sorted {
+  int a, b, c;
+  bool swap;  // permutation parity decides the endpoint order
+};
+
+// Sorts the corners by y. For window coordinates with y down, a triangle
+// facing the camera has negative signed area; the short-edge endpoint lies
+// right of the long-edge one exactly when the sorted triangle's area is
+// positive, which flips with the permutation's parity (derivation in
+// docs/ARCHITECTURE.md, "slice orientation").
+Sorted sortByY(const ExtremeVertices& v, const glm::uvec3& t) {
+  int idx[3] = {0, 1, 2};
+  bool odd = false;
+  auto y = [&](int k) { return v.y[t[idx[k]]]; };
+  if (y(1) < y(0)) std::swap(idx[0], idx[1]), odd = !odd;
+  if (y(2) < y(1)) std::swap(idx[1], idx[2]), odd = !odd;
+  if (y(1) < y(0)) std::swap(idx[0], idx[1]), odd = !odd;
+  // Even permutation: endpoints (short, long); odd: (long, short).
+  return {idx[0], idx[1], idx[2], !odd};
+}
+
+template <class Emit>
+void sliceTriangle(const ExtremeVertices& v, uint32_t tri, int bandLo, int bandHi, Emit&& emit) {
+  const glm::uvec3 t = v.triangles[tri];
+  auto [first, last] = scanlineRange(v.y[t.x], v.y[t.y], v.y[t.z], bandHi);
+  first = std::max(first, bandLo);
+  if (first >= last) return;
+  const Sorted s = sortByY(v, t);
+  const float ya = v.y[t[s.a]], yb = v.y[t[s.b]], yc = v.y[t[s.c]];
+  const uint32_t corners = uint32_t(s.a) | uint32_t(s.b) << 2 | uint32_t(s.c) << 4;
+  const float invLong = 1.0f / (yc - ya);
+  for (int j = first; j < last; ++j) {
+    const float y = j + 0.5f;
+    const bool lower = y >= yb;
+    const float tShort = lower ? (y - yb) / (yc - yb) : (y - ya) / (yb - ya);
+    const uint32_t flags = corners | (lower ? 1u << 6 : 0u) | (s.swap ? 1u << 7 : 0u);
+    emit(j, Slice{tri, (y - ya) * invLong, tShort, flags});
+  }
+}
+
+}  // namespace
+
+SliceTable SliceTable::build(const ExtremeVertices& v, int height, int threads) {
+  threads = std::clamp(threads, 1, std::max(1, height));
+  SliceTable table;
+  table.offsets_.assign(height + 1, 0);
+  const auto triangles = uint32_t(v.triangles.size());
+  auto band = [&](int k) { return std::pair{height * k / threads, height * (k + 1) / threads}; };
+  auto forBands = [&](auto&& work) {
+    std::vector<std::thread> pool;
+    for (int k = 1; k < threads; ++k) pool.emplace_back(work, k);
+    work(0);
+    for (auto& th : pool) th.join();
+  };
+  // Pass 1: count per scanline (each thread writes only its own band).
+  forBands([&](int k) {
+    auto [lo, hi] = band(k);
+    for (uint32_t tri = 0; tri < triangles; ++tri)
+      sliceTriangle(v, tri, lo, hi, [&](int j, const Slice&) { ++table.offsets_[j + 1]; });
+  });
+  for (int j = 0; j < height; ++j) table.offsets_[j + 1] += table.offsets_[j];
+  table.slices_.resize(table.offsets_[height]);
+  // Pass 2: fill, in triangle order within each scanline.
+  forBands([&](int k) {
+    auto [lo, hi] = band(k);
+    std::vector<uint32_t> cursor(table.offsets_.begin() + lo, table.offsets_.begin() + hi);
+    for (uint32_t tri = 0; tri < triangles; ++tri)
+      sliceTriangle(v, tri, lo, hi,
+                    [&](int j, const Slice& s) { table.slices_[cursor[j - lo]++] = s; });
+  });
+  return table;
+}
+
+namespace {
+
+SliceEnd endAt(const ExtremeVertices& v, uint32_t p, uint32_t q, float t) {
+  auto mix = [t](float a, float b) { return a + (b - a) * t; };
+  return {mix(v.x0[p], v.x0[q]),
+          mix(v.dx[p], v.dx[q]),
+          mix(v.depth[p], v.depth[q]),
+          mix(v.invW[p], v.invW[q]),
+          glm::mix(v.frontOverW[p], v.frontOverW[q], t),
+          glm::mix(v.backOverW[p], v.backOverW[q], t)};
+}
+
+}  // namespace
+
+std::pair<SliceEnd, SliceEnd> sliceEnds(const ExtremeVertices& v, const Slice& s) {
+  const glm::uvec3 t = v.triangles[s.triangle];
+  const uint32_t a = t[s.flags & 3], b = t[(s.flags >> 2) & 3], c = t[(s.flags >> 4) & 3];
+  const SliceEnd onLong = endAt(v, a, c, s.tLong);
+  const SliceEnd onShort = (s.flags & (1u << 6)) ? endAt(v, b, c, s.tShort) : endAt(v, a, b, s.tShort);
+  if (s.flags & (1u << 7)) return {onShort, onLong};
+  return {onLong, onShort};
+}
+
+}  // namespace mvr
