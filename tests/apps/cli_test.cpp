@@ -1,6 +1,8 @@
 // The `mvr` program end to end, as a user runs it.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -19,7 +21,9 @@ struct Result {
 };
 
 Result run(const std::string& args) {
-  const fs::path errFile = fs::temp_directory_path() / "mvr_cli_stderr.txt";
+  // ctest runs tests in parallel processes: one stderr file per process.
+  const fs::path errFile =
+      fs::temp_directory_path() / ("mvr_cli_stderr_" + std::to_string(getpid()) + ".txt");
   const std::string cmd = std::string(MVR_BINARY) + " " + args + " >/dev/null 2>" + errFile.string();
   int rc = std::system(cmd.c_str());
   std::stringstream ss;
@@ -50,14 +54,14 @@ TEST(Cli, RendersDefaultSceneUnderEgl) {
   fs::path d = outDir("egl");
   Result r = run("render --gl egl --views 4 --size 48x36 --out " + d.string());
   ASSERT_EQ(r.status, 0) << r.err;
-  expectSet(d, 4, "svr");
+  expectSet(d, 4, "mvr");
 }
 
 TEST(Cli, RendersDefaultSceneUnderOsMesa) {
   fs::path d = outDir("osmesa");
   Result r = run("render --gl osmesa --views 3 --size 40x30 --out " + d.string());
   ASSERT_EQ(r.status, 0) << r.err;
-  expectSet(d, 3, "svr");
+  expectSet(d, 3, "mvr");
 }
 
 TEST(Cli, EveryBaselineWritesItsSet) {
