@@ -1,10 +1,14 @@
 #include "apps/render_command.h"
 
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
 
 #include <nlohmann/json.hpp>
 
 #include "apps/args.h"
+#include "epi/epi_stream.h"
 #include "epi/mvr_renderer.h"
 #include "epi/volume.h"
 #include "mvr/baselines.h"
@@ -27,6 +31,8 @@ const char* const kRenderHelp =
     "  --out DIR          output folder (default out)\n"
     "  --format png|exr|tiff   image format (default png; exr renders in float)\n"
     "  --order view|epi   write views (view_*) or EPIs (epi_*) (default view)\n"
+    "  --stream PATH|-    write the raw EPI-major stream (docs/EPI_STREAM.md) to a\n"
+    "                     file or stdout instead of an image set\n"
     "  --gl egl|osmesa|glfw    GL platform (default: egl, else osmesa)\n"
     "Writes view_0000.png ... (view_r000_c0000.png for grids) and manifest.json.\n";
 
@@ -51,11 +57,48 @@ nlohmann::json cameraJson(const ShearingCamera& cam) {
           {"view_spacing", cam.viewSpacing()}};
 }
 
+// EPIs straight to a file or stdout as they complete. A file is written
+// under a temporary name and renamed when complete.
+int runStream(Renderer& renderer, const ShearingCamera& cam, const std::string& path,
+              PixelType type) {
+  namespace fs = std::filesystem;
+  EpiStreamHeader header{uint32_t(cam.width()), uint32_t(cam.height()), uint32_t(cam.views()),
+                         uint32_t(cam.rows()), 4, uint32_t(Image::channelBytes(type))};
+  std::ofstream file;
+  const std::string part = path + ".part";
+  if (path != "-") {
+    file.open(part, std::ios::binary);
+    if (!file) fail(path, "cannot open stream file");
+  }
+  std::ostream& out = path == "-" ? std::cout : file;
+  try {
+    EpiStreamWriter stream(out, header);
+    std::unique_ptr<FrameSink> adaptor;
+    if (renderer.order() == FrameOrder::View)
+      adaptor = std::make_unique<ViewsToEpis>(stream, cam.width(), cam.height(), cam.views(), type);
+    FrameSink& sink = adaptor ? *adaptor : stream;
+    RenderStats stats;
+    renderer.render(cam, sink, stats);
+    sink.finish();
+  } catch (...) {
+    std::error_code ec;
+    if (path != "-") fs::remove(part, ec);
+    throw;
+  }
+  if (path != "-") {
+    file.close();
+    std::error_code ec;
+    fs::rename(part, path, ec);
+    if (ec) fail(path, "cannot finish stream file: " + ec.message());
+  }
+  return 0;
+}
+
 }  // namespace
 
 int runRender(int argc, char** argv) {
   Args args(argc, argv, 2,
-            {"backend", "pst", "views", "rows", "size", "out", "format", "order", "gl"}, {});
+            {"backend", "pst", "views", "rows", "size", "out", "format", "order", "gl", "stream"}, {});
   if (args.positional().size() > 1) fail("render", "takes at most one scene file");
   const std::string scenePath =
       args.positional().empty() ? defaultScenePath() : args.positional()[0];
@@ -76,6 +119,9 @@ int runRender(int argc, char** argv) {
   ShearingCamera camera(cameraFor(scene, width, height), width, height, views, rows);
   auto context = GlContext::create(platform);
   auto renderer = makeRenderer(choice, scene, type);
+
+  if (args.has("stream"))
+    return runStream(*renderer, camera, args.get("stream", "-"), type);
 
   ImageSetWriter writer(out, format, views, rows, height);
   // Reorder only when the renderer's natural order is not the one asked for.

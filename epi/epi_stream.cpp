@@ -1,0 +1,81 @@
+#include "epi/epi_stream.h"
+
+#include <array>
+#include <cstring>
+
+#include "mvr/error.h"
+
+namespace mvr {
+namespace {
+
+constexpr char kMagic[8] = {'M', 'V', 'R', 'E', 'P', 'I', '0', '1'};
+constexpr uint32_t kHeaderBytes = 64;
+
+void putU32(uint8_t* p, uint32_t v) {
+  for (int i = 0; i < 4; ++i) p[i] = uint8_t(v >> (8 * i));
+}
+uint32_t getU32(const uint8_t* p) {
+  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+}
+
+}  // namespace
+
+EpiStreamWriter::EpiStreamWriter(std::ostream& out, const EpiStreamHeader& h)
+    : out_(out), header_(h) {
+  std::array<uint8_t, kHeaderBytes> bytes{};
+  std::memcpy(bytes.data(), kMagic, 8);
+  const uint32_t fields[] = {kHeaderBytes, h.width, h.height, h.views, h.rows, h.channels,
+                             h.bytesPerChannel};
+  for (size_t i = 0; i < std::size(fields); ++i) putU32(bytes.data() + 8 + 4 * i, fields[i]);
+  out_.write(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  if (!out_) fail("stream", "cannot write header");
+}
+
+void EpiStreamWriter::putEpi(int row, int scanline, const Image& epi) {
+  if (size_t(epi.width) != header_.width || size_t(epi.height) != header_.views ||
+      Image::channelBytes(epi.type) != header_.bytesPerChannel)
+    fail("stream", "EPI does not match the stream header");
+  uint8_t tag[8];
+  putU32(tag, uint32_t(row));
+  putU32(tag + 4, uint32_t(scanline));
+  out_.write(reinterpret_cast<const char*>(tag), 8);
+  out_.write(reinterpret_cast<const char*>(epi.bytes.data()), std::streamsize(epi.bytes.size()));
+  if (!out_) fail("stream", "write failed (consumer gone or disk full)");
+  ++written_;
+}
+
+void EpiStreamWriter::finish() {
+  out_.flush();
+  if (!out_) fail("stream", "flush failed");
+}
+
+EpiStreamReader::EpiStreamReader(std::istream& in) : in_(in) {
+  std::array<uint8_t, kHeaderBytes> bytes{};
+  in_.read(reinterpret_cast<char*>(bytes.data()), bytes.size());
+  if (!in_ || std::memcmp(bytes.data(), kMagic, 8) != 0) fail("stream", "not an MVREPI01 stream");
+  if (getU32(bytes.data() + 8) != kHeaderBytes) fail("stream", "unsupported header size");
+  header_.width = getU32(bytes.data() + 12);
+  header_.height = getU32(bytes.data() + 16);
+  header_.views = getU32(bytes.data() + 20);
+  header_.rows = getU32(bytes.data() + 24);
+  header_.channels = getU32(bytes.data() + 28);
+  header_.bytesPerChannel = getU32(bytes.data() + 32);
+  if (header_.channels != 4 || (header_.bytesPerChannel != 1 && header_.bytesPerChannel != 4) ||
+      header_.width == 0 || header_.views == 0 || header_.height == 0)
+    fail("stream", "header describes no valid EPI");
+}
+
+std::optional<EpiStreamReader::Frame> EpiStreamReader::next() {
+  uint8_t tag[8];
+  in_.read(reinterpret_cast<char*>(tag), 8);
+  if (in_.gcount() == 0 && in_.eof()) return std::nullopt;
+  if (in_.gcount() != 8) fail("stream", "truncated EPI tag");
+  Frame f{int(getU32(tag)), int(getU32(tag + 4)),
+          Image(int(header_.width), int(header_.views),
+                header_.bytesPerChannel == 1 ? PixelType::U8 : PixelType::F32)};
+  in_.read(reinterpret_cast<char*>(f.epi.bytes.data()), std::streamsize(f.epi.bytes.size()));
+  if (size_t(in_.gcount()) != f.epi.bytes.size()) fail("stream", "truncated EPI data");
+  return f;
+}
+
+}  // namespace mvr

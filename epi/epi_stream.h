@@ -1,0 +1,56 @@
+#pragma once
+// The raw EPI-major stream: EPIs written as they complete, so a display
+// process can consume them while rendering goes on and memory stays at one
+// EPI. Format (all integers little-endian uint32), docs/EPI_STREAM.md:
+//
+//   header, 64 bytes: "MVREPI01", header_bytes (64), width, height
+//                     (scanlines), views, rows, channels (4: RGBA),
+//                     bytes_per_channel (1: uint8, 4: float32), zero padding
+//   then per row of views, per scanline in order:
+//                     row, scanline, then views x width x channels values:
+//                     EPI row i is view i's scanline, left to right.
+#include <cstdint>
+#include <istream>
+#include <optional>
+#include <ostream>
+
+#include "mvr/renderer.h"
+
+namespace mvr {
+
+struct EpiStreamHeader {
+  uint32_t width = 0, height = 0, views = 0, rows = 1, channels = 4, bytesPerChannel = 1;
+  size_t epiBytes() const { return size_t(width) * views * channels * bytesPerChannel; }
+};
+
+class EpiStreamWriter final : public FrameSink {
+ public:
+  // Writes the header at once. `out` must outlive the writer.
+  EpiStreamWriter(std::ostream& out, const EpiStreamHeader& header);
+  void putEpi(int row, int scanline, const Image& epi) override;
+  void finish() override;
+  size_t episWritten() const { return written_; }
+
+ private:
+  std::ostream& out_;
+  EpiStreamHeader header_;
+  size_t written_ = 0;
+};
+
+// Reads a stream back: header first, then EPIs until the end.
+class EpiStreamReader {
+ public:
+  explicit EpiStreamReader(std::istream& in);  // throws on a bad header
+  const EpiStreamHeader& header() const { return header_; }
+  struct Frame {
+    int row, scanline;
+    Image epi;
+  };
+  std::optional<Frame> next();  // nullopt at a clean end; throws if truncated
+
+ private:
+  std::istream& in_;
+  EpiStreamHeader header_;
+};
+
+}  // namespace mvr
