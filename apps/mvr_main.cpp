@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/args.h"
+#include "apps/bench_command.h"
 #include "apps/render_command.h"
 #include "mvr/compare.h"
 #include "mvr/error.h"
@@ -20,7 +21,8 @@ const char* const kUsage =
     "usage: mvr <command> [options]\n"
     "  info                       GL version and renderer per context platform\n"
     "  render [SCENE] [options]   render a view set (mvr render --help)\n"
-    "  compare DIR_A DIR_B        per image PSNR / max error / identical pixels\n";
+    "  compare DIR_A DIR_B        per image PSNR / max error / identical pixels\n"
+    "  bench [SCENE] [options]    MVR against SVR, svr-layered, deferred (mvr bench --help)\n";
 
 const char* const kCompareHelp =
     "usage: mvr compare DIR_A DIR_B [--json]\n"
@@ -102,11 +104,15 @@ int dispatch(int argc, char** argv) {
     if (wantsHelp(argc, argv)) return std::fputs(kRenderHelp, stdout), 0;
     return runRender(argc, argv);
   }
+  if (cmd == "bench") {
+    if (wantsHelp(argc, argv)) return std::fputs(kBenchHelp, stdout), 0;
+    return runBench(argc, argv);
+  }
   if (cmd == "compare") {
     if (wantsHelp(argc, argv)) return std::fputs(kCompareHelp, stdout), 0;
     return runCompare(argc, argv);
   }
-  fail("mvr", "unknown command '" + cmd + "' (expected info, render or compare)");
+  fail("mvr", "unknown command '" + cmd + "' (expected info, render, compare or bench)");
 }
 
 }  // namespace
