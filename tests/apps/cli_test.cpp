@@ -99,8 +99,33 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
   }
 }
 
+TEST(Cli, RendersUnderGlfwWithAVirtualDisplay) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "no xvfb-run";
+  fs::path d = outDir("glfw");
+  const std::string cmd = "xvfb-run -a " + std::string(MVR_BINARY) +
+                          " render --gl glfw --views 2 --size 32x24 --out " + d.string() +
+                          " >/dev/null 2>&1";
+  ASSERT_EQ(WEXITSTATUS(std::system(cmd.c_str())), 0);
+  expectSet(d, 2, "mvr");
+  auto m = nlohmann::json::parse(std::ifstream(d / "manifest.json"));
+  EXPECT_EQ(m["gl"]["platform"], "glfw");
+}
+
+TEST(Cli, MvrWritesEpisAndStats) {
+  fs::path d = outDir("epis");
+  Result r = run("render --backend mvr --pst cpu --order epi --views 5 --size 40x30 --out " + d.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(d / "epi_0000.png"));
+  EXPECT_TRUE(fs::exists(d / "epi_0029.png"));
+  auto m = nlohmann::json::parse(std::ifstream(d / "manifest.json"));
+  EXPECT_GT(m["counters"]["slices"].get<double>(), 0);
+  EXPECT_GT(m["counters"]["slice_table_bytes"].get<double>(), 0);
+  for (const char* stage : {"transform", "slicing", "raster"})
+    EXPECT_TRUE(m["timings_s"].contains(stage)) << stage;
+}
+
 TEST(Cli, HelpForEverySubcommand) {
-  for (std::string c : {"info", "render", "compare"}) EXPECT_EQ(run(c + " --help").status, 0) << c;
+  for (std::string c : {"info", "render", "compare", "bench"}) EXPECT_EQ(run(c + " --help").status, 0) << c;
 }
 
 }  // namespace
