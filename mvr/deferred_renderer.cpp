@@ -7,6 +7,7 @@
 #include "mvr/progress.h"
 #include "mvr/render_target.h"
 #include "mvr/scene_buffers.h"
+#include "mvr/view_loop.h"
 #include "shading/lighting.h"
 
 namespace mvr {
@@ -125,41 +126,29 @@ class DeferredRenderer final : public Renderer {
     setDepthConvention();
     gl::FrontFace(GL_CW);
     gl::setUniform(lighting_, "uSize", glm::vec2(cam.width(), cam.height()));
-    Progress progress("deferred", long(cam.rows()) * cam.views());
-    for (int row = 0; row < cam.rows(); ++row) {
-      for (int view = 0; view < cam.views(); ++view) {
-        const glm::dmat4 viewProj = cam.viewProjection(view, row);
-        {
-          ScopedStage s(stats.times, "geometry");
-          gbuffer.bindForWriting();
-          gl::Enable(GL_DEPTH_TEST);
-          gl::UseProgram(geometry_.id());
-          gl::setUniform(geometry_, "uViewProj", glm::mat4(viewProj));
-          buffers_.bind();
-          buffers_.draw();
-          gl::Finish();
-        }
-        {
-          ScopedStage s(stats.times, "lighting");
-          target.bind();
-          target.clear();
-          gl::Disable(GL_DEPTH_TEST);
-          gl::UseProgram(lighting_.id());
-          gl::setUniform(lighting_, "uInverseViewProj", glm::mat4(glm::inverse(viewProj)));
-          gbuffer.bindForReading();
-          gl::BindVertexArray(emptyVao_.id());
-          gl::DrawArrays(GL_TRIANGLES, 0, 3);
-          gl::Finish();
-        }
-        Image img;
-        {
-          ScopedStage s(stats.times, "readback");
-          img = target.read();
-        }
-        sink.putView(row, view, img);
-        progress.step();
+    renderEachView(cam, target, "deferred", sink, stats, [&](int row, int view) {
+      const glm::dmat4 viewProj = cam.viewProjection(view, row);
+      {
+        ScopedStage s(stats.times, "geometry");
+        gbuffer.bindForWriting();
+        gl::Enable(GL_DEPTH_TEST);
+        gl::UseProgram(geometry_.id());
+        gl::setUniform(geometry_, "uViewProj", glm::mat4(viewProj));
+        buffers_.bind();
+        buffers_.draw();
+        gl::Finish();
       }
-    }
+      ScopedStage s(stats.times, "lighting");
+      target.bind();
+      target.clear();
+      gl::Disable(GL_DEPTH_TEST);
+      gl::UseProgram(lighting_.id());
+      gl::setUniform(lighting_, "uInverseViewProj", glm::mat4(glm::inverse(viewProj)));
+      gbuffer.bindForReading();
+      gl::BindVertexArray(emptyVao_.id());
+      gl::DrawArrays(GL_TRIANGLES, 0, 3);
+      gl::Finish();
+    });
     gl::checkError("deferred render");
   }
 

@@ -8,6 +8,7 @@
 #include "mvr/progress.h"
 #include "mvr/render_target.h"
 #include "mvr/scene_buffers.h"
+#include "mvr/view_loop.h"
 #include "shading/lighting.h"
 
 namespace mvr {
@@ -109,25 +110,13 @@ class SvrRenderer final : public Renderer {
     target.bind();
     gl::UseProgram(program_.id());
     buffers_.bind();
-    Progress progress("svr", long(cam.rows()) * cam.views());
-    for (int row = 0; row < cam.rows(); ++row) {
-      for (int view = 0; view < cam.views(); ++view) {
-        {
-          ScopedStage s(stats.times, "draw");
-          gl::setUniform(program_, "uViewProj", glm::mat4(cam.viewProjection(view, row)));
-          target.clear();
-          buffers_.draw();
-          gl::Finish();
-        }
-        Image img;
-        {
-          ScopedStage s(stats.times, "readback");
-          img = target.read();
-        }
-        sink.putView(row, view, img);
-        progress.step();
-      }
-    }
+    renderEachView(cam, target, "svr", sink, stats, [&](int row, int view) {
+      ScopedStage s(stats.times, "draw");
+      gl::setUniform(program_, "uViewProj", glm::mat4(cam.viewProjection(view, row)));
+      target.clear();
+      buffers_.draw();
+      gl::Finish();
+    });
     gl::checkError("svr render");
     stats.counters["draw_calls"] = double(cam.rows()) * cam.views();
   }
