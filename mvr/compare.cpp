@@ -18,12 +18,13 @@ ImageDifference compareImages(const Image& a, const Image& b, const std::string&
   ImageDifference d;
   d.name = name;
   double sumSq = 0;
-  long identical = 0;
+  long identical = 0, close = 0;
   for (int y = 0; y < a.height; ++y) {
     for (int x = 0; x < a.width; ++x) {
       glm::vec4 pa = a.pixel(x, y), pb = b.pixel(x, y);
       glm::vec4 diff = glm::abs(pa - pb);
       if (diff == glm::vec4(0)) ++identical;
+      if (glm::all(glm::lessThanEqual(diff, glm::vec4(1.0f / 255.0f + 1e-6f)))) ++close;
       d.maxError = std::max<double>(d.maxError, std::max({diff.r, diff.g, diff.b, diff.a}));
       sumSq += double(diff.r) * diff.r + double(diff.g) * diff.g + double(diff.b) * diff.b;
     }
@@ -32,6 +33,7 @@ ImageDifference compareImages(const Image& a, const Image& b, const std::string&
   const double mse = sumSq / (3.0 * n);
   d.psnr = mse == 0 ? std::numeric_limits<double>::infinity() : 10.0 * std::log10(1.0 / mse);
   d.identicalFraction = identical / n;
+  d.closeFraction = close / n;
   d.differingPixels = long(n) - identical;
   return d;
 }

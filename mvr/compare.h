@@ -13,6 +13,7 @@ struct ImageDifference {
   double psnr = 0;               // dB over RGB; infinity when identical
   double maxError = 0;           // largest channel difference, 0..1
   double identicalFraction = 0;  // pixels whose four channels all match
+  double closeFraction = 0;      // pixels within one 8-bit step (1/255) in every channel
   long differingPixels = 0;
 };
 

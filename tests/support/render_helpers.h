@@ -1,6 +1,8 @@
 #pragma once
 // Renders a scene with a named back end into memory, as views.
+#include <cstdlib>
 #include <memory>
+#include <string>
 
 #include "epi/mvr_renderer.h"
 #include "epi/volume.h"
@@ -22,16 +24,29 @@ inline CaptureSink renderViews(Renderer& renderer, const ShearingCamera& cam,
 }
 
 struct SetDifference {
-  double minPsnr = INFINITY, minIdentical = 1.0;
+  double minPsnr = INFINITY, minIdentical = 1.0, minClose = 1.0;
 };
+
+// Set MVR_TEST_DUMP=DIR to keep the images a failing comparison looked at.
+inline void dumpPair(const Image& a, const Image& b, int view) {
+  static int serial = 0;
+  const char* dir = std::getenv("MVR_TEST_DUMP");
+  if (!dir) return;
+  const std::string base = std::string(dir) + "/" + std::to_string(serial) + "_v" + std::to_string(view);
+  writeImage(a, base + "_a.png");
+  writeImage(b, base + "_b.png");
+  ++serial;
+}
 
 inline SetDifference compareViews(const CaptureSink& a, const CaptureSink& b) {
   SetDifference d;
   EXPECT_EQ(a.views.size(), b.views.size());
   for (const auto& [key, img] : a.views) {
     ImageDifference x = compareImages(img, b.views.at(key));
+    if (x.identicalFraction < 1.0) dumpPair(img, b.views.at(key), key.second);
     d.minPsnr = std::min(d.minPsnr, x.psnr);
     d.minIdentical = std::min(d.minIdentical, x.identicalFraction);
+    d.minClose = std::min(d.minClose, x.closeFraction);
   }
   return d;
 }
