@@ -1,9 +1,13 @@
+// `mvr bench`: every back end on the same scene and camera, in one process
+// and one GL context; ratios against svr and svr-layered, error against svr,
+// break-even view counts (Halle ch. 7) and plots.
 #include "apps/bench_command.h"
 
 #include <sys/resource.h>
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <thread>
@@ -11,9 +15,11 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/args.h"
+#include "apps/bench_report.h"
 #include "apps/render_command.h"
 #include "apps/sample_sink.h"
 #include "apps/teacup.h"
+#include "apps/test_scenes.h"
 #include "mvr/compare.h"
 #include "mvr/error.h"
 #include "mvr/gl_context.h"
@@ -26,8 +32,12 @@ const char* const kBenchHelp =
     "usage: mvr bench [SCENE] [options]\n"
     "Renders one scene with several back ends in one process and GL context and\n"
     "prints time per view, speed-up against svr and svr-layered, and error\n"
-    "against svr (min PSNR, min identical-pixel fraction over sampled views).\n"
-    "  --teacup N          use the procedural teacup at about N triangles\n"
+    "against svr (min PSNR, min identical-pixel fraction over sampled views),\n"
+    "then the break-even view count of each back end against svr.\n"
+    "  --teacup N          the procedural teacup at about N triangles\n"
+    "  --slender N         N long slender vertical quads (MVR's bad case)\n"
+    "  --sweep             Halle's sweep: teacups of 4K, 16K, 63K, 143K triangles at\n"
+    "                      160x140, 640x480, 1120x840 for 1 to 1000 views\n"
     "  --views LIST        view counts, e.g. 1,10,100 (default 100)\n"
     "  --size LIST         image sizes, e.g. 160x140,640x480 (default 160x140)\n"
     "  --backends LIST     default svr,svr-layered,deferred,mvr:quad,mvr:strip,\n"
@@ -35,9 +45,12 @@ const char* const kBenchHelp =
     "  --repeat R          best of R runs (default 1)\n"
     "  --error-views K     views compared against svr (default 8)\n"
     "  --json FILE         also write the results as JSON\n"
+    "  --plots DIR         write gnuplot scripts and PNG plots (needs gnuplot)\n"
     "  --gl egl|osmesa     GL platform\n";
 
 namespace {
+
+const char* const kDefaultBackends = "svr,svr-layered,deferred,mvr:quad,mvr:strip,mvr:exact,mvr:cpu";
 
 std::vector<std::string> splitList(const std::string& s) {
   std::vector<std::string> out;
@@ -60,152 +73,188 @@ BackendChoice parseBackend(const std::string& s) {
   return {s.substr(0, colon), s.substr(colon + 1)};
 }
 
-struct Result {
-  std::string backend;
+struct Config {
+  std::vector<std::pair<int, int>> sizes;
+  std::vector<int> views;
+  std::vector<std::string> backends;
+  int repeat = 1, errorViews = 8;
+};
+
+struct Run {
   double seconds = INFINITY;
   RenderStats stats;
   std::map<int, Image> samples;
 };
 
-Result measure(Renderer& renderer, const std::string& label, const ShearingCamera& cam,
-               PixelType type, int repeat, const std::vector<int>& sampled) {
-  Result r;
-  r.backend = label;
+Run measure(Renderer& renderer, const ShearingCamera& cam, int repeat, const std::vector<int>& sampled) {
+  Run best;
   for (int k = 0; k < repeat; ++k) {
-    SampleSink sink(sampled, cam.width(), cam.height(), type);
+    SampleSink sink(sampled, cam.width(), cam.height(), PixelType::U8);
     RenderStats stats;
     Stopwatch watch;
     renderer.render(cam, sink, stats);
     const double s = watch.seconds();
-    if (s < r.seconds) {
-      r.seconds = s;
-      r.stats = stats;
-      r.samples = sink.samples();
-    }
+    if (s < best.seconds) best = {s, stats, sink.samples()};
   }
-  return r;
+  return best;
 }
 
-void errorAgainst(const Result& ref, const Result& r, double& psnr, double& identical) {
-  psnr = INFINITY;
-  identical = 1.0;
+void errorAgainst(const Run& ref, const Run& r, BenchRecord& rec) {
+  rec.minPsnr = INFINITY;
+  rec.minIdentical = rec.minClose = 1.0;
   for (const auto& [view, img] : r.samples) {
     ImageDifference d = compareImages(ref.samples.at(view), img);
-    psnr = std::min(psnr, d.psnr);
-    identical = std::min(identical, d.identicalFraction);
+    rec.minPsnr = std::min(rec.minPsnr, d.psnr);
+    rec.minIdentical = std::min(rec.minIdentical, d.identicalFraction);
+    rec.minClose = std::min(rec.minClose, d.closeFraction);
   }
 }
 
-}  // namespace
+void printRow(const BenchRecord& r) {
+  char size[32];
+  std::snprintf(size, sizeof size, "%dx%d", r.width, r.height);
+  std::printf("%-16s %-9s %6d %-13s %10.4f %10.4f %8.2f %9.2f %8.2f %10.6f %10.0f\n",
+              r.scene.c_str(), size, r.views, r.backend.c_str(), r.seconds, 1e3 * r.seconds / r.views,
+              r.speedupSvr, r.speedupLayered, std::isinf(r.minPsnr) ? 99.99 : r.minPsnr,
+              r.minIdentical, r.slices);
+  std::fflush(stdout);
+}
 
-int runBench(int argc, char** argv) {
-  Args args(argc, argv, 2,
-            {"teacup", "views", "size", "backends", "repeat", "error-views", "json", "gl"}, {});
-  setProgressEnabled(false);
-  Scene scene;
-  std::string sceneName;
-  if (args.has("teacup")) {
-    const int n = args.getInt("teacup", 4000, 100, 10000000);
-    scene = makeTeacup(n);
-    scene.lights = {Light{Light::Type::Directional, glm::normalize(glm::vec3(-0.4f, -0.6f, -1.0f)),
-                          glm::vec3(0.85f)}};
-    sceneName = "teacup(" + std::to_string(n) + ")";
-  } else {
-    sceneName = args.positional().empty() ? defaultScenePath() : args.positional()[0];
-    scene = loadScene(sceneName);
-  }
-  std::vector<int> viewCounts;
-  for (const std::string& v : splitList(args.get("views", "100"))) {
-    char* end = nullptr;
-    long n = std::strtol(v.c_str(), &end, 10);
-    if (*end || n < 1 || n > 65536) fail("--views", "'" + v + "' is not a view count 1..65536");
-    viewCounts.push_back(int(n));
-  }
-  std::vector<std::pair<int, int>> sizes;
-  for (const std::string& s : splitList(args.get("size", "160x140"))) {
-    int w = 0, h = 0;
-    if (std::sscanf(s.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
-      fail("--size", "'" + s + "' is not WxH");
-    sizes.emplace_back(w, h);
-  }
-  const auto labels =
-      splitList(args.get("backends", "svr,svr-layered,deferred,mvr:quad,mvr:strip,mvr:exact,mvr:cpu"));
-  const int repeat = args.getInt("repeat", 1, 1, 100);
-  const int errorViews = args.getInt("error-views", 8, 1, 1000);
-
-  auto context = GlContext::create(parseGlPlatform(args.get("gl", "auto")));
+// Every back end of the config on one scene; appends to records.
+void benchScene(const std::string& name, const Scene& scene, const Config& cfg,
+                std::vector<BenchRecord>& records) {
   std::vector<std::unique_ptr<Renderer>> renderers;
-  for (const std::string& l : labels) renderers.push_back(makeRenderer(parseBackend(l), scene, PixelType::U8));
-
-  std::printf("# mvr bench: %s, %zu triangles\n# GL: %s\n# CPU: %s, %u threads\n", sceneName.c_str(),
-              scene.triangleCount(), context->describe().c_str(), cpuModel().c_str(),
-              std::thread::hardware_concurrency());
-  std::printf("%-9s %6s %-13s %10s %10s %8s %9s %8s %10s %10s\n", "size", "views", "backend",
-              "total_s", "ms/view", "x_svr", "x_layered", "PSNR_dB", "identical", "slices");
-  {
-    // Warm-up: first use compiles shaders and faults in buffers.
-    ShearingCamera warm(cameraFor(scene, sizes[0].first, sizes[0].second), sizes[0].first,
-                        sizes[0].second, 2);
+  for (const std::string& l : cfg.backends)
+    renderers.push_back(makeRenderer(parseBackend(l), scene, PixelType::U8));
+  {  // warm-up: shader compilation and first buffer use are not rendering
+    auto [w, h] = cfg.sizes[0];
+    ShearingCamera warm(cameraFor(scene, w, h), w, h, 2);
     for (auto& r : renderers) {
       NullSink sink;
       RenderStats stats;
       r->render(warm, sink, stats);
     }
   }
-  nlohmann::json records = nlohmann::json::array();
-  for (auto [w, h] : sizes) {
-    for (int n : viewCounts) {
+  for (auto [w, h] : cfg.sizes) {
+    for (int n : cfg.views) {
       ShearingCamera cam(cameraFor(scene, w, h), w, h, n);
-      const std::vector<int> sampled = spreadViews(n, errorViews);
-      std::vector<Result> results;
-      for (size_t k = 0; k < renderers.size(); ++k)
-        results.push_back(measure(*renderers[k], labels[k], cam, PixelType::U8, repeat, sampled));
-      const Result* svr = nullptr;
-      const Result* layered = nullptr;
-      for (const Result& r : results) {
-        if (r.backend == "svr") svr = &r;
-        if (r.backend == "svr-layered") layered = &r;
+      const std::vector<int> sampled = spreadViews(n, cfg.errorViews);
+      std::vector<Run> runs;
+      for (auto& r : renderers) runs.push_back(measure(*r, cam, cfg.repeat, sampled));
+      const Run* svr = nullptr;
+      const Run* layered = nullptr;
+      for (size_t k = 0; k < runs.size(); ++k) {
+        if (cfg.backends[k] == "svr") svr = &runs[k];
+        if (cfg.backends[k] == "svr-layered") layered = &runs[k];
       }
-      for (const Result& r : results) {
-        double psnr = NAN, identical = NAN;
-        if (svr) errorAgainst(*svr, r, psnr, identical);
-        const double xSvr = svr ? svr->seconds / r.seconds : NAN;
-        const double xLayered = layered ? layered->seconds / r.seconds : NAN;
-        const double slices = r.stats.counters.count("slices") ? r.stats.counters.at("slices") : 0;
-        char size[32];
-        std::snprintf(size, sizeof size, "%dx%d", w, h);
-        std::printf("%-9s %6d %-13s %10.4f %10.4f %8.2f %9.2f %8.2f %10.6f %10.0f\n", size, n,
-                    r.backend.c_str(), r.seconds, 1e3 * r.seconds / n, xSvr, xLayered,
-                    std::isinf(psnr) ? 99.99 : psnr, identical, slices);
-        records.push_back({{"scene", sceneName},
-                           {"triangles", scene.triangleCount()},
-                           {"width", w},
-                           {"height", h},
-                           {"views", n},
-                           {"backend", r.backend},
-                           {"seconds", r.seconds},
-                           {"ms_per_view", 1e3 * r.seconds / n},
-                           {"speedup_vs_svr", std::isnan(xSvr) ? nlohmann::json() : nlohmann::json(xSvr)},
-                           {"speedup_vs_layered", std::isnan(xLayered) ? nlohmann::json() : nlohmann::json(xLayered)},
-                           {"min_psnr_db", std::isfinite(psnr) ? nlohmann::json(psnr) : nlohmann::json()},
-                           {"min_identical", std::isnan(identical) ? nlohmann::json() : nlohmann::json(identical)},
-                           {"stages_s", r.stats.times.seconds},
-                           {"counters", r.stats.counters}});
+      const double height = averagePolygonHeight(scene, cam);
+      for (size_t k = 0; k < runs.size(); ++k) {
+        BenchRecord rec;
+        rec.scene = name;
+        rec.triangles = scene.triangleCount();
+        rec.width = w;
+        rec.height = h;
+        rec.views = n;
+        rec.backend = cfg.backends[k];
+        rec.seconds = runs[k].seconds;
+        rec.speedupSvr = svr ? svr->seconds / rec.seconds : NAN;
+        rec.speedupLayered = layered ? layered->seconds / rec.seconds : NAN;
+        if (svr) errorAgainst(*svr, runs[k], rec);
+        rec.slices = runs[k].stats.counters.count("slices") ? runs[k].stats.counters.at("slices") : 0;
+        rec.averagePolygonHeight = height;
+        rec.stages = runs[k].stats.times.seconds;
+        rec.counters = runs[k].stats.counters;
+        printRow(rec);
+        records.push_back(rec);
       }
-      std::fflush(stdout);
     }
+  }
+}
+
+std::vector<int> parseViews(const std::string& list) {
+  std::vector<int> out;
+  for (const std::string& v : splitList(list)) {
+    char* end = nullptr;
+    long n = std::strtol(v.c_str(), &end, 10);
+    if (*end || n < 1 || n > 65536) fail("--views", "'" + v + "' is not a view count 1..65536");
+    out.push_back(int(n));
+  }
+  if (out.empty()) fail("--views", "no view counts");
+  return out;
+}
+
+std::vector<std::pair<int, int>> parseSizes(const std::string& list) {
+  std::vector<std::pair<int, int>> out;
+  for (const std::string& s : splitList(list)) {
+    int w = 0, h = 0;
+    char extra = 0;
+    if (std::sscanf(s.c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
+      fail("--size", "'" + s + "' is not WxH");
+    out.emplace_back(w, h);
+  }
+  if (out.empty()) fail("--size", "no sizes");
+  return out;
+}
+
+Scene benchTeacup(int triangles) {
+  Scene s = makeTeacup(triangles);
+  s.lights = {Light{Light::Type::Directional, glm::normalize(glm::vec3(-0.4f, -0.6f, -1.0f)),
+                    glm::vec3(0.85f)}};
+  return s;
+}
+
+}  // namespace
+
+int runBench(int argc, char** argv) {
+  Args args(argc, argv, 2,
+            {"teacup", "slender", "views", "size", "backends", "repeat", "error-views", "json",
+             "plots", "gl"},
+            {"sweep"});
+  setProgressEnabled(false);
+  const bool sweep = args.has("sweep");
+  Config cfg;
+  cfg.views = parseViews(args.get("views", sweep ? "1,2,5,10,20,50,100,200,500,1000" : "100"));
+  cfg.sizes = parseSizes(args.get("size", sweep ? "160x140,640x480,1120x840" : "160x140"));
+  cfg.backends = splitList(args.get("backends", kDefaultBackends));
+  cfg.repeat = args.getInt("repeat", 1, 1, 100);
+  cfg.errorViews = args.getInt("error-views", 8, 1, 1000);
+
+  // Scenes are built lazily: a 143K teacup is 10 MB of vertices.
+  std::vector<std::pair<std::string, std::function<Scene()>>> scenes;
+  if (sweep) {
+    for (int n : {4000, 16000, 63000, 143000})
+      scenes.emplace_back("teacup" + std::to_string(n / 1000) + "k", [n] { return benchTeacup(n); });
+  } else if (args.has("teacup")) {
+    const int n = args.getInt("teacup", 4000, 100, 10000000);
+    scenes.emplace_back("teacup" + std::to_string(n / 1000) + "k", [n] { return benchTeacup(n); });
+  } else if (args.has("slender")) {
+    const int n = args.getInt("slender", 1000, 1, 10000000);
+    scenes.emplace_back("slender" + std::to_string(n), [n] { return makeSlenderScene(n); });
+  } else {
+    const std::string path = args.positional().empty() ? defaultScenePath() : args.positional()[0];
+    Scene s = loadScene(path);  // load now: bad input fails before GL
+    scenes.emplace_back(std::filesystem::path(path).stem().string(), [s] { return s; });
+  }
+
+  auto context = GlContext::create(parseGlPlatform(args.get("gl", "auto")));
+  BenchMachine machine{context->describe(), cpuModel(), std::thread::hardware_concurrency()};
+  std::printf("# mvr bench\n# GL: %s\n# CPU: %s, %u threads\n", machine.gl.c_str(), machine.cpu.c_str(),
+              machine.threads);
+  std::printf("%-16s %-9s %6s %-13s %10s %10s %8s %9s %8s %10s %10s\n", "scene", "size", "views",
+              "backend", "total_s", "ms/view", "x_svr", "x_layered", "PSNR_dB", "identical", "slices");
+  std::vector<BenchRecord> records;
+  for (auto& [name, build] : scenes) {
+    Scene scene = build();
+    benchScene(name, scene, cfg, records);
   }
   struct rusage usage {};
   getrusage(RUSAGE_SELF, &usage);
-  std::printf("# peak resident memory: %.1f MiB\n", usage.ru_maxrss / 1024.0);
-  if (args.has("json")) {
-    std::ofstream out(args.get("json", ""));
-    out << nlohmann::json{{"gl", context->describe()}, {"cpu", cpuModel()},
-                          {"peak_rss_mib", usage.ru_maxrss / 1024.0}, {"results", records}}
-               .dump(2)
-        << "\n";
-    if (!out) fail(args.get("json", ""), "cannot write JSON");
-  }
+  machine.peakRssMiB = usage.ru_maxrss / 1024.0;
+  std::printf("# peak resident memory: %.1f MiB\n", machine.peakRssMiB);
+  const std::vector<BreakEven> breakEvens = findBreakEvens(records);
+  printBreakEvens(breakEvens);
+  if (args.has("json")) writeBenchJson(args.get("json", ""), machine, records, breakEvens);
+  if (args.has("plots")) writeBenchPlots(args.get("plots", ""), records, breakEvens);
   return 0;
 }
 
