@@ -9,6 +9,7 @@
 
 #include "apps/args.h"
 #include "apps/bench_command.h"
+#include "apps/viewer.h"
 #include "apps/render_command.h"
 #include "mvr/compare.h"
 #include "mvr/error.h"
@@ -22,6 +23,8 @@ const char* const kUsage =
     "  info                       GL version and renderer per context platform\n"
     "  render [SCENE] [options]   render a view set (mvr render --help)\n"
     "  compare DIR_A DIR_B        per image PSNR / max error / identical pixels\n"
+    "  stream [SCENE] --to DEST   EPIs to a pipe, file or socket as they complete\n"
+    "  view DIR|SCENE             look at views and EPIs (mvr view --help)\n"
     "  bench [SCENE] [options]    MVR against SVR, svr-layered, deferred (mvr bench --help)\n";
 
 const char* const kCompareHelp =
@@ -104,6 +107,14 @@ int dispatch(int argc, char** argv) {
     if (wantsHelp(argc, argv)) return std::fputs(kRenderHelp, stdout), 0;
     return runRender(argc, argv);
   }
+  if (cmd == "view") {
+    if (wantsHelp(argc, argv)) return std::fputs(kViewHelp, stdout), 0;
+    return runView(argc, argv);
+  }
+  if (cmd == "stream") {
+    if (wantsHelp(argc, argv)) return std::fputs(kStreamHelp, stdout), 0;
+    return runRender(argc, argv, true);
+  }
   if (cmd == "bench") {
     if (wantsHelp(argc, argv)) return std::fputs(kBenchHelp, stdout), 0;
     return runBench(argc, argv);
@@ -112,7 +123,7 @@ int dispatch(int argc, char** argv) {
     if (wantsHelp(argc, argv)) return std::fputs(kCompareHelp, stdout), 0;
     return runCompare(argc, argv);
   }
-  fail("mvr", "unknown command '" + cmd + "' (expected info, render, compare or bench)");
+  fail("mvr", "unknown command '" + cmd + "' (expected info, render, stream, view, compare or bench)");
 }
 
 }  // namespace

@@ -1,18 +1,23 @@
 #include "apps/render_command.h"
 
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "apps/args.h"
 #include "epi/epi_stream.h"
+#include "epi/stream_queue.h"
 #include "epi/mvr_renderer.h"
 #include "epi/volume.h"
 #include "mvr/baselines.h"
 #include "mvr/error.h"
+#include "mvr/fd_stream.h"
+#include "mvr/frame_sinks.h"
 #include "mvr/gl_context.h"
 #include "mvr/image_set.h"
 #include "mvr/scene_io.h"
@@ -31,8 +36,12 @@ const char* const kRenderHelp =
     "  --out DIR          output folder (default out)\n"
     "  --format png|exr|tiff   image format (default png; exr renders in float)\n"
     "  --order view|epi   write views (view_*) or EPIs (epi_*) (default view)\n"
+    "  --bits 8|16        bits per channel for png and tiff (16 renders in float)\n"
+    "  --quilt auto|CxR   also write all views tiled in one quilt image,\n"
+    "                     quilt_qs{C}x{R}a{aspect}.{format} (auto: near square)\n"
+    "  --predistort LUT   resample every row through a table of source x per column\n"
     "  --stream PATH|-    write the raw EPI-major stream (docs/EPI_STREAM.md) to a\n"
-    "                     file or stdout instead of an image set\n"
+    "                     file or stdout instead of an image set (see mvr stream)\n"
     "  --gl egl|osmesa|glfw    GL platform (default: egl, else osmesa)\n"
     "Writes view_0000.png ... (view_r000_c0000.png for grids) and manifest.json.\n";
 
@@ -57,22 +66,26 @@ nlohmann::json cameraJson(const ShearingCamera& cam) {
           {"view_spacing", cam.viewSpacing()}};
 }
 
-// EPIs straight to a file or stdout as they complete. A file is written
-// under a temporary name and renamed when complete.
-int runStream(Renderer& renderer, const ShearingCamera& cam, const std::string& path,
-              PixelType type) {
+bool isPlainFile(const std::string& endpoint) {
+  return endpoint != "-" && endpoint.rfind("unix:", 0) != 0 && endpoint.rfind("tcp:", 0) != 0;
+}
+
+// EPIs to a file, stdout or socket as they complete, through a bounded
+// queue. A file is written under a temporary name and renamed when done.
+int streamTo(Renderer& renderer, const ShearingCamera& cam, const std::string& endpoint,
+             PixelType type, int queue) {
   namespace fs = std::filesystem;
+  std::signal(SIGPIPE, SIG_IGN);  // a vanished consumer is an error, not a kill
+  const bool file = isPlainFile(endpoint);
+  const std::string target = file ? endpoint + ".part" : endpoint;
   EpiStreamHeader header{uint32_t(cam.width()), uint32_t(cam.height()), uint32_t(cam.views()),
                          uint32_t(cam.rows()), 4, uint32_t(Image::channelBytes(type))};
-  std::ofstream file;
-  const std::string part = path + ".part";
-  if (path != "-") {
-    file.open(part, std::ios::binary);
-    if (!file) fail(path, "cannot open stream file");
-  }
-  std::ostream& out = path == "-" ? std::cout : file;
+  Stopwatch watch;
+  size_t highWater = 0;
   try {
-    EpiStreamWriter stream(out, header);
+    FdStreamBuf buffer(openForWriting(target));
+    std::ostream out(&buffer);
+    QueuedEpiStream stream(out, header, size_t(queue));
     std::unique_ptr<FrameSink> adaptor;
     if (renderer.order() == FrameOrder::View)
       adaptor = std::make_unique<ViewsToEpis>(stream, cam.width(), cam.height(), cam.views(), type);
@@ -80,25 +93,42 @@ int runStream(Renderer& renderer, const ShearingCamera& cam, const std::string& 
     RenderStats stats;
     renderer.render(cam, sink, stats);
     sink.finish();
+    highWater = stream.highWater();
   } catch (...) {
     std::error_code ec;
-    if (path != "-") fs::remove(part, ec);
+    if (file) fs::remove(target, ec);
     throw;
   }
-  if (path != "-") {
-    file.close();
+  if (file) {
     std::error_code ec;
-    fs::rename(part, path, ec);
-    if (ec) fail(path, "cannot finish stream file: " + ec.message());
+    fs::rename(target, endpoint, ec);
+    if (ec) fail(endpoint, "cannot finish stream file: " + ec.message());
   }
+  std::fprintf(stderr, "mvr: streamed %d EPIs of %dx%d to %s in %.3f s (queue high water %zu of %d)\n",
+               cam.height() * cam.rows(), cam.width(), cam.views(), endpoint.c_str(), watch.seconds(),
+               highWater, queue);
   return 0;
 }
 
 }  // namespace
 
-int runRender(int argc, char** argv) {
-  Args args(argc, argv, 2,
-            {"backend", "pst", "views", "rows", "size", "out", "format", "order", "gl", "stream"}, {});
+const char* const kStreamHelp =
+    "usage: mvr stream [SCENE] --to -|FILE|unix:PATH|tcp:HOST:PORT [options]\n"
+    "Renders like mvr render and sends each EPI as it completes in the raw\n"
+    "EPI-major stream (docs/EPI_STREAM.md). Sockets connect to a listening\n"
+    "consumer (mvr-consume). A bounded queue decouples rendering from sending;\n"
+    "when the consumer is slow the renderer waits (backpressure).\n"
+    "  --queue K          EPIs held at most (default 8)\n"
+    "  --backend, --pst, --views, --rows, --size, --format, --gl as for render\n";
+
+int runRender(int argc, char** argv, bool streamCommand) {
+  std::set<std::string> flags = {"backend", "pst", "views", "rows", "size", "out", "format", "order",
+                                 "gl", "stream", "bits", "quilt", "predistort", "queue"};
+  if (streamCommand) flags = {"backend", "pst", "views", "rows", "size", "format", "gl", "to", "queue"};
+  Args args(argc, argv, 2, flags, {});
+  const char* streamFlag = streamCommand ? "to" : "stream";
+  const bool streaming = args.has(streamFlag);
+  if (streamCommand && !streaming) fail("stream", "needs --to -|FILE|unix:PATH|tcp:HOST:PORT");
   if (args.positional().size() > 1) fail("render", "takes at most one scene file");
   const std::string scenePath =
       args.positional().empty() ? defaultScenePath() : args.positional()[0];
@@ -108,7 +138,9 @@ int runRender(int argc, char** argv) {
   const auto [width, height] = args.getSize("size", {320, 240});
   const std::string out = args.get("out", "out");
   const std::string format = args.get("format", "png");
-  const PixelType type = format == "png" ? PixelType::U8 : PixelType::F32;
+  const int bits = args.getInt("bits", 8, 8, 16);
+  // 8-bit PNG renders into 8-bit targets; everything else renders in float.
+  const PixelType type = format == "png" && bits == 8 ? PixelType::U8 : PixelType::F32;
   const std::string order = args.get("order", "view");
   if (order != "view" && order != "epi") fail("--order", "expected view or epi, not '" + order + "'");
   if (choice.backend != "mvr" && args.has("pst")) fail("--pst", "applies to --backend mvr only");
@@ -120,21 +152,36 @@ int runRender(int argc, char** argv) {
   auto context = GlContext::create(platform);
   auto renderer = makeRenderer(choice, scene, type);
 
-  if (args.has("stream"))
-    return runStream(*renderer, camera, args.get("stream", "-"), type);
+  if (streaming)
+    return streamTo(*renderer, camera, args.get(streamFlag, "-"), type, args.getInt("queue", 8, 1, 4096));
 
-  ImageSetWriter writer(out, format, views, rows, height);
+  ImageSetWriter writer(out, format, views, rows, height, bits);
+  // Sink chain: [predistort] -> [reorder] -> writer (+ quilt).
+  std::vector<float> lut;
+  if (args.has("predistort")) lut = loadPredistortionTable(args.get("predistort", ""), width);
+  std::unique_ptr<QuiltSink> quilt;
+  if (args.has("quilt")) {
+    int qc = 0, qr = 0;
+    const std::string q = args.get("quilt", "");
+    if (!q.empty() && q != "auto" && std::sscanf(q.c_str(), "%dx%d", &qc, &qr) != 2)
+      fail("--quilt", "'" + q + "' is not COLSxROWS");
+    if (order != "view") fail("--quilt", "needs --order view");
+    quilt = std::make_unique<QuiltSink>(width, height, views, rows, type, qc, qr);
+  }
+  std::vector<std::unique_ptr<FrameSink>> chain;
+  FrameSink* sink = &writer;
+  if (quilt) sink = chain.emplace_back(std::make_unique<TeeSink>(std::vector<FrameSink*>{&writer, quilt.get()})).get();
   // Reorder only when the renderer's natural order is not the one asked for.
-  std::unique_ptr<FrameSink> adaptor;
   if (renderer->order() == FrameOrder::Epi && order == "view")
-    adaptor = std::make_unique<EpisToViews>(writer, width, height, views, type);
+    sink = chain.emplace_back(std::make_unique<EpisToViews>(*sink, width, height, views, type)).get();
   else if (renderer->order() == FrameOrder::View && order == "epi")
-    adaptor = std::make_unique<ViewsToEpis>(writer, width, height, views, type);
-  FrameSink& sink = adaptor ? *adaptor : writer;
+    sink = chain.emplace_back(std::make_unique<ViewsToEpis>(*sink, width, height, views, type)).get();
+  if (!lut.empty()) sink = chain.emplace_back(std::make_unique<PredistortSink>(*sink, lut)).get();
   RenderStats stats;
   Stopwatch total;
-  renderer->render(camera, sink, stats);
-  sink.finish();
+  renderer->render(camera, *sink, stats);
+  sink->finish();
+  if (quilt) writer.putExtra(quilt->fileName(format), quilt->quilt());
 
   nlohmann::json m;
   m["scene"] = scene.source;
@@ -158,6 +205,10 @@ int runRender(int argc, char** argv) {
   m["counters"] = stats.counters;
   m["notes"] = stats.notes;
   m["files"] = writer.filesWritten();
+  m["bits"] = format == "exr" ? 32 : bits;
+  m["pixel_origin"] = "top-left; view i at camera x = track[0] + i * view_spacing";
+  if (quilt) m["quilt"] = quilt->fileName(format);
+  if (!lut.empty()) m["predistortion"] = args.get("predistort", "");
   writer.commit(m);
   std::fprintf(stderr, "mvr: %s rendered %d view(s) of %dx%d to %s in %.3f s\n",
                renderer->name().c_str(), views * rows, width, height, out.c_str(),

@@ -10,8 +10,10 @@
 namespace mvr::app {
 
 extern const char* const kRenderHelp;
+extern const char* const kStreamHelp;
 
-int runRender(int argc, char** argv);
+// streamCommand: `mvr stream` (EPIs to --to) rather than `mvr render`.
+int runRender(int argc, char** argv, bool streamCommand = false);
 
 struct BackendChoice {
   std::string backend = "mvr";  // mvr | svr | svr-layered | deferred

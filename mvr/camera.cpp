@@ -107,6 +107,9 @@ CameraSpec ShearingCamera::frame(const Bounds& b, int width, int height) {
   const double halfWidth = 1.05 * std::max({halfX, halfY * aspect, 1e-6 * radius});
   s.planeWidth = 2.0 * halfWidth;
   s.planeHeight = s.planeWidth / aspect;
+  // Rows of views for full parallax span the same angle vertically.
+  s.rowTop = 0.25 * s.distance / aspect;
+  s.rowBottom = -s.rowTop;
   s.nearDistance = s.distance - 1.5 * radius;
   s.farDistance = s.distance + 1.5 * radius;
   return s;

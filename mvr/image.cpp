@@ -17,14 +17,16 @@ glm::vec4 Image::pixel(int x, int y) const {
   return v;
 }
 
-void writeImage(const Image& image, const std::string& path) {
+void writeImage(const Image& image, const std::string& path, int bits) {
   namespace fs = std::filesystem;
   const std::string ext = fs::path(path).extension().string();
   const std::string tmp = path + ".part" + ext;
   auto out = OIIO::ImageOutput::create(path);
   if (!out) fail(path, "no image writer for this extension");
   const bool wantsFloat = ext == ".exr";
-  OIIO::TypeDesc fileType = wantsFloat ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
+  OIIO::TypeDesc fileType = wantsFloat   ? OIIO::TypeDesc::FLOAT
+                            : bits == 16 ? OIIO::TypeDesc::UINT16
+                                         : OIIO::TypeDesc::UINT8;
   OIIO::ImageSpec spec(image.width, image.height, 4, fileType);
   const OIIO::TypeDesc memType = image.type == PixelType::U8 ? OIIO::TypeDesc::UINT8
                                                              : OIIO::TypeDesc::FLOAT;

@@ -26,9 +26,10 @@ struct Image {
   glm::vec4 pixel(int x, int y) const;
 };
 
-// Writes png (8-bit; float images are quantised), tiff or exr (float).
-// Writes to a temporary name and renames, so a failed write leaves nothing.
-void writeImage(const Image& image, const std::string& path);
+// Writes png or tiff (8 or 16 bits per channel; float images are
+// quantised) or exr (32-bit float; bits is ignored). Writes to a temporary
+// name and renames, so a failed write leaves nothing behind.
+void writeImage(const Image& image, const std::string& path, int bits = 8);
 Image readImage(const std::string& path);  // 4 channels, U8 or F32
 
 }  // namespace mvr

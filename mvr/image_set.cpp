@@ -29,10 +29,14 @@ std::string rowNumber(int row) {
 
 }  // namespace
 
-ImageSetWriter::ImageSetWriter(std::string dir, std::string format, int views, int rows, int height)
-    : dir_(std::move(dir)), format_(std::move(format)), views_(views), rows_(rows), height_(height) {
+ImageSetWriter::ImageSetWriter(std::string dir, std::string format, int views, int rows, int height,
+                               int bits)
+    : dir_(std::move(dir)), format_(std::move(format)), views_(views), rows_(rows), height_(height),
+      bits_(bits) {
   if (format_ != "png" && format_ != "exr" && format_ != "tiff")
     fail("--format", "unknown format '" + format_ + "' (expected png, exr or tiff)");
+  if (bits_ != 8 && bits_ != 16) fail("--bits", "expected 8 or 16");
+  if (bits_ == 16 && format_ == "exr") fail("--bits", "exr is always 32-bit float");
   std::error_code ec;
   fs::create_directories(dir_, ec);
   if (ec || !fs::is_directory(dir_)) fail(dir_, "cannot create output folder");
@@ -58,13 +62,19 @@ std::string ImageSetWriter::epiName(int row, int scanline, int height, int rows,
 
 void ImageSetWriter::putView(int row, int view, const Image& image) {
   std::string path = (fs::path(dir_) / viewName(row, view, views_, rows_, format_)).string();
-  writeImage(image, path);
+  writeImage(image, path, bits_);
+  written_.push_back(path);
+}
+
+void ImageSetWriter::putExtra(const std::string& name, const Image& image) {
+  std::string path = (fs::path(dir_) / name).string();
+  writeImage(image, path, bits_);
   written_.push_back(path);
 }
 
 void ImageSetWriter::putEpi(int row, int scanline, const Image& epi) {
   std::string path = (fs::path(dir_) / epiName(row, scanline, height_, rows_, format_)).string();
-  writeImage(epi, path);
+  writeImage(epi, path, bits_);
   written_.push_back(path);
 }
 

@@ -14,12 +14,15 @@ namespace mvr {
 
 class ImageSetWriter final : public FrameSink {
  public:
-  // format: png, exr or tiff. Creates dir if needed.
-  ImageSetWriter(std::string dir, std::string format, int views, int rows, int height);
+  // format: png, exr or tiff; bits: 8 or 16 for png and tiff. Creates dir
+  // if needed.
+  ImageSetWriter(std::string dir, std::string format, int views, int rows, int height, int bits = 8);
   ~ImageSetWriter() override;
 
   void putView(int row, int view, const Image& image) override;
   void putEpi(int row, int scanline, const Image& epi) override;
+  // An extra image in the set (a quilt), removed like the rest on failure.
+  void putExtra(const std::string& name, const Image& image);
   void commit(const nlohmann::json& manifest);
 
   size_t filesWritten() const { return written_.size(); }
@@ -28,7 +31,7 @@ class ImageSetWriter final : public FrameSink {
 
  private:
   std::string dir_, format_;
-  int views_, rows_, height_;
+  int views_, rows_, height_, bits_;
   std::vector<std::string> written_;
   bool committed_ = false;
 };

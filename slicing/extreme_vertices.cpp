@@ -41,6 +41,8 @@ class Transformer {
     cxLeft_ = cam.viewX(0);
     cxRight_ = cam.viewX(cam.views() - 1);
     cy_ = cam.rowY(row);
+    firstRow_ = row;
+    rowStep_ = cam.rows() > 1 ? cam.rowY(1) - cam.rowY(0) : 0.0;
   }
 
   void add(const glm::dvec3& p, const glm::vec3& front, const glm::vec3& back) {
@@ -51,6 +53,11 @@ class Transformer {
     out_.x0.push_back(float(xl));
     out_.dx.push_back(cam_.views() > 1 ? float((xr - xl) / (cam_.views() - 1)) : 0.0f);
     out_.y.push_back(float(y));
+    // dy/dcy = (H / Hp) Z / w: pixels per unit of camera y; y of row 0 is
+    // recovered exactly from this row's y.
+    const double step = cam_.height() / cam_.planeHeight() * p.z / w * rowStep_;
+    out_.yStep.push_back(float(step));
+    out_.yFirst.push_back(float(y - firstRow_ * step));
     out_.depth.push_back(float(n_ * (f_ - w) / ((f_ - n_) * w)));
     out_.invW.push_back(float(1.0 / w));
     out_.frontOverW.push_back(front * float(1.0 / w));
@@ -69,13 +76,19 @@ class Transformer {
  private:
   const ShearingCamera& cam_;
   ExtremeVertices& out_;
-  double D_, n_, f_, sx_, sy_, cxLeft_, cxRight_, cy_;
+  double D_, n_, f_, sx_, sy_, cxLeft_, cxRight_, cy_, rowStep_;
+  int firstRow_;
 };
 
 }  // namespace
 
+void moveToRow(ExtremeVertices& v, int row) {
+  const float r = float(row);
+  for (size_t i = 0; i < v.y.size(); ++i) v.y[i] = v.yFirst[i] + r * v.yStep[i];
+}
+
 size_t ExtremeVertices::bytes() const {
-  return x0.size() * (5 * sizeof(float) + 2 * sizeof(glm::vec3)) +
+  return x0.size() * (7 * sizeof(float) + 2 * sizeof(glm::vec3)) +
          triangles.size() * (sizeof(glm::uvec3) + 1);
 }
 
@@ -84,7 +97,8 @@ ExtremeVertices transformToExtremes(const Scene& scene, const shading::VertexCol
   ExtremeVertices out;
   Transformer t(camera, row, out);
   const size_t nv = scene.vertexCount();
-  for (auto* v : {&out.x0, &out.dx, &out.y, &out.depth, &out.invW}) v->reserve(nv);
+  for (auto* v : {&out.x0, &out.dx, &out.y, &out.depth, &out.invW, &out.yFirst, &out.yStep})
+    v->reserve(nv);
   std::vector<uint8_t> inside(nv);
   for (size_t v = 0; v < nv; ++v) {
     const glm::dvec3 p(scene.positions[v]);

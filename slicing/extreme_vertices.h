@@ -20,6 +20,10 @@ struct ExtremeVertices {
   // Per vertex, pixel units. x at EPI row coordinate r (view i is sampled
   // at r = i + 0.5) is x0 + (r - 0.5) * dx.
   std::vector<float> x0, dx, y, depth, invW;
+  // Full parallax (Halle 5.6.11): between rows of views only y moves, by a
+  // per-vertex step. y of row r is yFirst + r * yStep: one multiply-add per
+  // vertex, and no drift over thousands of rows.
+  std::vector<float> yFirst, yStep;
   std::vector<glm::vec3> frontOverW, backOverW;  // lit colour / w, two sides
   // Triangles after near/far clipping (clipping adds vertices above).
   std::vector<glm::uvec3> triangles;
@@ -33,6 +37,9 @@ struct ExtremeVertices {
 // independent: both planes are parallel to the camera plane), then
 // transforms to row `row`'s extreme views.
 ExtremeVertices transformToExtremes(const Scene& scene, const shading::VertexColors& colors,
-                                    const ShearingCamera& camera, int row);
+                                    const ShearingCamera& camera, int row = 0);
+
+// Moves the vertices to another row of views: y only.
+void moveToRow(ExtremeVertices& vertices, int row);
 
 }  // namespace mvr

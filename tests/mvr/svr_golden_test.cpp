@@ -58,8 +58,12 @@ TEST(SvrGolden, CubeSilhouetteColumnsMatchProjection) {
         continue;
       }
       // A pixel is covered when its centre x + 0.5 lies inside [xa, xb).
-      if (!nearPixelCentre(xa)) EXPECT_EQ(first, int(std::ceil(xa - 0.5))) << "view " << view << " scanline " << j;
-      if (!nearPixelCentre(xb)) EXPECT_EQ(last, int(std::ceil(xb - 0.5)) - 1) << "view " << view << " scanline " << j;
+      if (!nearPixelCentre(xa)) {
+        EXPECT_EQ(first, int(std::ceil(xa - 0.5))) << "view " << view << " scanline " << j;
+      }
+      if (!nearPixelCentre(xb)) {
+        EXPECT_EQ(last, int(std::ceil(xb - 0.5)) - 1) << "view " << view << " scanline " << j;
+      }
       ++checked;
     }
   }

@@ -1,0 +1,305 @@
+#include "apps/viewer.h"
+
+#include "mvr/gl_api.h"  // before GLFW
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include <nlohmann/json.hpp>
+
+#include "apps/args.h"
+#include "apps/render_command.h"
+#include "epi/volume.h"
+#include "mvr/error.h"
+#include "mvr/gl_program.h"
+#include "mvr/glfw_window.h"
+#include "mvr/image_set.h"
+#include "mvr/progress.h"
+#include "mvr/scene_io.h"
+
+namespace mvr::app {
+
+const char* const kViewHelp =
+    "usage: mvr view DIR|SCENE [options]\n"
+    "Shows one view of a rendered set (a folder with manifest.json) with the EPI of\n"
+    "one scanline below it. Given a scene instead, renders it with MVR first\n"
+    "(--views, --size, --pst as for render).\n"
+    "Keys: left/right view, up/down row, mouse over the view picks the scanline,\n"
+    "drag scrubs views, S saves mvr_screenshot_NNNN.png, Q or Esc quits.\n"
+    "  --view K --scanline J   start there\n"
+    "  --screenshot FILE       draw one frame, save it, exit (for tests, under Xvfb)\n";
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A view set in memory: views[row][view], all the same size.
+struct ViewSet {
+  int views = 0, rows = 1, width = 0, height = 0;
+  std::vector<std::vector<Image>> images;
+};
+
+ViewSet loadSet(const std::string& dir) {
+  const fs::path manifest = fs::path(dir) / "manifest.json";
+  if (!fs::exists(manifest)) fail(dir, "no manifest.json (not a finished image set)");
+  nlohmann::json m;
+  try {
+    m = nlohmann::json::parse(std::ifstream(manifest));
+  } catch (const nlohmann::json::exception& e) {
+    fail(manifest.string(), std::string("bad JSON: ") + e.what());
+  }
+  ViewSet set;
+  set.views = m.value("views", 0);
+  set.rows = m.value("rows", 1);
+  const std::string format = m.value("format", "png");
+  if (m.value("order", "view") != "view") fail(dir, "holds EPIs; render with --order view to view it");
+  if (set.views < 1 || set.rows < 1) fail(manifest.string(), "no views");
+  set.images.resize(set.rows);
+  for (int r = 0; r < set.rows; ++r)
+    for (int v = 0; v < set.views; ++v) {
+      Image img = readImage((fs::path(dir) / ImageSetWriter::viewName(r, v, set.views, set.rows, format)).string());
+      if (set.width == 0) set.width = img.width, set.height = img.height;
+      if (img.width != set.width || img.height != set.height) fail(dir, "views differ in size");
+      set.images[r].push_back(std::move(img));
+    }
+  return set;
+}
+
+// Collects rendered views in memory, converted to 8 bits for display.
+class ViewCollector final : public FrameSink {
+ public:
+  explicit ViewCollector(ViewSet& set) : set_(set) {}
+  void putView(int row, int view, const Image& image) override { set_.images[row][view] = image; }
+
+ private:
+  ViewSet& set_;
+};
+
+const char* const kQuadVertex = R"(
+void main() {
+  vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+  gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
+// Top: the view, 1:1. Below: the EPI (views down), scaled to the panel.
+const char* const kPanelFragment = R"(
+layout(binding = 0) uniform sampler2D uView;
+layout(binding = 1) uniform sampler2D uEpi;
+uniform ivec2 uViewSize;
+uniform int uEpiRows;    // EPI texture height: the view count
+uniform int uPanelRows;  // window rows given to the EPI
+uniform int uWindowRows;
+uniform ivec2 uMarker;   // x: view row in the EPI, y: scanline; -1: none
+layout(location = 0) out vec4 oColor;
+void main() {
+  int x = int(gl_FragCoord.x);
+  int fromTop = uWindowRows - 1 - int(gl_FragCoord.y);
+  if (fromTop < uViewSize.y) {
+    oColor = texelFetch(uView, ivec2(x, fromTop), 0);
+    if (fromTop == uMarker.y) oColor = mix(oColor, vec4(1, 1, 0, 1), 0.5);
+  } else {
+    int e = fromTop - uViewSize.y;
+    int src = min(uEpiRows - 1, e * uEpiRows / uPanelRows);
+    oColor = texelFetch(uEpi, ivec2(x, src), 0);
+    if (src == uMarker.x) oColor = mix(oColor, vec4(1, 1, 0, 1), 0.5);
+  }
+}
+)";
+
+class Viewer {
+ public:
+  Viewer(ViewSet set, GlfwWindow& window, int view, int scanline, bool overlay)
+      : set_(std::move(set)), window_(window), view_(view), scanline_(scanline), overlay_(overlay),
+        viewTex_(GL_TEXTURE_2D), epiTex_(GL_TEXTURE_2D), vao_(gl::VertexArray::create()) {
+    panelRows_ = std::min(set_.views, 512);
+    program_ = gl::linkProgram("viewer", {{GL_VERTEX_SHADER, gl::glslHeader() + kQuadVertex},
+                                          {GL_FRAGMENT_SHADER, gl::glslHeader() + kPanelFragment}});
+    gl::TextureStorage2D(viewTex_.id(), 1, GL_RGBA8, set_.width, set_.height);
+    gl::TextureStorage2D(epiTex_.id(), 1, GL_RGBA8, set_.width, set_.views);
+    clampState();
+    upload();
+  }
+
+  int windowRows() const { return set_.height + panelRows_; }
+
+  void draw() {
+    gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl::Viewport(0, 0, set_.width, windowRows());
+    gl::Disable(GL_DEPTH_TEST);
+    gl::UseProgram(program_.id());
+    gl::setUniform(program_, "uEpiRows", set_.views);
+    gl::setUniform(program_, "uPanelRows", panelRows_);
+    gl::setUniform(program_, "uWindowRows", windowRows());
+    gl::ProgramUniform2i(program_.id(), gl::GetUniformLocation(program_.id(), "uViewSize"), set_.width, set_.height);
+    gl::ProgramUniform2i(program_.id(), gl::GetUniformLocation(program_.id(), "uMarker"),
+                         overlay_ ? view_ : -1, overlay_ ? scanline_ : -1);
+    gl::BindTextureUnit(0, viewTex_.id());
+    gl::BindTextureUnit(1, epiTex_.id());
+    gl::BindVertexArray(vao_.id());
+    gl::DrawArrays(GL_TRIANGLES, 0, 3);
+    gl::Finish();
+  }
+
+  // The window as an image, rows top first.
+  Image screenshot() const {
+    Image img(set_.width, windowRows(), PixelType::U8);
+    gl::BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
+    std::vector<uint8_t> raw(img.bytes.size());
+    gl::ReadPixels(0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
+    for (int y = 0; y < img.height; ++y)
+      std::memcpy(img.row(y), raw.data() + size_t(img.height - 1 - y) * img.rowBytes(), img.rowBytes());
+    return img;
+  }
+
+  void run() {
+    GLFWwindow* w = window_.handle();
+    glfwSetWindowUserPointer(w, this);
+    glfwSetKeyCallback(w, [](GLFWwindow* win, int key, int, int action, int) {
+      if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+      static_cast<Viewer*>(glfwGetWindowUserPointer(win))->onKey(key);
+    });
+    glfwShowWindow(w);
+    int shots = 0;
+    while (!glfwWindowShouldClose(w)) {
+      double cx = 0, cy = 0;
+      glfwGetCursorPos(w, &cx, &cy);
+      onCursor(cx, cy, glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS);
+      draw();
+      if (saveRequested_) {
+        char name[64];
+        std::snprintf(name, sizeof name, "mvr_screenshot_%04d.png", shots++);
+        writeImage(screenshot(), name);
+        std::fprintf(stderr, "mvr view: saved %s\n", name);
+        saveRequested_ = false;
+      }
+      glfwSwapBuffers(w);
+      glfwWaitEventsTimeout(0.05);
+    }
+  }
+
+ private:
+  void onKey(int key) {
+    switch (key) {
+      case GLFW_KEY_LEFT: --view_; break;
+      case GLFW_KEY_RIGHT: ++view_; break;
+      case GLFW_KEY_UP: --row_; break;
+      case GLFW_KEY_DOWN: ++row_; break;
+      case GLFW_KEY_S: saveRequested_ = true; return;
+      case GLFW_KEY_Q:
+      case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_.handle(), GLFW_TRUE); return;
+      default: return;
+    }
+    clampState();
+    upload();
+  }
+
+  void onCursor(double x, double y, bool dragging) {
+    bool changed = false;
+    if (y >= 0 && y < set_.height && int(y) != scanline_) {
+      scanline_ = int(y);
+      changed = true;
+    }
+    if (dragging && lastX_ >= 0 && std::abs(x - lastX_) >= 2) {
+      view_ += x > lastX_ ? 1 : -1;
+      changed = true;
+    }
+    lastX_ = dragging ? x : -1;
+    if (changed) {
+      clampState();
+      upload();
+    }
+  }
+
+  void clampState() {
+    view_ = std::clamp(view_, 0, set_.views - 1);
+    row_ = std::clamp(row_, 0, set_.rows - 1);
+    scanline_ = std::clamp(scanline_, 0, set_.height - 1);
+    char title[96];
+    std::snprintf(title, sizeof title, "mvr view: row %d view %d scanline %d", row_, view_, scanline_);
+    glfwSetWindowTitle(window_.handle(), title);
+  }
+
+  void upload() {
+    const Image& v = set_.images[row_][view_];
+    gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl::TextureSubImage2D(viewTex_.id(), 0, 0, 0, set_.width, set_.height, GL_RGBA, GL_UNSIGNED_BYTE, v.bytes.data());
+    Image epi(set_.width, set_.views, PixelType::U8);
+    for (int i = 0; i < set_.views; ++i)
+      std::memcpy(epi.row(i), set_.images[row_][i].row(scanline_), epi.rowBytes());
+    gl::TextureSubImage2D(epiTex_.id(), 0, 0, 0, set_.width, set_.views, GL_RGBA, GL_UNSIGNED_BYTE, epi.bytes.data());
+  }
+
+  ViewSet set_;
+  GlfwWindow& window_;
+  int view_, row_ = 0, scanline_, panelRows_ = 0;
+  bool overlay_, saveRequested_ = false;
+  double lastX_ = -1;
+  gl::Texture viewTex_, epiTex_;
+  gl::VertexArray vao_;
+  gl::Program program_;
+};
+
+// 8-bit copies for display (float sets are clamped).
+void toDisplay(ViewSet& set) {
+  for (auto& row : set.images)
+    for (Image& img : row) {
+      if (img.type == PixelType::U8) continue;
+      Image out(img.width, img.height, PixelType::U8);
+      for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+          glm::vec4 v = glm::clamp(img.pixel(x, y), 0.0f, 1.0f);
+          for (int c = 0; c < 4; ++c) out.row(y)[x * 4 + c] = uint8_t(std::lround(v[c] * 255.0f));
+        }
+      img = std::move(out);
+    }
+}
+
+}  // namespace
+
+int runView(int argc, char** argv) {
+  Args args(argc, argv, 2, {"view", "scanline", "screenshot", "views", "size", "pst", "rows"}, {});
+  if (args.positional().size() != 1) fail("view", "needs one folder or scene (see --help)");
+  const std::string source = args.positional()[0];
+  const bool shot = args.has("screenshot");
+  ViewSet set;
+  std::unique_ptr<GlfwWindow> window;
+  if (fs::is_directory(source)) {
+    set = loadSet(source);
+    window = GlfwWindow::open(set.width, set.height + std::min(set.views, 512), "mvr view", false);
+  } else {  // live: render the scene with MVR in this window's context
+    Scene scene = loadScene(source);
+    const auto [w, h] = args.getSize("size", {320, 240});
+    set.views = args.getInt("views", 32, 1, 4096);
+    set.rows = args.getInt("rows", 1, 1, 64);
+    set.width = w;
+    set.height = h;
+    set.images.assign(set.rows, std::vector<Image>(set.views));
+    window = GlfwWindow::open(w, h + std::min(set.views, 512), "mvr view", false);
+    ShearingCamera cam(cameraFor(scene, w, h), w, h, set.views, set.rows);
+    auto renderer = makeRenderer({"mvr", args.get("pst", "strip")}, scene, PixelType::U8);
+    ViewCollector collect(set);
+    EpisToViews reorder(collect, w, h, set.views, PixelType::U8);
+    RenderStats stats;
+    renderer->render(cam, reorder, stats);
+  }
+  toDisplay(set);
+  Viewer viewer(std::move(set), *window, args.getInt("view", 0, 0, 65535),
+                args.getInt("scanline", 0, 0, 65535), !shot);
+  if (shot) {
+    viewer.draw();
+    writeImage(viewer.screenshot(), args.get("screenshot", ""));
+    return 0;
+  }
+  viewer.run();
+  return 0;
+}
+
+}  // namespace mvr::app

@@ -1,0 +1,42 @@
+#pragma once
+// The EPI stream behind a bounded queue: the renderer hands over EPIs and
+// goes on while a writer thread sends them; when the consumer is slow the
+// queue fills and putEpi blocks (backpressure), so memory stays at
+// `capacity` EPIs however long the render.
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <ostream>
+#include <thread>
+
+#include "epi/epi_stream.h"
+
+namespace mvr {
+
+class QueuedEpiStream final : public FrameSink {
+ public:
+  QueuedEpiStream(std::ostream& out, const EpiStreamHeader& header, size_t capacity);
+  ~QueuedEpiStream() override;
+  void putEpi(int row, int scanline, const Image& epi) override;
+  // Sends what is queued and flushes; rethrows the writer's error, if any.
+  void finish() override;
+  size_t highWater() const { return highWater_; }
+
+ private:
+  struct Frame {
+    int row, scanline;
+    Image epi;
+  };
+  void writerLoop(std::ostream& out, EpiStreamHeader header);
+
+  size_t capacity_, highWater_ = 0;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<Frame> queue_;
+  bool closing_ = false, writerDone_ = false;
+  std::exception_ptr error_;
+  std::thread writer_;
+};
+
+}  // namespace mvr

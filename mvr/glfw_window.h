@@ -1,0 +1,25 @@
+#pragma once
+// A GLFW window with a current GL 4.5 core context: the viewer's surface.
+// GLFW's own header is left to the files that handle events.
+#include <memory>
+#include <string>
+
+#include "mvr/gl_context.h"
+
+struct GLFWwindow;
+
+namespace mvr {
+
+class GlfwWindow : public GlContext {
+ public:
+  // Throws mvr::Error when there is no display.
+  static std::unique_ptr<GlfwWindow> open(int width, int height, const std::string& title, bool visible);
+  ~GlfwWindow() override;
+  GLFWwindow* handle() const { return window_; }
+
+ private:
+  explicit GlfwWindow(GLFWwindow* window);
+  GLFWwindow* window_;
+};
+
+}  // namespace mvr

@@ -1,0 +1,65 @@
+// `mvr stream` and `mvr-consume` as two processes: the views the consumer
+// assembles equal the image set `mvr render` writes.
+#include <gtest/gtest.h>
+
+#include "mvr/compare.h"
+#include "tests/support/cli.h"
+
+namespace mvr {
+namespace {
+
+const std::string kArgs = " --views 6 --size 56x40 --pst cpu";
+
+void expectSameSet(const std::filesystem::path& a, const std::filesystem::path& b) {
+  auto diffs = compareSets(a.string(), b.string());
+  ASSERT_EQ(diffs.size(), 6u);
+  for (const auto& d : diffs) EXPECT_EQ(d.identicalFraction, 1.0) << d.name;
+}
+
+TEST(Stream, PipeProducerToConsumer) {
+  auto ref = test::freshDir("stream_ref"), got = test::freshDir("stream_pipe");
+  ASSERT_EQ(test::runMvr("render" + kArgs + " --out " + ref.string()).status, 0);
+  auto r = test::shell(std::string(MVR_BINARY) + " stream" + kArgs + " --queue 2 --to - | " +
+                       MVR_CONSUME + " --from - --out " + got.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  expectSameSet(ref, got);
+}
+
+TEST(Stream, UnixSocketProducerToListeningConsumer) {
+  auto ref = test::freshDir("sock_ref"), got = test::freshDir("sock_got");
+  const std::string sock = (std::filesystem::temp_directory_path() /
+                            ("mvr_test_" + std::to_string(getpid()) + ".sock")).string();
+  ASSERT_EQ(test::runMvr("render" + kArgs + " --out " + ref.string()).status, 0);
+  // The consumer listens; the producer retries until the socket exists.
+  auto r = test::shell(std::string(MVR_CONSUME) + " --from unix:" + sock + " --out " + got.string() +
+                       " & for i in $(seq 50); do [ -S " + sock + " ] && break; sleep 0.1; done; " +
+                       MVR_BINARY + " stream" + kArgs + " --to unix:" + sock + " && wait");
+  ASSERT_EQ(r.status, 0) << r.err;
+  expectSameSet(ref, got);
+}
+
+TEST(Stream, FileStreamAndTruncationIsReported) {
+  auto file = test::freshDir("stream_file");
+  std::filesystem::create_directories(file);
+  const std::string path = (file / "set.epis").string();
+  ASSERT_EQ(test::runMvr("stream" + kArgs + " --to " + path).status, 0);
+  EXPECT_FALSE(std::filesystem::exists(path + ".part"));
+  const auto size = std::filesystem::file_size(path);
+  EXPECT_EQ(size, 64u + 40u * (8u + 56u * 6u * 4u));
+  std::filesystem::resize_file(path, size - 100);
+  auto r = test::shell(std::string(MVR_CONSUME) + " --from " + path + " --out " + (file / "out").string());
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("truncated"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(file / "out" / "manifest.json"));
+}
+
+TEST(Stream, ConsumerGoneIsAnErrorNotAHang) {
+  // pipefail: the pipeline's status is the producer's, not head's.
+  auto r = test::shell("bash -o pipefail -c '" + std::string(MVR_BINARY) +
+                       " stream --views 64 --size 256x200 --to - | head -c 100 >/dev/null'");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("mvr: stream: write failed"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace mvr

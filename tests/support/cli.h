@@ -1,0 +1,40 @@
+#pragma once
+// Running the built programs from tests, as a user would.
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace mvr::test {
+
+struct CliResult {
+  int status;
+  std::string err;
+};
+
+// Runs a shell command line; returns its exit status and stderr.
+inline CliResult shell(const std::string& commandLine) {
+  // ctest runs tests in parallel processes: one stderr file per process.
+  const auto errFile = std::filesystem::temp_directory_path() /
+                       ("mvr_cli_stderr_" + std::to_string(getpid()) + ".txt");
+  const std::string cmd = "(" + commandLine + ") 2>" + errFile.string();
+  const int rc = std::system(cmd.c_str());
+  std::stringstream ss;
+  ss << std::ifstream(errFile).rdbuf();
+  return {WEXITSTATUS(rc), ss.str()};
+}
+
+inline CliResult runMvr(const std::string& args) {
+  return shell(std::string(MVR_BINARY) + " " + args + " >/dev/null");
+}
+
+inline std::filesystem::path freshDir(const std::string& name) {
+  auto d = std::filesystem::temp_directory_path() / ("mvr_test_" + name + "_" + std::to_string(getpid()));
+  std::filesystem::remove_all(d);
+  return d;
+}
+
+}  // namespace mvr::test
