@@ -40,6 +40,7 @@ const char* const kBenchHelp =
     "                      160x140, 640x480, 1120x840 for 1 to 1000 views\n"
     "  --views LIST        view counts, e.g. 1,10,100 (default 100)\n"
     "  --size LIST         image sizes, e.g. 160x140,640x480 (default 160x140)\n"
+    "  --rows M            rows of views (full parallax; times are per view of M x N)\n"
     "  --backends LIST     default svr,svr-layered,deferred,mvr:quad,mvr:strip,\n"
     "                      mvr:exact,mvr:cpu\n"
     "  --repeat R          best of R runs (default 1)\n"
@@ -77,7 +78,7 @@ struct Config {
   std::vector<std::pair<int, int>> sizes;
   std::vector<int> views;
   std::vector<std::string> backends;
-  int repeat = 1, errorViews = 8;
+  int repeat = 1, errorViews = 8, rows = 1;
 };
 
 struct Run {
@@ -114,7 +115,8 @@ void printRow(const BenchRecord& r) {
   char size[32];
   std::snprintf(size, sizeof size, "%dx%d", r.width, r.height);
   std::printf("%-16s %-9s %6d %-13s %10.4f %10.4f %8.2f %9.2f %8.2f %10.6f %10.0f\n",
-              r.scene.c_str(), size, r.views, r.backend.c_str(), r.seconds, 1e3 * r.seconds / r.views,
+              r.scene.c_str(), size, r.views * r.rows, r.backend.c_str(), r.seconds,
+              1e3 * r.seconds / (r.views * r.rows),
               r.speedupSvr, r.speedupLayered, std::isinf(r.minPsnr) ? 99.99 : r.minPsnr,
               r.minIdentical, r.slices);
   std::fflush(stdout);
@@ -137,7 +139,7 @@ void benchScene(const std::string& name, const Scene& scene, const Config& cfg,
   }
   for (auto [w, h] : cfg.sizes) {
     for (int n : cfg.views) {
-      ShearingCamera cam(cameraFor(scene, w, h), w, h, n);
+      ShearingCamera cam(cameraFor(scene, w, h), w, h, n, cfg.rows);
       const std::vector<int> sampled = spreadViews(n, cfg.errorViews);
       std::vector<Run> runs;
       for (auto& r : renderers) runs.push_back(measure(*r, cam, cfg.repeat, sampled));
@@ -155,6 +157,7 @@ void benchScene(const std::string& name, const Scene& scene, const Config& cfg,
         rec.width = w;
         rec.height = h;
         rec.views = n;
+        rec.rows = cfg.rows;
         rec.backend = cfg.backends[k];
         rec.seconds = runs[k].seconds;
         rec.speedupSvr = svr ? svr->seconds / rec.seconds : NAN;
@@ -207,8 +210,8 @@ Scene benchTeacup(int triangles) {
 
 int runBench(int argc, char** argv) {
   Args args(argc, argv, 2,
-            {"teacup", "slender", "views", "size", "backends", "repeat", "error-views", "json",
-             "plots", "gl"},
+            {"teacup", "slender", "views", "size", "rows", "backends", "repeat", "error-views",
+             "json", "plots", "gl"},
             {"sweep"});
   setProgressEnabled(false);
   const bool sweep = args.has("sweep");
@@ -217,6 +220,7 @@ int runBench(int argc, char** argv) {
   cfg.sizes = parseSizes(args.get("size", sweep ? "160x140,640x480,1120x840" : "160x140"));
   cfg.backends = splitList(args.get("backends", kDefaultBackends));
   cfg.repeat = args.getInt("repeat", 1, 1, 100);
+  cfg.rows = args.getInt("rows", 1, 1, 4096);
   cfg.errorViews = args.getInt("error-views", 8, 1, 1000);
 
   // Scenes are built lazily: a 143K teacup is 10 MB of vertices.

@@ -91,8 +91,8 @@ void writeBenchJson(const std::string& path, const BenchMachine& machine,
          {"peak_rss_mib", machine.peakRssMiB}, {"results", json::array()}, {"break_even", json::array()}};
   for (const BenchRecord& r : records)
     j["results"].push_back({{"scene", r.scene}, {"triangles", r.triangles}, {"width", r.width},
-                            {"height", r.height}, {"views", r.views}, {"backend", r.backend},
-                            {"seconds", r.seconds}, {"ms_per_view", 1e3 * r.seconds / r.views},
+                            {"height", r.height}, {"views", r.views}, {"rows", r.rows}, {"backend", r.backend},
+                            {"seconds", r.seconds}, {"ms_per_view", 1e3 * r.seconds / (r.views * r.rows)},
                             {"speedup_vs_svr", num(r.speedupSvr)},
                             {"speedup_vs_layered", num(r.speedupLayered)},
                             {"min_psnr_db", num(r.minPsnr)}, {"min_identical", num(r.minIdentical)},

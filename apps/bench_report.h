@@ -10,7 +10,7 @@ namespace mvr::app {
 struct BenchRecord {
   std::string scene, backend;
   size_t triangles = 0;
-  int width = 0, height = 0, views = 0;
+  int width = 0, height = 0, views = 0, rows = 1;
   double seconds = 0, speedupSvr = 0, speedupLayered = 0;
   double minPsnr = 0, minIdentical = 0, minClose = 0;
   double slices = 0, averagePolygonHeight = 0;
