@@ -52,15 +52,18 @@ double Args::getDouble(const std::string& name, double fallback) const {
   return d;
 }
 
-std::pair<int, int> Args::getSize(const std::string& name, std::pair<int, int> fallback) const {
-  if (!has(name)) return fallback;
-  const std::string v = get(name, "");
+std::pair<int, int> parseSize(const std::string& flag, const std::string& v) {
   int w = 0, h = 0;
   char x = 0, extra = 0;
   if (std::sscanf(v.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') ||
       w < 1 || h < 1 || w > 16384 || h > 16384)
-    fail("--" + name, "'" + v + "' is not WxH with sides 1..16384");
+    fail(flag, "'" + v + "' is not WxH with sides 1..16384");
   return {w, h};
+}
+
+std::pair<int, int> Args::getSize(const std::string& name, std::pair<int, int> fallback) const {
+  if (!has(name)) return fallback;
+  return parseSize("--" + name, get(name, ""));
 }
 
 }  // namespace mvr::app

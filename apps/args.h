@@ -9,6 +9,9 @@
 
 namespace mvr::app {
 
+// "WxH" with sides 1..16384; errors name the flag.
+std::pair<int, int> parseSize(const std::string& flag, const std::string& text);
+
 class Args {
  public:
   // flags: names that take a value; switches: names that take none.

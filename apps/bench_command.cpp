@@ -188,13 +188,7 @@ std::vector<int> parseViews(const std::string& list) {
 
 std::vector<std::pair<int, int>> parseSizes(const std::string& list) {
   std::vector<std::pair<int, int>> out;
-  for (const std::string& s : splitList(list)) {
-    int w = 0, h = 0;
-    char extra = 0;
-    if (std::sscanf(s.c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
-      fail("--size", "'" + s + "' is not WxH");
-    out.emplace_back(w, h);
-  }
+  for (const std::string& s : splitList(list)) out.push_back(parseSize("--size", s));
   if (out.empty()) fail("--size", "no sizes");
   return out;
 }

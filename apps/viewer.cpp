@@ -81,13 +81,6 @@ class ViewCollector final : public FrameSink {
   ViewSet& set_;
 };
 
-const char* const kQuadVertex = R"(
-void main() {
-  vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
-  gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
-}
-)";
-
 // Top: the view, 1:1. Below: the EPI (views down), scaled to the panel.
 const char* const kPanelFragment = R"(
 layout(binding = 0) uniform sampler2D uView;
@@ -119,7 +112,7 @@ class Viewer {
       : set_(std::move(set)), window_(window), view_(view), scanline_(scanline), overlay_(overlay),
         viewTex_(GL_TEXTURE_2D), epiTex_(GL_TEXTURE_2D), vao_(gl::VertexArray::create()) {
     panelRows_ = std::min(set_.views, 512);
-    program_ = gl::linkProgram("viewer", {{GL_VERTEX_SHADER, gl::glslHeader() + kQuadVertex},
+    program_ = gl::linkProgram("viewer", {{GL_VERTEX_SHADER, gl::glslHeader() + gl::kFullScreenTriangleVertex},
                                           {GL_FRAGMENT_SHADER, gl::glslHeader() + kPanelFragment}});
     gl::TextureStorage2D(viewTex_.id(), 1, GL_RGBA8, set_.width, set_.height);
     gl::TextureStorage2D(epiTex_.id(), 1, GL_RGBA8, set_.width, set_.views);

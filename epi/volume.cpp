@@ -7,15 +7,15 @@
 namespace mvr {
 
 EpisToViews::EpisToViews(FrameSink& inner, int width, int height, int views, PixelType type)
-    : inner_(inner), height_(height), views_(views), views(views, Image(width, height, type)) {}
+    : inner_(inner), height_(height), views_(views), frames_(views, Image(width, height, type)) {}
 
 void EpisToViews::putEpi(int row, int scanline, const Image& epi) {
   if (epi.height != views_ || scanline < 0 || scanline >= height_) fail("EPI sink", "EPI of the wrong shape");
   if (received_ == 0) row_ = row;
   for (int i = 0; i < views_; ++i)
-    std::memcpy(views[i].row(scanline), epi.row(i), epi.rowBytes());
+    std::memcpy(frames_[i].row(scanline), epi.row(i), epi.rowBytes());
   if (++received_ < height_) return;
-  for (int i = 0; i < views_; ++i) inner_.putView(row_, i, views[i]);
+  for (int i = 0; i < views_; ++i) inner_.putView(row_, i, frames_[i]);
   received_ = 0;
 }
 

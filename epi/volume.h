@@ -18,7 +18,7 @@ class EpisToViews final : public FrameSink {
  private:
   FrameSink& inner_;
   int height_, views_;
-  std::vector<Image> views;
+  std::vector<Image> frames_;  // the row's views, filled scanline by scanline
   int received_ = 0;
   int row_ = 0;
 };

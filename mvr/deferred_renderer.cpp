@@ -39,13 +39,6 @@ void main() {
 }
 )";
 
-const char* const kLightingVertex = R"(
-void main() {  // one triangle covering the screen
-  vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
-  gl_Position = vec4(p * 2.0 - 1.0, 0.5, 1.0);
-}
-)";
-
 const char* const kLightingFragment = R"(
 layout(binding = 0) uniform sampler2D uAlbedo;
 layout(binding = 1) uniform sampler2D uNormal;
@@ -111,7 +104,7 @@ class DeferredRenderer final : public Renderer {
              {GL_FRAGMENT_SHADER, gl::glslHeader() + kGeometryFragment}})),
         lighting_(gl::linkProgram(
             "deferred-lighting",
-            {{GL_VERTEX_SHADER, gl::glslHeader() + kLightingVertex},
+            {{GL_VERTEX_SHADER, gl::glslHeader() + gl::kFullScreenTriangleVertex},
              {GL_FRAGMENT_SHADER,
               gl::glslHeader() + shading::glslLighting() + kLightingFragment}})),
         emptyVao_(gl::VertexArray::create()) {

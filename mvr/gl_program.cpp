@@ -29,6 +29,13 @@ std::string oneLine(std::string log) {
 
 }  // namespace
 
+const char* const kFullScreenTriangleVertex = R"(
+void main() {
+  vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+  gl_Position = vec4(p * 2.0 - 1.0, 0.5, 1.0);
+}
+)";
+
 Program linkProgram(std::string_view name, std::initializer_list<ShaderStage> stages) {
   Program program = Program::create();
   std::vector<Shader> shaders;

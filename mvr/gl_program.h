@@ -18,6 +18,10 @@ struct ShaderStage {
 // name appears in errors: "shader 'svr' (vertex): 0:12(3): error: ..."
 Program linkProgram(std::string_view name, std::initializer_list<ShaderStage> stages);
 
+// Vertex stage of one triangle covering the viewport (draw 3 vertices, no
+// attributes): for full-screen passes.
+extern const char* const kFullScreenTriangleVertex;
+
 // "#version 450 core\n" plus defines, so one source serves several variants.
 std::string glslHeader(std::initializer_list<std::string_view> defines = {});
 
