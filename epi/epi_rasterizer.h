@@ -5,6 +5,7 @@
 #include <string>
 
 #include "mvr/renderer.h"
+#include "shading/shading_plan.h"
 #include "slicing/slice_table.h"
 
 namespace mvr {
@@ -13,6 +14,13 @@ enum class PstMode { Quad, Strip, Exact, Cpu };
 
 PstMode parsePstMode(const std::string& name);  // throws on unknown
 const char* pstModeName(PstMode mode);
+
+// What the rasterizers shade with beyond the lit colours: the scene's
+// lights and materials and the plan's passes. No scene: diffuse only.
+struct EpiShading {
+  const Scene* scene = nullptr;
+  shading::ShadingPlan plan;
+};
 
 class EpiRasterizer {
  public:
@@ -24,8 +32,10 @@ class EpiRasterizer {
                          RenderStats& stats) = 0;
 };
 
-std::unique_ptr<EpiRasterizer> makeSpanRasterizer(PixelType type, int threads);
+std::unique_ptr<EpiRasterizer> makeSpanRasterizer(PixelType type, int threads,
+                                                  const EpiShading& shading = {});
 // Needs a current GL context.
-std::unique_ptr<EpiRasterizer> makeGlRasterizer(PstMode mode, PixelType type);
+std::unique_ptr<EpiRasterizer> makeGlRasterizer(PstMode mode, PixelType type,
+                                                const EpiShading& shading = {});
 
 }  // namespace mvr

@@ -13,23 +13,26 @@ class MvrRenderer final : public Renderer {
  public:
   MvrRenderer(const Scene& scene, PstMode mode, PixelType type, int threads)
       : scene_(scene), mode_(mode), threads_(threads),
-        rasterizer_(mode == PstMode::Cpu ? makeSpanRasterizer(type, threads)
-                                         : makeGlRasterizer(mode, type)) {}
+        shading_{&scene, shading::planShading(scene)},
+        rasterizer_(mode == PstMode::Cpu ? makeSpanRasterizer(type, threads, shading_)
+                                         : makeGlRasterizer(mode, type, shading_)) {}
 
   std::string name() const override { return "mvr"; }
   FrameOrder order() const override { return FrameOrder::Epi; }
 
   void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
     shading::VertexColors colors;
+    std::vector<float> extras;
     {
       // Diffuse lighting is view independent: once per sequence (Halle 5.6.2).
       ScopedStage s(stats.times, "lighting");
       colors = shading::litVertexColors(scene_);
+      extras = shading::vertexExtras(scene_, shading_.plan);
     }
     ExtremeVertices vertices;
     {
       ScopedStage s(stats.times, "transform");
-      vertices = transformToExtremes(scene_, colors, cam, 0);
+      vertices = transformToExtremes(scene_, colors, cam, 0, extras, shading_.plan.extraCount);
     }
     stats.counters["extreme_vertex_bytes"] = double(vertices.bytes());
     stats.counters["clipped_triangles"] = double(vertices.triangles.size());
@@ -50,13 +53,15 @@ class MvrRenderer final : public Renderer {
       rasterizer_->rasterize(vertices, table, cam, row, sink, stats);
     }
     stats.notes["pst"] = pstModeName(mode_);
-    stats.notes["passes"] = "diffuse";
+    stats.notes["passes"] = shading_.plan.passNames();
+    stats.counters["passes"] = double(shading_.plan.passes().size());
   }
 
  private:
   const Scene& scene_;
   PstMode mode_;
   int threads_;
+  EpiShading shading_;
   std::unique_ptr<EpiRasterizer> rasterizer_;
 };
 

@@ -9,18 +9,26 @@
 
 #include "epi/epi_rasterizer.h"
 #include "epi/pst.h"
+#include "mvr/error.h"
 #include "mvr/progress.h"
+#include "shading/view_dependent.h"
 
 namespace mvr {
 namespace {
 
 class SpanRasterizer final : public EpiRasterizer {
  public:
-  SpanRasterizer(PixelType type, int threads) : type_(type), threads_(std::max(1, threads)) {}
+  SpanRasterizer(PixelType type, int threads, const EpiShading& shading)
+      : type_(type), threads_(std::max(1, threads)), shading_(shading) {
+    if (shading_.plan.passes().size() > 1 && !shading_.scene)
+      fail("cpu rasterizer", "shading passes need a scene");
+  }
 
   void rasterize(const ExtremeVertices& v, const SliceTable& table, const ShearingCamera& cam,
                  int row, FrameSink& sink, RenderStats& stats) override {
     const int height = cam.height();
+    eye0_ = glm::vec3(cam.eye(0, row));
+    eyeStep_ = glm::vec3(cam.eye(1, row) - cam.eye(0, row));
     const int batch = std::max(1, std::min(height, 4 * threads_));
     std::vector<Image> epis(batch);
     Progress progress("mvr cpu", height);
@@ -54,12 +62,14 @@ class SpanRasterizer final : public EpiRasterizer {
     for (const Slice& s : table.scanline(j)) {
       auto [e0, e1] = sliceEnds(v, s);
       const Pst pst = makePst(e0, e1, n, v.cullBack[s.triangle]);
-      for (int p = 0; p < pst.pieceCount; ++p) fillPiece(pst, pst.pieces[p], epi, depth);
+      const uint32_t material = v.materials.empty() ? 0 : v.materials[s.triangle];
+      for (int p = 0; p < pst.pieceCount; ++p) fillPiece(pst, pst.pieces[p], material, epi, depth);
     }
     return epi;
   }
 
-  void fillPiece(const Pst& pst, const PstPiece& piece, Image& epi, std::vector<float>& depth) const {
+  void fillPiece(const Pst& pst, const PstPiece& piece, uint32_t material, Image& epi,
+                 std::vector<float>& depth) const {
     const int w = epi.width, n = epi.height;
     // Views whose row centre i + 0.5 lies in [rTop, rBottom).
     const int iFirst = std::max(0, int(std::ceil(piece.rTop - 0.5f)));
@@ -77,9 +87,26 @@ class SpanRasterizer final : public EpiRasterizer {
         float& dz = depth[size_t(i) * w + x];
         if (!(z > dz)) continue;
         dz = z;
-        store(epi, x, i, pstColor(pst, piece.front, u));
+        store(epi, x, i, shade(pst, piece.front, material, u, float(i)));
       }
     }
+  }
+
+  // Every pass of the plan at once, in the order the GL passes accumulate.
+  glm::vec3 shade(const Pst& pst, bool front, uint32_t material, float u, float view) const {
+    glm::vec3 color = pstColor(pst, front, u);
+    const shading::ShadingPlan& plan = shading_.plan;
+    if (plan.position < 0) return color;
+    const float invW = pst.e0.invW + (pst.e1.invW - pst.e0.invW) * u;
+    auto extra3 = [&](int at) {
+      glm::vec3 a, b;
+      for (int c = 0; c < 3; ++c) a[c] = pst.e0.extrasOverW[at + c], b[c] = pst.e1.extrasOverW[at + c];
+      return (a + (b - a) * u) / invW;
+    };
+    const glm::vec3 p = extra3(plan.position), n = extra3(plan.normal) * (front ? 1.0f : -1.0f);
+    const glm::vec3 eye = eye0_ + view * eyeStep_;
+    color += shading::specularLight(*shading_.scene, shading_.scene->materials[material], p, n, eye);
+    return color;
   }
 
   void store(Image& img, int x, int y, const glm::vec3& c) const {
@@ -99,12 +126,15 @@ class SpanRasterizer final : public EpiRasterizer {
 
   PixelType type_;
   int threads_;
+  EpiShading shading_;
+  glm::vec3 eye0_{0.0f}, eyeStep_{0.0f};
 };
 
 }  // namespace
 
-std::unique_ptr<EpiRasterizer> makeSpanRasterizer(PixelType type, int threads) {
-  return std::make_unique<SpanRasterizer>(type, threads);
+std::unique_ptr<EpiRasterizer> makeSpanRasterizer(PixelType type, int threads,
+                                                  const EpiShading& shading) {
+  return std::make_unique<SpanRasterizer>(type, threads, shading);
 }
 
 }  // namespace mvr

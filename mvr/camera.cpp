@@ -43,6 +43,11 @@ double ShearingCamera::viewX(int view) const {
   return spec_.trackLeft + view * (spec_.trackRight - spec_.trackLeft) / (views_ - 1);
 }
 
+glm::dvec3 ShearingCamera::eye(double view, int row) const {
+  const double step = views_ > 1 ? (spec_.trackRight - spec_.trackLeft) / (views_ - 1) : 0.0;
+  return {viewX(0) + view * step, rowY(row), spec_.distance};
+}
+
 double ShearingCamera::rowY(int row) const {
   if (rows_ == 1) return 0.5 * (spec_.rowTop + spec_.rowBottom);
   return spec_.rowTop + row * (spec_.rowBottom - spec_.rowTop) / (rows_ - 1);

@@ -42,6 +42,9 @@ class ShearingCamera {
 
   double viewX(int view) const;  // camera x of view i
   double rowY(int row) const;    // camera y of row r
+  // The eye of view i in row r (on the camera plane, z = D); view may be
+  // fractional: the eye moves linearly along the track.
+  glm::dvec3 eye(double view, int row = 0) const;
   double viewSpacing() const;    // x distance between neighbouring views
 
   // World -> clip for one view. Only the x row depends on the view:

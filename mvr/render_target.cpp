@@ -11,15 +11,18 @@ GLenum colorType(PixelType t) { return t == PixelType::U8 ? GL_UNSIGNED_BYTE : G
 }  // namespace
 
 RenderTarget::RenderTarget(int width, int height, PixelType type, int layers)
+    : RenderTarget(width, height, type, layers, type) {}
+
+RenderTarget::RenderTarget(int width, int height, PixelType type, int layers, PixelType storage)
     : width_(width), height_(height), layers_(layers), type_(type),
       color_(layers ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D),
       depth_(layers ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D),
       fbo_(gl::Framebuffer::create()) {
   if (layers) {
-    gl::TextureStorage3D(color_.id(), 1, colorFormat(type), width, height, layers);
+    gl::TextureStorage3D(color_.id(), 1, colorFormat(storage), width, height, layers);
     gl::TextureStorage3D(depth_.id(), 1, GL_DEPTH_COMPONENT32F, width, height, layers);
   } else {
-    gl::TextureStorage2D(color_.id(), 1, colorFormat(type), width, height);
+    gl::TextureStorage2D(color_.id(), 1, colorFormat(storage), width, height);
     gl::TextureStorage2D(depth_.id(), 1, GL_DEPTH_COMPONENT32F, width, height);
   }
   gl::checkError("allocating render target");

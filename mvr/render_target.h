@@ -9,7 +9,10 @@ namespace mvr {
 class RenderTarget {
  public:
   // layers = 0: plain 2D; otherwise a 2D array of that many layers.
+  // storage: the colour buffer's own format when it differs from the
+  // images read back (F32 to accumulate passes, read as U8 with clamping).
   RenderTarget(int width, int height, PixelType type, int layers = 0);
+  RenderTarget(int width, int height, PixelType type, int layers, PixelType storage);
 
   int width() const { return width_; }
   int height() const { return height_; }

@@ -11,12 +11,15 @@
 
 namespace mvr {
 
+enum class SpecularModel { Phong, BlinnPhong };
+
 struct Material {
   std::string name = "default";
   glm::vec3 diffuse{0.8f};
   std::string texture;        // image file, empty for none
   glm::vec3 specular{0.0f};   // zero: no view-dependent pass needed
   float shininess = 32.0f;
+  SpecularModel specularModel = SpecularModel::BlinnPhong;
   std::string reflectionMap;  // empty for none
   bool twoSided = true;       // false: back faces are culled
 };

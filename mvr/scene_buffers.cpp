@@ -7,6 +7,8 @@ layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
 layout(location = 2) in vec3 aAlbedo;
 layout(location = 3) in float aCull;
+layout(location = 4) in float aMaterial;
+layout(location = 5) in vec2 aUv;
 )";
 
 namespace {
@@ -18,6 +20,18 @@ void attach(GLuint vao, GLuint attrib, const gl::Buffer& buffer, int components)
   gl::EnableVertexArrayAttrib(vao, attrib);
 }
 
+// A vertex belongs to one mesh, so any of its triangles names its material.
+std::vector<float> vertexMaterials(const Scene& scene) {
+  std::vector<float> m(scene.vertexCount(), 0.0f);
+  for (size_t t = 0; t < scene.triangleCount(); ++t)
+    for (int k = 0; k < 3; ++k) m[scene.triangles[t][k]] = float(scene.materialIds[t]);
+  return m;
+}
+
+std::vector<glm::vec2> vertexUvs(const Scene& scene) {
+  return scene.uvs.empty() ? std::vector<glm::vec2>(scene.vertexCount(), glm::vec2(0.0f)) : scene.uvs;
+}
+
 }  // namespace
 
 SceneBuffers::SceneBuffers(const Scene& scene, const std::vector<glm::vec3>& albedo,
@@ -26,6 +40,8 @@ SceneBuffers::SceneBuffers(const Scene& scene, const std::vector<glm::vec3>& alb
       normals_(gl::makeBuffer(scene.normals.data(), scene.normals.size())),
       albedo_(gl::makeBuffer(albedo.data(), albedo.size())),
       cull_(gl::makeBuffer(cullFlags.data(), cullFlags.size())),
+      materials_(gl::makeBuffer(vertexMaterials(scene).data(), scene.vertexCount())),
+      uvs_(gl::makeBuffer(vertexUvs(scene).data(), scene.vertexCount())),
       indices_(gl::makeBuffer(scene.triangles.data(), scene.triangles.size())),
       vao_(gl::VertexArray::create()),
       indexCount_(GLsizei(scene.triangles.size() * 3)) {
@@ -33,6 +49,8 @@ SceneBuffers::SceneBuffers(const Scene& scene, const std::vector<glm::vec3>& alb
   attach(vao_.id(), 1, normals_, 3);
   attach(vao_.id(), 2, albedo_, 3);
   attach(vao_.id(), 3, cull_, 1);
+  attach(vao_.id(), 4, materials_, 1);
+  attach(vao_.id(), 5, uvs_, 2);
   gl::VertexArrayElementBuffer(vao_.id(), indices_.id());
 }
 

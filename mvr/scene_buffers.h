@@ -1,6 +1,7 @@
 #pragma once
 // The scene's vertex data on the GPU, as the view renderers draw it:
-// position, normal, albedo, cull flag per vertex; triangles as indices.
+// position, normal, albedo, cull flag, material index and texture
+// coordinates per vertex; triangles as indices.
 #include "mvr/gl_handles.h"
 #include "mvr/scene.h"
 
@@ -15,7 +16,7 @@ class SceneBuffers {
   GLsizei indexCount() const { return indexCount_; }
 
  private:
-  gl::Buffer positions_, normals_, albedo_, cull_, indices_;
+  gl::Buffer positions_, normals_, albedo_, cull_, materials_, uvs_, indices_;
   gl::VertexArray vao_;
   GLsizei indexCount_;
 };

@@ -89,12 +89,20 @@ class SceneReader {
 
   Material readMaterial(const Json& j, const std::string& where) const {
     expectObject(j, where,
-                 {"diffuse", "texture", "specular", "shininess", "reflection_map", "two_sided"});
+                 {"diffuse", "texture", "specular", "shininess", "specular_model",
+                  "reflection_map", "two_sided"});
     Material m;
     if (j.contains("diffuse")) m.diffuse = vec3(j["diffuse"], where + ".diffuse");
     if (j.contains("texture")) m.texture = relative(j["texture"], where + ".texture");
     if (j.contains("specular")) m.specular = vec3(j["specular"], where + ".specular");
     if (j.contains("shininess")) m.shininess = float(number(j["shininess"], where + ".shininess"));
+    if (j.contains("specular_model")) {
+      const Json& model = j["specular_model"];
+      if (model == "phong") m.specularModel = SpecularModel::Phong;
+      else if (model == "blinn-phong") m.specularModel = SpecularModel::BlinnPhong;
+      else bad(where + ".specular_model", "must be \"phong\" or \"blinn-phong\"");
+    }
+    if (m.shininess < 0 || m.shininess > 10000) bad(where + ".shininess", "must be in [0, 10000]");
     if (j.contains("reflection_map"))
       m.reflectionMap = relative(j["reflection_map"], where + ".reflection_map");
     if (j.contains("two_sided")) {

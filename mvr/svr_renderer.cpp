@@ -10,28 +10,38 @@
 #include "mvr/scene_buffers.h"
 #include "mvr/view_loop.h"
 #include "shading/lighting.h"
+#include "shading/shading_plan.h"
+#include "shading/view_dependent.h"
 
 namespace mvr {
 namespace {
+
 
 // Vertex stage shared by svr and svr-layered; LAYERED picks the per-view
 // matrix from an array by instance.
 const char* const kSvrVertex = R"(
 #ifdef LAYERED
 layout(std430, binding = 0) readonly buffer Views { mat4 uViewProjs[]; };
+layout(std430, binding = 2) readonly buffer Eyes { vec4 uEyes[]; };
 uniform int uLayerBase;
 #ifndef VS_LAYER
 flat out int vLayer;
 #endif
 #else
 uniform mat4 uViewProj;
+uniform vec3 uEye;
 #endif
 out vec3 vFront;
 out vec3 vBack;
 flat out float vCull;
+out vec3 vPosition;
+out vec3 vNormal;
+flat out float vMaterial;
+flat out vec3 vEye;
 void main() {
 #ifdef LAYERED
   mat4 viewProj = uViewProjs[uLayerBase + gl_InstanceID];
+  vEye = uEyes[uLayerBase + gl_InstanceID].xyz;
 #ifdef VS_LAYER
   gl_Layer = gl_InstanceID;
 #else
@@ -39,22 +49,36 @@ void main() {
 #endif
 #else
   mat4 viewProj = uViewProj;
+  vEye = uEye;
 #endif
   gl_Position = viewProj * vec4(aPosition, 1.0);
   vFront = diffuseLight(aAlbedo, aPosition, aNormal);
   vBack = diffuseLight(aAlbedo, aPosition, -aNormal);
   vCull = aCull;
+  vPosition = aPosition;
+  vNormal = aNormal;
+  vMaterial = aMaterial;
 }
 )";
 
+// Gouraud diffuse, then, with VIEW_DEPENDENT, the per-pixel highlight for
+// this view's eye: the sum the MVR passes accumulate.
 const char* const kSvrFragment = R"(
 in vec3 vFront;
 in vec3 vBack;
 flat in float vCull;
+in vec3 vPosition;
+in vec3 vNormal;
+flat in float vMaterial;
+flat in vec3 vEye;
 layout(location = 0) out vec4 oColor;
 void main() {
   if (!gl_FrontFacing && vCull > 0.5) discard;
-  oColor = vec4(gl_FrontFacing ? vFront : vBack, 1.0);
+  vec3 c = gl_FrontFacing ? vFront : vBack;
+#ifdef VIEW_DEPENDENT
+  c += specularLight(int(vMaterial), vPosition, gl_FrontFacing ? vNormal : -vNormal, vEye);
+#endif
+  oColor = vec4(c, 1.0);
 }
 )";
 
@@ -66,9 +90,17 @@ flat in int vLayer[];
 in vec3 vFront[];
 in vec3 vBack[];
 flat in float vCull[];
+in vec3 vPosition[];
+in vec3 vNormal[];
+flat in float vMaterial[];
+flat in vec3 vEye[];
 out vec3 gFront;
 out vec3 gBack;
 flat out float gCull;
+out vec3 gPosition;
+out vec3 gNormal;
+flat out float gMaterial;
+flat out vec3 gEye;
 void main() {
   for (int i = 0; i < 3; ++i) {
     gl_Layer = vLayer[0];
@@ -76,6 +108,10 @@ void main() {
     gFront = vFront[i];
     gBack = vBack[i];
     gCull = vCull[i];
+    gPosition = vPosition[i];
+    gNormal = vNormal[i];
+    gMaterial = vMaterial[i];
+    gEye = vEye[i];
     EmitVertex();
   }
 }
@@ -89,13 +125,24 @@ std::string vertexSource(std::initializer_list<std::string_view> defines) {
   return header + kSceneVertexInputs + shading::glslLighting() + kSvrVertex;
 }
 
+// renames: the geometry shader's outputs when it routes layers.
+std::string fragmentSource(const Scene& scene, bool renamed) {
+  const bool viewDependent = shading::planShading(scene).passes().back() == shading::Pass::ViewDependent;
+  std::string header = viewDependent ? gl::glslHeader({"VIEW_DEPENDENT"}) : gl::glslHeader();
+  if (renamed)
+    for (const char* name : {"Front", "Back", "Cull", "Position", "Normal", "Material", "Eye"})
+      header += std::string("#define v") + name + " g" + name + "\n";
+  return header + shading::glslLighting() + shading::glslSpecular() + kSvrFragment;
+}
+
 class SvrRenderer final : public Renderer {
  public:
   SvrRenderer(const Scene& scene, PixelType type)
       : scene_(scene), type_(type),
         buffers_(scene, shading::vertexAlbedo(scene), shading::vertexCullFlags(scene)),
         program_(gl::linkProgram("svr", {{GL_VERTEX_SHADER, vertexSource({})},
-                                         {GL_FRAGMENT_SHADER, gl::glslHeader() + kSvrFragment}})) {
+                                         {GL_FRAGMENT_SHADER, fragmentSource(scene, false)}})),
+        materials_(shading::makeMaterialBuffer(scene)) {
     shading::setLightUniforms(program_, scene_);
   }
   std::string name() const override { return "svr"; }
@@ -109,10 +156,12 @@ class SvrRenderer final : public Renderer {
     gl::FrontFace(GL_CW);
     target.bind();
     gl::UseProgram(program_.id());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, materials_.id());
     buffers_.bind();
     renderEachView(cam, target, "svr", sink, stats, [&](int row, int view) {
       ScopedStage s(stats.times, "draw");
       gl::setUniform(program_, "uViewProj", glm::mat4(cam.viewProjection(view, row)));
+      gl::setUniform(program_, "uEye", glm::vec3(cam.eye(view, row)));
       target.clear();
       buffers_.draw();
       gl::Finish();
@@ -126,6 +175,7 @@ class SvrRenderer final : public Renderer {
   PixelType type_;
   SceneBuffers buffers_;
   gl::Program program_;
+  gl::Buffer materials_;
 };
 
 class LayeredSvrRenderer final : public Renderer {
@@ -137,15 +187,14 @@ class LayeredSvrRenderer final : public Renderer {
     if (vsLayer_) {
       program_ = gl::linkProgram(
           "svr-layered", {{GL_VERTEX_SHADER, vertexSource({"LAYERED", "VS_LAYER"})},
-                          {GL_FRAGMENT_SHADER, gl::glslHeader() + kSvrFragment}});
+                          {GL_FRAGMENT_SHADER, fragmentSource(scene, false)}});
     } else {
-      std::string fragment = std::string(kSvrFragment);
       program_ = gl::linkProgram(
           "svr-layered", {{GL_VERTEX_SHADER, vertexSource({"LAYERED"})},
                           {GL_GEOMETRY_SHADER, gl::glslHeader() + kLayerGeometry},
-                          {GL_FRAGMENT_SHADER, gl::glslHeader({"vFront gFront", "vBack gBack",
-                                                               "vCull gCull"}) + fragment}});
+                          {GL_FRAGMENT_SHADER, fragmentSource(scene, true)}});
     }
+    materials_ = shading::makeMaterialBuffer(scene);
     shading::setLightUniforms(program_, scene_);
   }
   std::string name() const override { return "svr-layered"; }
@@ -155,11 +204,17 @@ class LayeredSvrRenderer final : public Renderer {
     const int batch = batchSize(cam);
     RenderTarget target(cam.width(), cam.height(), type_, batch);
     std::vector<glm::mat4> matrices;
+    std::vector<glm::vec4> eyes;
     for (int row = 0; row < cam.rows(); ++row)
-      for (int view = 0; view < cam.views(); ++view)
+      for (int view = 0; view < cam.views(); ++view) {
         matrices.emplace_back(cam.viewProjection(view, row));
+        eyes.emplace_back(cam.eye(view, row), 1.0);
+      }
     gl::Buffer views = gl::makeBuffer(matrices.data(), matrices.size());
+    gl::Buffer eyeBuffer = gl::makeBuffer(eyes.data(), eyes.size());
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, views.id());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, materials_.id());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, eyeBuffer.id());
     setDepthConvention();
     gl::FrontFace(GL_CW);
     target.bind();
@@ -207,6 +262,7 @@ class LayeredSvrRenderer final : public Renderer {
   SceneBuffers buffers_;
   bool vsLayer_;
   gl::Program program_;
+  gl::Buffer materials_;
 };
 
 }  // namespace

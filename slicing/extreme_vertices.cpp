@@ -1,6 +1,9 @@
 #include "slicing/extreme_vertices.h"
 
+#include <algorithm>
 #include <array>
+
+#include "mvr/error.h"
 
 namespace mvr {
 namespace {
@@ -10,11 +13,15 @@ namespace {
 struct ClipVertex {
   glm::dvec3 p;
   glm::vec3 front, back;
+  std::array<float, shading::kMaxExtras> extras;
 };
 
 ClipVertex lerp(const ClipVertex& a, const ClipVertex& b, double t) {
-  return {a.p + (b.p - a.p) * t, glm::mix(a.front, b.front, float(t)),
-          glm::mix(a.back, b.back, float(t))};
+  ClipVertex c{a.p + (b.p - a.p) * t, glm::mix(a.front, b.front, float(t)),
+               glm::mix(a.back, b.back, float(t)), {}};
+  for (size_t k = 0; k < c.extras.size(); ++k)
+    c.extras[k] = a.extras[k] + (b.extras[k] - a.extras[k]) * float(t);
+  return c;
 }
 
 // Sutherland-Hodgman against one plane: keep where sign * (D - Z - limit) >= 0.
@@ -45,7 +52,8 @@ class Transformer {
     rowStep_ = cam.rows() > 1 ? cam.rowY(1) - cam.rowY(0) : 0.0;
   }
 
-  void add(const glm::dvec3& p, const glm::vec3& front, const glm::vec3& back) {
+  void add(const glm::dvec3& p, const glm::vec3& front, const glm::vec3& back,
+           const float* extras) {
     const double w = D_ - p.z;
     const double xl = (sx_ * (D_ * p.x - cxLeft_ * p.z) / w + 1.0) * 0.5 * cam_.width();
     const double xr = (sx_ * (D_ * p.x - cxRight_ * p.z) / w + 1.0) * 0.5 * cam_.width();
@@ -62,6 +70,7 @@ class Transformer {
     out_.invW.push_back(float(1.0 / w));
     out_.frontOverW.push_back(front * float(1.0 / w));
     out_.backOverW.push_back(back * float(1.0 / w));
+    for (int k = 0; k < out_.extraCount; ++k) out_.extrasOverW.push_back(extras[k] * float(1.0 / w));
   }
 
   bool inside(const glm::dvec3& p) const {
@@ -89,12 +98,17 @@ void moveToRow(ExtremeVertices& v, int row) {
 
 size_t ExtremeVertices::bytes() const {
   return x0.size() * (7 * sizeof(float) + 2 * sizeof(glm::vec3)) +
-         triangles.size() * (sizeof(glm::uvec3) + 1);
+         extrasOverW.size() * sizeof(float) + triangles.size() * (sizeof(glm::uvec3) + 5);
 }
 
 ExtremeVertices transformToExtremes(const Scene& scene, const shading::VertexColors& colors,
-                                    const ShearingCamera& camera, int row) {
+                                    const ShearingCamera& camera, int row,
+                                    std::span<const float> extras, int extraCount) {
+  if (extraCount > shading::kMaxExtras || extras.size() != scene.vertexCount() * size_t(extraCount))
+    fail("transformToExtremes", "extras do not match the scene's vertices");
   ExtremeVertices out;
+  out.extraCount = extraCount;
+  out.extrasOverW.reserve(extras.size());
   Transformer t(camera, row, out);
   const size_t nv = scene.vertexCount();
   for (auto* v : {&out.x0, &out.dx, &out.y, &out.depth, &out.invW, &out.yFirst, &out.yStep})
@@ -106,29 +120,34 @@ ExtremeVertices transformToExtremes(const Scene& scene, const shading::VertexCol
     // Vertices outside near/far still get a slot so indices stay valid;
     // only triangles that are wholly inside use them unclipped.
     glm::dvec3 safe = inside[v] ? p : glm::dvec3(p.x, p.y, t.D() - t.nearDistance());
-    t.add(safe, colors.front[v], colors.back[v]);
+    t.add(safe, colors.front[v], colors.back[v], extras.data() + v * extraCount);
   }
   out.triangles.reserve(scene.triangleCount());
   out.cullBack.reserve(scene.triangleCount());
+  out.materials.reserve(scene.triangleCount());
   for (size_t i = 0; i < scene.triangleCount(); ++i) {
     const glm::uvec3 tri = scene.triangles[i];
     const uint8_t cull = scene.materials[scene.materialIds[i]].twoSided ? 0 : 1;
     if (inside[tri.x] && inside[tri.y] && inside[tri.z]) {
       out.triangles.push_back(tri);
       out.cullBack.push_back(cull);
+      out.materials.push_back(scene.materialIds[i]);
       continue;
     }
     std::array<ClipVertex, 5> a, b;
-    for (int k = 0; k < 3; ++k)
-      a[k] = {glm::dvec3(scene.positions[tri[k]]), colors.front[tri[k]], colors.back[tri[k]]};
+    for (int k = 0; k < 3; ++k) {
+      a[k] = {glm::dvec3(scene.positions[tri[k]]), colors.front[tri[k]], colors.back[tri[k]], {}};
+      std::copy_n(extras.data() + tri[k] * size_t(extraCount), extraCount, a[k].extras.begin());
+    }
     int n = clipPolygon(a.data(), 3, b.data(), t.D(), t.nearDistance(), +1.0);
     n = clipPolygon(b.data(), n, a.data(), t.D(), t.farDistance(), -1.0);
     if (n < 3) continue;
     const auto base = unsigned(out.vertexCount());
-    for (int k = 0; k < n; ++k) t.add(a[k].p, a[k].front, a[k].back);
+    for (int k = 0; k < n; ++k) t.add(a[k].p, a[k].front, a[k].back, a[k].extras.data());
     for (int k = 1; k + 1 < n; ++k) {  // fan keeps the winding
       out.triangles.push_back({base, base + k, base + k + 1});
       out.cullBack.push_back(cull);
+      out.materials.push_back(scene.materialIds[i]);
     }
   }
   return out;

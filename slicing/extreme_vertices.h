@@ -6,6 +6,7 @@
 // for hyperbolic (perspective-correct) interpolation. Cost: O(vertices),
 // independent of the view count.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -13,6 +14,7 @@
 #include "mvr/camera.h"
 #include "mvr/scene.h"
 #include "shading/lighting.h"
+#include "shading/shading_plan.h"
 
 namespace mvr {
 
@@ -25,9 +27,13 @@ struct ExtremeVertices {
   // vertex, and no drift over thousands of rows.
   std::vector<float> yFirst, yStep;
   std::vector<glm::vec3> frontOverW, backOverW;  // lit colour / w, two sides
+  // The shading plan's extra attributes / w, extraCount per vertex.
+  std::vector<float> extrasOverW;
+  int extraCount = 0;
   // Triangles after near/far clipping (clipping adds vertices above).
   std::vector<glm::uvec3> triangles;
   std::vector<uint8_t> cullBack;  // per triangle: its material culls back faces
+  std::vector<uint32_t> materials;  // per triangle: index into Scene::materials
 
   size_t vertexCount() const { return x0.size(); }
   size_t bytes() const;
@@ -35,9 +41,11 @@ struct ExtremeVertices {
 
 // Clips triangles to the near and far planes in world space (view
 // independent: both planes are parallel to the camera plane), then
-// transforms to row `row`'s extreme views.
+// transforms to row `row`'s extreme views. extras: extraCount floats per
+// scene vertex (shading::vertexExtras), interpolated like the colours.
 ExtremeVertices transformToExtremes(const Scene& scene, const shading::VertexColors& colors,
-                                    const ShearingCamera& camera, int row = 0);
+                                    const ShearingCamera& camera, int row = 0,
+                                    std::span<const float> extras = {}, int extraCount = 0);
 
 // Moves the vertices to another row of views: y only.
 void moveToRow(ExtremeVertices& vertices, int row);

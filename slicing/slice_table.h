@@ -3,6 +3,7 @@
 // slices of the triangles that cross its centre y = j + 0.5. A slice is
 // compact: its triangle, two screen-space edge parameters and a flag word;
 // the endpoints are evaluated from the extreme vertices when needed.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -29,6 +30,7 @@ struct SliceEnd {
   float depth;     // window depth, shared by all views
   float invW;      // 1 / w
   glm::vec3 frontOverW, backOverW;
+  std::array<float, shading::kMaxExtras> extrasOverW;  // ExtremeVertices::extraCount used
 };
 
 class SliceTable {

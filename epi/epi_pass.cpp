@@ -1,0 +1,200 @@
+#include "epi/epi_pass.h"
+
+#include <algorithm>
+#include <string>
+
+#include "mvr/error.h"
+#include "mvr/gl_program.h"
+#include "shading/lighting.h"
+#include "shading/view_dependent.h"
+
+namespace mvr {
+namespace {
+
+const char* const kSliverVertex = R"(
+layout(location = 0) in vec4 aPos;    // x, stacked row, depth, view
+layout(location = 1) in vec4 aFlat;   // side, material
+layout(location = 2) in vec4 aA[NV];
+uniform vec2 uScale;
+invariant gl_Position;
+noperspective out float vView;
+flat out vec4 vFlat;
+noperspective out vec4 vA[NV];
+void main() {
+  gl_Position = vec4(aPos.xy * uScale - 1.0, aPos.z, 1.0);
+  vView = aPos.w;
+  vFlat = aFlat;
+  for (int i = 0; i < NV; ++i) vA[i] = aA[i];
+}
+)";
+
+const char* const kSliverFragment = R"(
+noperspective in float vView;
+flat in vec4 vFlat;
+noperspective in vec4 vA[NV];
+void prepare() {}
+float attr(int i) { return vA[i >> 2][i & 3]; }
+)";
+
+const char* const kExactVertex = R"(
+layout(location = 0) in vec4 aPos;    // x, stacked row, x - x0(r), x1(r) - x0(r)
+layout(location = 1) in vec4 aEnds;   // depth0, depth1, 1/w0, 1/w1
+layout(location = 2) in vec4 aFlat;   // view, side, material
+layout(location = 3) in vec4 aA0[NV];
+layout(location = 3 + NV) in vec4 aA1[NV];
+uniform vec2 uScale;
+invariant gl_Position;
+noperspective out vec2 vNumDen;
+noperspective out float vView;
+flat out vec4 vEnds;
+flat out vec4 vFlat;
+flat out vec4 vA0[NV];
+flat out vec4 vA1[NV];
+void main() {
+  gl_Position = vec4(aPos.xy * uScale - 1.0, aEnds.x, 1.0);
+  vNumDen = aPos.zw;
+  vView = aFlat.x;
+  vEnds = aEnds;
+  vFlat = aFlat.yzww;
+  for (int i = 0; i < NV; ++i) { vA0[i] = aA0[i]; vA1[i] = aA1[i]; }
+}
+)";
+
+// Solves the slice parameter u of the pixel exactly, then interpolates
+// hyperbolically; depth is linear in u and written here.
+const char* const kExactFragment = R"(
+noperspective in vec2 vNumDen;
+noperspective in float vView;
+flat in vec4 vEnds;
+flat in vec4 vFlat;
+flat in vec4 vA0[NV];
+flat in vec4 vA1[NV];
+float gU, gInvW;
+void prepare() {
+  gU = vNumDen.y == 0.0 ? 0.0 : clamp(vNumDen.x / vNumDen.y, 0.0, 1.0);
+  gInvW = mix(vEnds.z, vEnds.w, gU);
+  gl_FragDepth = mix(vEnds.x, vEnds.y, gU);
+}
+float attr(int i) { return mix(vA0[i >> 2][i & 3], vA1[i >> 2][i & 3], gU) / gInvW; }
+)";
+
+const char* const kAttributeHelpers = R"(
+vec2 attr2(int i) { return vec2(attr(i), attr(i + 1)); }
+vec3 attr3(int i) { return vec3(attr(i), attr(i + 1), attr(i + 2)); }
+layout(location = 0) out vec4 oColor;
+)";
+
+const char* const kDiffuseMain = R"(
+void main() {
+  prepare();
+  oColor = vec4(attr3(0), 1.0);
+}
+)";
+
+// Attributes: position (3), normal (3), then, with REFLECT, the reflection
+// vector's affine form A (3), M (6): R(eye) = A + M eye.
+const char* const kViewDependentMain = R"(
+uniform vec3 uEye0;     // eye of view 0 of this row
+uniform vec3 uEyeStep;  // eye movement per view
+void main() {
+  prepare();
+  vec3 eye = uEye0 + vView * uEyeStep;
+  int material = int(vFlat.y);
+  vec3 c = specularLight(material, attr3(0), attr3(3) * vFlat.x, eye);
+  oColor = vec4(c, 1.0);
+}
+)";
+
+int passAttributeCount(shading::Pass pass, const shading::ShadingPlan& plan) {
+  switch (pass) {
+    case shading::Pass::Diffuse: return 3;
+    case shading::Pass::Texture: return 2;
+    case shading::Pass::ViewDependent: return plan.reflect >= 0 ? 15 : 6;
+  }
+  return 0;
+}
+
+}  // namespace
+
+EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading)
+    : mode_(mode), pass_(pass), shading_(shading), count_(passAttributeCount(pass, shading.plan)) {
+  if (pass != shading::Pass::Diffuse && !shading.scene)
+    fail("EpiPass", std::string(shading::passName(pass)) + " pass needs a scene");
+  if (pass == shading::Pass::Texture) fail("EpiPass", "texture pass is not implemented yet");
+  const bool exact = mode == PstMode::Exact;
+  const std::string nv = "NV " + std::to_string(chunks());
+  const std::string header = gl::glslHeader({nv});
+  std::string fragment = header + (exact ? kExactFragment : kSliverFragment) + kAttributeHelpers;
+  if (pass == shading::Pass::Diffuse) {
+    fragment += kDiffuseMain;
+  } else {
+    fragment += shading::glslLighting() + shading::glslSpecular() + kViewDependentMain;
+  }
+  program_ = gl::linkProgram(std::string("epi-") + pstModeName(mode) + "-" + shading::passName(pass),
+                             {{GL_VERTEX_SHADER, header + (exact ? kExactVertex : kSliverVertex)},
+                              {GL_FRAGMENT_SHADER, fragment}});
+  vao_ = gl::VertexArray::create();
+  if (pass != shading::Pass::Diffuse) {
+    shading::setLightUniforms(program_, *shading.scene);
+    materials_ = shading::makeMaterialBuffer(*shading.scene);
+  }
+}
+
+int EpiPass::stride() const {
+  return mode_ == PstMode::Exact ? 12 + 8 * chunks() : 8 + 4 * chunks();
+}
+
+void EpiPass::gather(const SliceEnd& e, bool front, float* out) const {
+  const shading::ShadingPlan& plan = shading_.plan;
+  switch (pass_) {
+    case shading::Pass::Diffuse: {
+      const glm::vec3& c = front ? e.frontOverW : e.backOverW;
+      out[0] = c.r, out[1] = c.g, out[2] = c.b;
+      return;
+    }
+    case shading::Pass::Texture:
+      std::copy_n(e.extrasOverW.begin() + plan.uv, 2, out);
+      return;
+    case shading::Pass::ViewDependent:
+      std::copy_n(e.extrasOverW.begin() + plan.position, 6, out);
+      if (plan.reflect >= 0) std::copy_n(e.extrasOverW.begin() + plan.reflect, 9, out + 6);
+      return;
+  }
+}
+
+void EpiPass::begin(const glm::vec2& scale, const glm::vec3& eye0, const glm::vec3& eyeStep) const {
+  gl::UseProgram(program_.id());
+  gl::setUniform(program_, "uScale", scale);
+  if (pass_ == shading::Pass::Diffuse) {
+    gl::Disable(GL_BLEND);
+    gl::DepthFunc(GL_GREATER);
+    gl::DepthMask(GL_TRUE);
+    return;
+  }
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, materials_.id());
+  gl::Enable(GL_BLEND);
+  gl::DepthFunc(GL_EQUAL);
+  gl::DepthMask(GL_FALSE);
+  if (pass_ == shading::Pass::Texture) {
+    gl::BlendFuncSeparate(GL_DST_COLOR, GL_ZERO, GL_ZERO, GL_ONE);  // colour *= texel
+  } else {
+    gl::BlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);  // colour += highlight
+    gl::setUniform(program_, "uEye0", eye0);
+    gl::setUniform(program_, "uEyeStep", eyeStep);
+  }
+}
+
+void EpiPass::bindVertices(GLuint vertices, GLuint indices) const {
+  const GLuint vao = vao_.id();
+  gl::VertexArrayVertexBuffer(vao, 0, vertices, 0, GLsizei(stride() * sizeof(float)));
+  gl::VertexArrayElementBuffer(vao, indices);
+  for (int offset = 0; offset < stride(); offset += 4) {  // every attribute is a vec4
+    const GLuint loc = GLuint(offset / 4);
+    gl::VertexArrayAttribFormat(vao, loc, 4, GL_FLOAT, GL_FALSE, GLuint(offset * sizeof(float)));
+    gl::VertexArrayAttribBinding(vao, loc, 0);
+    gl::EnableVertexArrayAttrib(vao, loc);
+  }
+  gl::BindVertexArray(vao);
+}
+
+}  // namespace mvr

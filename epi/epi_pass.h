@@ -1,0 +1,46 @@
+#pragma once
+// One GL shading pass over PST geometry (Halle 6.5: multi-pass shading).
+// Every pass draws the same PST geometry with the same depth; passes after
+// the first test depth EQUAL and blend into the float target: the texture
+// pass multiplies, the view-dependent pass adds.
+//
+// Each pass needs a few attributes per slice endpoint (divided by w). The
+// vertex layouts (floats):
+//   quad, strip  x, y, depth, view | side, material, 0, 0 | attributes at
+//                the vertex, divided back (linear across slivers)
+//   exact        x, y, num, den | depth0, depth1, 1/w0, 1/w1 | view, side,
+//                material, 0 | attributes/w at end 0 | at end 1
+// `view` is the EPI row coordinate minus one half (view i at view = i), for
+// the eye of the view-dependent pass; `side` is +1 front, -1 back.
+#include "epi/epi_rasterizer.h"
+#include "mvr/gl_handles.h"
+
+namespace mvr {
+
+class EpiPass {
+ public:
+  EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading);
+
+  shading::Pass pass() const { return pass_; }
+  int attributeCount() const { return count_; }
+  int stride() const;  // floats per vertex
+  // This pass's attributes of one endpoint, divided by w.
+  void gather(const SliceEnd& e, bool front, float* out) const;
+  // Uses the program and sets its uniforms and the blend and depth state.
+  void begin(const glm::vec2& scale, const glm::vec3& eye0, const glm::vec3& eyeStep) const;
+  // Binds this pass's vertex array over these vertex and index buffers.
+  void bindVertices(GLuint vertices, GLuint indices) const;
+
+ private:
+  int chunks() const { return (count_ + 3) / 4; }
+
+  PstMode mode_;
+  shading::Pass pass_;
+  const EpiShading& shading_;
+  int count_ = 0;
+  gl::Program program_;
+  gl::VertexArray vao_;
+  gl::Buffer materials_;
+};
+
+}  // namespace mvr

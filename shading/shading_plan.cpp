@@ -1,0 +1,76 @@
+#include "shading/shading_plan.h"
+
+namespace mvr::shading {
+
+ShadingPlan planShading(const Scene& scene) {
+  ShadingPlan plan;
+  for (const Material& m : scene.materials) {
+    plan.texture |= !m.texture.empty();
+    plan.specular |= m.specular != glm::vec3(0.0f);
+    plan.reflection |= !m.reflectionMap.empty();
+  }
+  if (plan.texture) {
+    plan.uv = plan.extraCount;
+    plan.extraCount += 2;
+  }
+  if (plan.specular || plan.reflection) {
+    plan.position = plan.extraCount;
+    plan.normal = plan.extraCount + 3;
+    plan.extraCount += 6;
+  }
+  if (plan.reflection) {
+    plan.reflect = plan.extraCount;
+    plan.extraCount += 9;
+  }
+  return plan;
+}
+
+std::vector<Pass> ShadingPlan::passes() const {
+  std::vector<Pass> p{Pass::Diffuse};
+  if (texture) p.push_back(Pass::Texture);
+  if (specular || reflection) p.push_back(Pass::ViewDependent);
+  return p;
+}
+
+const char* passName(Pass pass) {
+  switch (pass) {
+    case Pass::Diffuse: return "diffuse";
+    case Pass::Texture: return "texture";
+    case Pass::ViewDependent: return "view-dependent";
+  }
+  return "?";
+}
+
+std::string ShadingPlan::passNames() const {
+  std::string s;
+  for (Pass p : passes()) s += (s.empty() ? "" : "+") + std::string(passName(p));
+  return s;
+}
+
+}  // namespace mvr::shading
+
+namespace mvr::shading {
+
+std::vector<float> vertexExtras(const Scene& scene, const ShadingPlan& plan) {
+  const int k = plan.extraCount;
+  std::vector<float> out(scene.vertexCount() * size_t(k));
+  for (size_t v = 0; v < scene.vertexCount(); ++v) {
+    float* e = out.data() + v * k;
+    if (plan.uv >= 0 && !scene.uvs.empty()) {
+      e[plan.uv] = scene.uvs[v].x;
+      e[plan.uv + 1] = scene.uvs[v].y;
+    }
+    const glm::vec3 p = scene.positions[v], n = scene.normals[v];
+    if (plan.position >= 0)
+      for (int c = 0; c < 3; ++c) e[plan.position + c] = p[c], e[plan.normal + c] = n[c];
+    if (plan.reflect >= 0) {
+      const glm::vec3 a = p - 2.0f * glm::dot(n, p) * n;
+      const float m[9] = {a.x, a.y, a.z, 2 * n.x * n.x - 1, 2 * n.y * n.y - 1, 2 * n.z * n.z - 1,
+                          2 * n.x * n.y, 2 * n.x * n.z, 2 * n.y * n.z};
+      for (int c = 0; c < 9; ++c) e[plan.reflect + c] = m[c];
+    }
+  }
+  return out;
+}
+
+}  // namespace mvr::shading

@@ -1,0 +1,75 @@
+#include "shading/view_dependent.h"
+
+#include <cmath>
+
+namespace mvr::shading {
+namespace {
+
+// std430 layout of one material in the storage block.
+struct GpuMaterial {
+  glm::vec4 specular;  // rgb, shininess
+  glm::vec4 params;    // model (0 Phong, 1 Blinn-Phong), texture layer, reflection layer, 0
+};
+
+}  // namespace
+
+// Keep in step with the GLSL below.
+glm::vec3 specularLight(const Scene& scene, const Material& m, const glm::vec3& p,
+                        const glm::vec3& nIn, const glm::vec3& eye) {
+  const float len = glm::length(nIn), dist = glm::length(eye - p);
+  if (m.specular == glm::vec3(0.0f) || !(len > 1e-20f) || !(dist > 1e-20f)) return glm::vec3(0.0f);
+  const glm::vec3 n = nIn / len, v = (eye - p) / dist;
+  glm::vec3 sum(0.0f);
+  for (const Light& light : scene.lights) {
+    const glm::vec3 l = light.type == Light::Type::Directional ? -light.vector
+                                                               : glm::normalize(light.vector - p);
+    if (glm::dot(n, l) <= 0.0f) continue;
+    const float s = m.specularModel == SpecularModel::Phong
+                        ? glm::dot(glm::reflect(-l, n), v)
+                        : glm::dot(n, glm::normalize(l + v));
+    sum += light.color * std::pow(std::max(s, 1e-30f), m.shininess);
+  }
+  return m.specular * sum;
+}
+
+const std::string& glslSpecular() {
+  static const std::string src = R"(
+struct Material {
+  vec4 specular;  // rgb, shininess
+  vec4 params;    // model (0 Phong, 1 Blinn-Phong), texture layer, reflection layer
+};
+layout(std430, binding = 1) readonly buffer Materials { Material uMaterials[]; };
+
+vec3 specularLight(int material, vec3 p, vec3 nIn, vec3 eye) {
+  Material m = uMaterials[material];
+  float len = length(nIn), dist = length(eye - p);
+  if (m.specular.rgb == vec3(0.0) || !(len > 1e-20) || !(dist > 1e-20)) return vec3(0.0);
+  vec3 n = nIn / len, v = (eye - p) / dist;
+  vec3 sum = vec3(0.0);
+  for (int i = 0; i < uLightCount; ++i) {
+    vec3 l = uLightVector[i].w == 0.0 ? -uLightVector[i].xyz
+                                      : normalize(uLightVector[i].xyz - p);
+    if (dot(n, l) <= 0.0) continue;
+    float s = m.params.x == 0.0 ? dot(reflect(-l, n), v) : dot(n, normalize(l + v));
+    sum += uLightColor[i] * pow(max(s, 1e-30), m.specular.w);
+  }
+  return m.specular.rgb * sum;
+}
+)";
+  return src;
+}
+
+gl::Buffer makeMaterialBuffer(const Scene& scene, const std::vector<int>& textureLayer,
+                              const std::vector<int>& reflectionLayer) {
+  std::vector<GpuMaterial> gpu;
+  for (size_t i = 0; i < scene.materials.size(); ++i) {
+    const Material& m = scene.materials[i];
+    const float tex = i < textureLayer.size() ? float(textureLayer[i]) : -1.0f;
+    const float refl = i < reflectionLayer.size() ? float(reflectionLayer[i]) : -1.0f;
+    gpu.push_back({glm::vec4(m.specular, m.shininess),
+                   glm::vec4(m.specularModel == SpecularModel::Phong ? 0.0f : 1.0f, tex, refl, 0.0f)});
+  }
+  return gl::makeBuffer(gpu.data(), gpu.size());
+}
+
+}  // namespace mvr::shading

@@ -1,0 +1,30 @@
+#pragma once
+// View-dependent shading (Halle 5.6.8, 6.5.4): per-pixel Phong or
+// Blinn-Phong specular highlights from every light, for the eye of the view
+// being drawn. In EPI space the eye follows the EPI row (the view) and the
+// surface point and normal follow the slice parameter. One formula, written
+// in C++ (CPU back end) and GLSL (every GL back end), side by side.
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "mvr/gl_handles.h"
+#include "mvr/scene.h"
+
+namespace mvr::shading {
+
+// Specular light leaving point p with normal n (any length) towards eye.
+glm::vec3 specularLight(const Scene& scene, const Material& material, const glm::vec3& p,
+                        const glm::vec3& n, const glm::vec3& eye);
+
+// GLSL: the Materials storage block (binding 1) and
+// `vec3 specularLight(int material, vec3 p, vec3 n, vec3 eye)`; needs
+// glslLighting() before it for the light uniforms.
+const std::string& glslSpecular();
+
+// The scene's materials as the storage block glslSpecular() declares.
+// textureLayer/reflectionLayer: per material, -1 for none.
+gl::Buffer makeMaterialBuffer(const Scene& scene, const std::vector<int>& textureLayer = {},
+                              const std::vector<int>& reflectionLayer = {});
+
+}  // namespace mvr::shading
