@@ -68,10 +68,16 @@ std::string cpuModel() {
   return "unknown CPU";
 }
 
+// NAME[:PST[:TEXTURE]], e.g. mvr:exact:direct.
 BackendChoice parseBackend(const std::string& s) {
-  auto colon = s.find(':');
-  if (colon == std::string::npos) return {s, "strip"};
-  return {s.substr(0, colon), s.substr(colon + 1)};
+  BackendChoice c{s, "strip", "vector"};
+  const auto first = s.find(':');
+  if (first == std::string::npos) return c;
+  c.backend = s.substr(0, first);
+  const auto second = s.find(':', first + 1);
+  c.pst = s.substr(first + 1, second == std::string::npos ? std::string::npos : second - first - 1);
+  if (second != std::string::npos) c.texture = s.substr(second + 1);
+  return c;
 }
 
 struct Config {

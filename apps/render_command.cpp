@@ -30,6 +30,8 @@ const char* const kRenderHelp =
     "bundled default scene is rendered.\n"
     "  --backend mvr|svr|svr-layered|deferred   renderer (default mvr)\n"
     "  --pst quad|strip|exact|cpu   MVR accuracy mode (default strip)\n"
+    "  --texture vector|direct   MVR texturing: 1-D texture vectors per slice\n"
+    "                     (default) or the 2D texture with a per-pixel divide\n"
     "  --views N          views on the horizontal track (default 16)\n"
     "  --rows M           rows of views for full parallax (default 1)\n"
     "  --size WxH         image size in pixels (default 320x240)\n"
@@ -46,7 +48,8 @@ const char* const kRenderHelp =
     "Writes view_0000.png ... (view_r000_c0000.png for grids) and manifest.json.\n";
 
 std::unique_ptr<Renderer> makeRenderer(const BackendChoice& c, const Scene& scene, PixelType type) {
-  if (c.backend == "mvr") return makeMvrRenderer(scene, parsePstMode(c.pst), type);
+  if (c.backend == "mvr")
+    return makeMvrRenderer(scene, parsePstMode(c.pst), type, 2, parseTextureMode(c.texture));
   if (c.backend == "svr") return makeSvrRenderer(scene, type);
   if (c.backend == "svr-layered") return makeLayeredSvrRenderer(scene, type);
   if (c.backend == "deferred") return makeDeferredRenderer(scene, type);
@@ -122,9 +125,10 @@ const char* const kStreamHelp =
     "  --backend, --pst, --views, --rows, --size, --format, --gl as for render\n";
 
 int runRender(int argc, char** argv, bool streamCommand) {
-  std::set<std::string> flags = {"backend", "pst", "views", "rows", "size", "out", "format", "order",
-                                 "gl", "stream", "bits", "quilt", "predistort", "queue"};
-  if (streamCommand) flags = {"backend", "pst", "views", "rows", "size", "format", "gl", "to", "queue"};
+  std::set<std::string> flags = {"backend", "pst", "texture", "views", "rows", "size", "out", "format",
+                                 "order", "gl", "stream", "bits", "quilt", "predistort", "queue"};
+  if (streamCommand)
+    flags = {"backend", "pst", "texture", "views", "rows", "size", "format", "gl", "to", "queue"};
   Args args(argc, argv, 2, flags, {});
   const char* streamFlag = streamCommand ? "to" : "stream";
   const bool streaming = args.has(streamFlag);
@@ -132,7 +136,8 @@ int runRender(int argc, char** argv, bool streamCommand) {
   if (args.positional().size() > 1) fail("render", "takes at most one scene file");
   const std::string scenePath =
       args.positional().empty() ? defaultScenePath() : args.positional()[0];
-  BackendChoice choice{args.get("backend", "mvr"), args.get("pst", "strip")};
+  BackendChoice choice{args.get("backend", "mvr"), args.get("pst", "strip"),
+                       args.get("texture", "vector")};
   const int views = args.getInt("views", 16, 1, 65536);
   const int rows = args.getInt("rows", 1, 1, 4096);
   const auto [width, height] = args.getSize("size", {320, 240});
@@ -144,6 +149,7 @@ int runRender(int argc, char** argv, bool streamCommand) {
   const std::string order = args.get("order", "view");
   if (order != "view" && order != "epi") fail("--order", "expected view or epi, not '" + order + "'");
   if (choice.backend != "mvr" && args.has("pst")) fail("--pst", "applies to --backend mvr only");
+  if (choice.backend != "mvr" && args.has("texture")) fail("--texture", "applies to --backend mvr only");
   const GlPlatform platform = parseGlPlatform(args.get("gl", "auto"));
 
   // Input problems first, before any GL or file work.

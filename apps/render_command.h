@@ -18,6 +18,7 @@ int runRender(int argc, char** argv, bool streamCommand = false);
 struct BackendChoice {
   std::string backend = "mvr";  // mvr | svr | svr-layered | deferred
   std::string pst = "strip";    // quad | strip | exact | cpu (mvr only)
+  std::string texture = "vector";  // vector | direct (mvr GL modes only)
 };
 
 // Throws mvr::Error for unknown names. Needs a current GL context.

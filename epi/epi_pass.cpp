@@ -6,6 +6,7 @@
 #include "mvr/error.h"
 #include "mvr/gl_program.h"
 #include "shading/lighting.h"
+#include "shading/texture_vector.h"
 #include "shading/view_dependent.h"
 
 namespace mvr {
@@ -84,6 +85,41 @@ vec3 attr3(int i) { return vec3(attr(i), attr(i + 1), attr(i + 2)); }
 layout(location = 0) out vec4 oColor;
 )";
 
+// Direct: uv divided per pixel; the level of detail from the horizontal
+// footprint only (an EPI has no scanline neighbour; see BENCHMARKS.md).
+const char* const kTextureDirectMain = R"(
+layout(binding = 0) uniform sampler2DArray uTextures;
+void main() {
+  prepare();
+  vec2 uv = attr2(0);
+#ifdef EXACT
+  // Analytic: dFdx would see u clamped at the slice's ends.
+  vec2 a = vec2(vA0[0].x, vA0[0].y), b = vec2(vA1[0].x, vA1[0].y);
+  vec2 duv = (b * vEnds.z - a * vEnds.w) / (gInvW * gInvW) / vNumDen.y;
+#else
+  vec2 duv = dFdx(uv);
+#endif
+  float layer = uMaterials[int(vFlat.y)].params.y;
+  oColor = layer < 0.0 ? vec4(1.0) : textureGrad(uTextures, vec3(uv, layer), duv, duv);
+}
+)";
+
+// Vector: attributes u, first texel, length, linear in screen space.
+const char* const kTextureVectorMain = R"(
+layout(binding = 3) uniform samplerBuffer uVectors;
+void main() {
+  prepare();
+#ifdef EXACT
+  float u = gU, base = vA0[0].y, k = vA0[0].z;
+  float perPixel = k / abs(vNumDen.y);  // du/dx = 1 / slice width
+#else
+  float u = vA[0].x, base = round(vA[0].y), k = round(vA[0].z);
+  float perPixel = abs(dFdx(u)) * k;
+#endif
+  oColor = k == 0.0 ? vec4(1.0) : sampleTextureVector(uVectors, base, k, u, perPixel);
+}
+)";
+
 const char* const kDiffuseMain = R"(
 void main() {
   prepare();
@@ -105,10 +141,11 @@ void main() {
 }
 )";
 
-int passAttributeCount(shading::Pass pass, const shading::ShadingPlan& plan) {
+int passAttributeCount(shading::Pass pass, const EpiShading& shading) {
+  const shading::ShadingPlan& plan = shading.plan;
   switch (pass) {
     case shading::Pass::Diffuse: return 3;
-    case shading::Pass::Texture: return 2;
+    case shading::Pass::Texture: return shading.textureMode == TextureMode::Vector ? 3 : 2;
     case shading::Pass::ViewDependent: return plan.reflect >= 0 ? 15 : 6;
   }
   return 0;
@@ -117,18 +154,25 @@ int passAttributeCount(shading::Pass pass, const shading::ShadingPlan& plan) {
 }  // namespace
 
 EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading)
-    : mode_(mode), pass_(pass), shading_(shading), count_(passAttributeCount(pass, shading.plan)) {
+    : mode_(mode), pass_(pass), shading_(shading), count_(passAttributeCount(pass, shading)) {
   if (pass != shading::Pass::Diffuse && !shading.scene)
     fail("EpiPass", std::string(shading::passName(pass)) + " pass needs a scene");
-  if (pass == shading::Pass::Texture) fail("EpiPass", "texture pass is not implemented yet");
+  if (pass == shading::Pass::Texture && !shading.textures)
+    fail("EpiPass", "texture pass needs the scene's textures");
   const bool exact = mode == PstMode::Exact;
   const std::string nv = "NV " + std::to_string(chunks());
-  const std::string header = gl::glslHeader({nv});
+  const std::string header = exact ? gl::glslHeader({nv, "EXACT"}) : gl::glslHeader({nv});
   std::string fragment = header + (exact ? kExactFragment : kSliverFragment) + kAttributeHelpers;
   if (pass == shading::Pass::Diffuse) {
     fragment += kDiffuseMain;
   } else {
-    fragment += shading::glslLighting() + shading::glslSpecular() + kViewDependentMain;
+    fragment += shading::glslLighting() + shading::glslSpecular();
+    if (pass == shading::Pass::ViewDependent)
+      fragment += kViewDependentMain;
+    else if (linear())
+      fragment += std::string(shading::glslTextureVector()) + kTextureVectorMain;
+    else
+      fragment += kTextureDirectMain;
   }
   program_ = gl::linkProgram(std::string("epi-") + pstModeName(mode) + "-" + shading::passName(pass),
                              {{GL_VERTEX_SHADER, header + (exact ? kExactVertex : kSliverVertex)},
@@ -136,8 +180,13 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading)
   vao_ = gl::VertexArray::create();
   if (pass != shading::Pass::Diffuse) {
     shading::setLightUniforms(program_, *shading.scene);
-    materials_ = shading::makeMaterialBuffer(*shading.scene);
+    materials_ = shading::makeMaterialBuffer(
+        *shading.scene, shading.textures ? shading.textures->materialLayers() : std::vector<int>{});
   }
+}
+
+bool EpiPass::linear() const {
+  return pass_ == shading::Pass::Texture && shading_.textureMode == TextureMode::Vector;
 }
 
 int EpiPass::stride() const {

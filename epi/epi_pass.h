@@ -23,11 +23,17 @@ class EpiPass {
 
   shading::Pass pass() const { return pass_; }
   int attributeCount() const { return count_; }
+  // The texture-vector pass: attributes (u, first texel, length) are linear
+  // in screen space and are not divided by w; gather() does not apply.
+  bool linear() const;
   int stride() const;  // floats per vertex
   // This pass's attributes of one endpoint, divided by w.
   void gather(const SliceEnd& e, bool front, float* out) const;
   // Uses the program and sets its uniforms and the blend and depth state.
   void begin(const glm::vec2& scale, const glm::vec3& eye0, const glm::vec3& eyeStep) const;
+  // Texture units the texture pass reads (direct: the 2D array; vector:
+  // the buffer texture of this batch's vectors).
+  static constexpr GLuint kTextureUnit = 0, kVectorUnit = 3;
   // Binds this pass's vertex array over these vertex and index buffers.
   void bindVertices(GLuint vertices, GLuint indices) const;
 

@@ -6,6 +6,7 @@
 
 #include "mvr/renderer.h"
 #include "shading/shading_plan.h"
+#include "shading/texture_set.h"
 #include "slicing/slice_table.h"
 
 namespace mvr {
@@ -15,11 +16,19 @@ enum class PstMode { Quad, Strip, Exact, Cpu };
 PstMode parsePstMode(const std::string& name);  // throws on unknown
 const char* pstModeName(PstMode mode);
 
+// How the texture pass samples: Halle's 1-D texture vectors (default), or
+// the 2D texture directly with a per-pixel divide (for comparison).
+enum class TextureMode { Vector, Direct };
+TextureMode parseTextureMode(const std::string& name);  // throws on unknown
+
 // What the rasterizers shade with beyond the lit colours: the scene's
-// lights and materials and the plan's passes. No scene: diffuse only.
+// lights, materials and textures and the plan's passes. No scene: diffuse
+// only.
 struct EpiShading {
   const Scene* scene = nullptr;
   shading::ShadingPlan plan;
+  const shading::TextureSet* textures = nullptr;  // when plan.texture
+  TextureMode textureMode = TextureMode::Vector;
 };
 
 class EpiRasterizer {

@@ -22,6 +22,7 @@
 #include "mvr/gl_program.h"
 #include "mvr/progress.h"
 #include "mvr/render_target.h"
+#include "shading/texture_vector.h"
 
 namespace mvr {
 namespace {
@@ -46,6 +47,8 @@ class GlRasterizer final : public EpiRasterizer {
   GlRasterizer(PstMode mode, PixelType type, const EpiShading& shading)
       : mode_(mode), type_(type), shading_(shading) {
     for (shading::Pass p : shading_.plan.passes()) passes_.emplace_back(mode, p, shading_);
+    if (shading_.plan.texture && shading_.textureMode == TextureMode::Direct)
+      textureArray_ = shading_.textures->upload();
   }
 
   void rasterize(const ExtremeVertices& v, const SliceTable& table, const ShearingCamera& cam,
@@ -83,6 +86,7 @@ class GlRasterizer final : public EpiRasterizer {
           }
           ScopedStage s(stats.times, "raster");
           pass.begin(scale, eye0, eyeStep);
+          gl::Buffer vectors = bindTextures(pass);
           drawGeometry(pass);
           gl::Finish();
         }
@@ -99,13 +103,30 @@ class GlRasterizer final : public EpiRasterizer {
     gl::checkError("EPI rasterization");
     stats.counters["epis_per_draw"] = batch;
     stats.counters["pst_vertices"] += double(verticesEmitted_);
-    verticesEmitted_ = 0;
+    if (vectorTexels_) stats.counters["texture_vector_texels"] += double(vectorTexels_);
+    verticesEmitted_ = vectorTexels_ = 0;
   }
 
  private:
   void clearGeometry() {
     vertices_.clear();
     indices_.clear();
+    vectors_.clear();
+  }
+
+  // Returns the buffer behind the vector texture: it must outlive the draw.
+  gl::Buffer bindTextures(const EpiPass& pass) {
+    if (pass.pass() != shading::Pass::Texture) return {};
+    if (!pass.linear()) {
+      gl::BindTextureUnit(EpiPass::kTextureUnit, textureArray_.id());
+      return {};
+    }
+    vectorTexels_ += vectors_.texels().size();
+    gl::Buffer buffer = gl::makeBuffer(vectors_.texels().data(), std::max<size_t>(1, vectors_.texels().size()));
+    vectorTexture_ = gl::Texture(GL_TEXTURE_BUFFER);
+    gl::TextureBuffer(vectorTexture_.id(), GL_RGBA32F, buffer.id());
+    gl::BindTextureUnit(EpiPass::kVectorUnit, vectorTexture_.id());
+    return buffer;
   }
 
   // yBase: framebuffer row of EPI row coordinate r = 0 for this scanline.
@@ -114,22 +135,30 @@ class GlRasterizer final : public EpiRasterizer {
     for (const Slice& s : table.scanline(j)) {
       auto [e0, e1] = sliceEnds(v, s);
       const Pst pst = makePst(e0, e1, n, v.cullBack[s.triangle]);
-      const float material = v.materials.empty() ? 0.0f : float(v.materials[s.triangle]);
+      const uint32_t material = v.materials.empty() ? 0 : v.materials[s.triangle];
+      const glm::vec2 vector = pass.linear() ? addVector(pst, material) : glm::vec2(0.0f);
       for (int p = 0; p < pst.pieceCount; ++p)
-        emitPiece(pass, pst, pst.pieces[p], material, yBase);
+        emitPiece(pass, pst, pst.pieces[p], float(material), vector, yBase);
     }
   }
 
+  // vector: first texel and length of the slice's texture vector.
   void emitPiece(const EpiPass& pass, const Pst& pst, const PstPiece& piece, float material,
-                 float yBase) {
+                 glm::vec2 vector, float yBase) {
     const int slivers = mode_ == PstMode::Strip ? sliverCount(pst, piece) : 1;
     const float rows[2] = {piece.rTop, piece.rBottom};
     const float iw0 = pst.e0.invW, iw1 = pst.e1.invW;
     const float side = piece.front ? 1.0f : -1.0f;
     const int count = pass.attributeCount(), stride = pass.stride();
     float a0[shading::kMaxExtras], a1[shading::kMaxExtras];
-    pass.gather(pst.e0, piece.front, a0);
-    pass.gather(pst.e1, piece.front, a1);
+    if (pass.linear()) {
+      a0[0] = 0.0f, a1[0] = 1.0f;
+      a0[1] = a1[1] = vector.x;
+      a0[2] = a1[2] = vector.y;
+    } else {
+      pass.gather(pst.e0, piece.front, a0);
+      pass.gather(pst.e1, piece.front, a1);
+    }
     for (int k = 0; k <= slivers; ++k) {
       // Rulings evenly spaced in the 3D parameter s, where attributes are
       // linear; the screen parameter is u = s iw0 / ((1 - s) iw1 + s iw0).
@@ -151,12 +180,26 @@ class GlRasterizer final : public EpiRasterizer {
         } else {
           const float head[8] = {x, yBase + r, pstDepth(pst, u), r - 0.5f, side, material, 0, 0};
           std::copy_n(head, 8, out);
-          const float invW = iw0 + (iw1 - iw0) * u;  // attributes divided back at the ruling
+          // Attributes divided back at the ruling (linear ones need not be).
+          const float invW = pass.linear() ? 1.0f : iw0 + (iw1 - iw0) * u;
           for (int c = 0; c < count; ++c) out[8 + c] = (a0[c] + (a1[c] - a0[c]) * u) / invW;
         }
       }
     }
     indices_.push_back(kRestart);
+  }
+
+  // The slice's 1-D texture vector, at the wider p-edge's resolution.
+  glm::vec2 addVector(const Pst& pst, uint32_t material) {
+    const int layer = shading_.textures->materialLayers()[material];
+    if (layer < 0 || pst.pieceCount == 0) return glm::vec2(0.0f);
+    const int uv = shading_.plan.uv;
+    const glm::vec2 uv0(pst.e0.extrasOverW[uv], pst.e0.extrasOverW[uv + 1]);
+    const glm::vec2 uv1(pst.e1.extrasOverW[uv], pst.e1.extrasOverW[uv + 1]);
+    const float rBottom = pst.pieces[pst.pieceCount - 1].rBottom;
+    const float widest = std::max(std::abs(pst.width(0.0f)), std::abs(pst.width(rBottom)));
+    const int base = vectors_.add(*shading_.textures, layer, uv0, uv1, pst.e0.invW, pst.e1.invW, widest);
+    return glm::vec2(float(base), float(shading::TextureVectors::lengthFor(widest)));
   }
 
   void drawGeometry(const EpiPass& pass) {
@@ -174,7 +217,9 @@ class GlRasterizer final : public EpiRasterizer {
   std::vector<EpiPass> passes_;
   std::vector<float> vertices_;
   std::vector<uint32_t> indices_;
-  size_t verticesEmitted_ = 0;
+  shading::TextureVectors vectors_;
+  gl::Texture textureArray_, vectorTexture_;
+  size_t verticesEmitted_ = 0, vectorTexels_ = 0;
 };
 
 }  // namespace

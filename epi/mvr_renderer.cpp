@@ -11,9 +11,10 @@ namespace {
 
 class MvrRenderer final : public Renderer {
  public:
-  MvrRenderer(const Scene& scene, PstMode mode, PixelType type, int threads)
+  MvrRenderer(const Scene& scene, PstMode mode, PixelType type, int threads, TextureMode texture)
       : scene_(scene), mode_(mode), threads_(threads),
-        shading_{&scene, shading::planShading(scene)},
+        textures_(shading::TextureSet::load(scene)),
+        shading_{&scene, shading::planShading(scene), &textures_, texture},
         rasterizer_(mode == PstMode::Cpu ? makeSpanRasterizer(type, threads, shading_)
                                          : makeGlRasterizer(mode, type, shading_)) {}
 
@@ -54,6 +55,9 @@ class MvrRenderer final : public Renderer {
     }
     stats.notes["pst"] = pstModeName(mode_);
     stats.notes["passes"] = shading_.plan.passNames();
+    if (shading_.plan.texture)
+      stats.notes["texture"] = mode_ == PstMode::Cpu || shading_.textureMode == TextureMode::Direct
+                                   ? "direct" : "vector";
     stats.counters["passes"] = double(shading_.plan.passes().size());
   }
 
@@ -61,6 +65,7 @@ class MvrRenderer final : public Renderer {
   const Scene& scene_;
   PstMode mode_;
   int threads_;
+  shading::TextureSet textures_;
   EpiShading shading_;
   std::unique_ptr<EpiRasterizer> rasterizer_;
 };
@@ -68,9 +73,9 @@ class MvrRenderer final : public Renderer {
 }  // namespace
 
 std::unique_ptr<Renderer> makeMvrRenderer(const Scene& scene, PstMode mode, PixelType type,
-                                          int threads) {
+                                          int threads, TextureMode texture) {
   if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
-  return std::make_unique<MvrRenderer>(scene, mode, type, threads);
+  return std::make_unique<MvrRenderer>(scene, mode, type, threads, texture);
 }
 
 }  // namespace mvr

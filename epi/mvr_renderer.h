@@ -9,8 +9,9 @@
 
 namespace mvr {
 
-// GL modes need a current context; cpu uses `threads` threads.
+// GL modes need a current context; cpu uses `threads` threads and always
+// samples textures directly.
 std::unique_ptr<Renderer> makeMvrRenderer(const Scene& scene, PstMode mode, PixelType type,
-                                          int threads = 2);
+                                          int threads = 2, TextureMode texture = TextureMode::Vector);
 
 }  // namespace mvr

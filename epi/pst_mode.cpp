@@ -21,4 +21,10 @@ const char* pstModeName(PstMode mode) {
   return "?";
 }
 
+TextureMode parseTextureMode(const std::string& name) {
+  if (name == "vector") return TextureMode::Vector;
+  if (name == "direct") return TextureMode::Direct;
+  fail("--texture", "unknown mode '" + name + "' (expected vector or direct)");
+}
+
 }  // namespace mvr

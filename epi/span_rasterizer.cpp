@@ -22,6 +22,7 @@ class SpanRasterizer final : public EpiRasterizer {
       : type_(type), threads_(std::max(1, threads)), shading_(shading) {
     if (shading_.plan.passes().size() > 1 && !shading_.scene)
       fail("cpu rasterizer", "shading passes need a scene");
+    if (shading_.plan.texture && !shading_.textures) fail("cpu rasterizer", "texturing needs textures");
   }
 
   void rasterize(const ExtremeVertices& v, const SliceTable& table, const ShearingCamera& cam,
@@ -87,15 +88,17 @@ class SpanRasterizer final : public EpiRasterizer {
         float& dz = depth[size_t(i) * w + x];
         if (!(z > dz)) continue;
         dz = z;
-        store(epi, x, i, shade(pst, piece.front, material, u, float(i)));
+        store(epi, x, i, shade(pst, piece.front, material, u, 1.0f / width, float(i)));
       }
     }
   }
 
   // Every pass of the plan at once, in the order the GL passes accumulate.
-  glm::vec3 shade(const Pst& pst, bool front, uint32_t material, float u, float view) const {
+  // du: the change of u over one pixel of this view (texture footprint).
+  glm::vec3 shade(const Pst& pst, bool front, uint32_t material, float u, float du, float view) const {
     glm::vec3 color = pstColor(pst, front, u);
     const shading::ShadingPlan& plan = shading_.plan;
+    if (plan.uv >= 0) color *= texel(pst, material, u, du);
     if (plan.position < 0) return color;
     const float invW = pst.e0.invW + (pst.e1.invW - pst.e0.invW) * u;
     auto extra3 = [&](int at) {
@@ -107,6 +110,21 @@ class SpanRasterizer final : public EpiRasterizer {
     const glm::vec3 eye = eye0_ + view * eyeStep_;
     color += shading::specularLight(*shading_.scene, shading_.scene->materials[material], p, n, eye);
     return color;
+  }
+
+  // The 2D texture at the exact perspective-correct uv; level of detail
+  // from the horizontal footprint, as the GL direct path.
+  glm::vec3 texel(const Pst& pst, uint32_t material, float u, float du) const {
+    const int layer = shading_.textures->materialLayers()[material];
+    if (layer < 0) return glm::vec3(1.0f);
+    const int at = shading_.plan.uv;
+    auto uvAt = [&](float t) {
+      const glm::vec2 a(pst.e0.extrasOverW[at], pst.e0.extrasOverW[at + 1]);
+      const glm::vec2 b(pst.e1.extrasOverW[at], pst.e1.extrasOverW[at + 1]);
+      return (a + (b - a) * t) / (pst.e0.invW + (pst.e1.invW - pst.e0.invW) * t);
+    };
+    const glm::vec2 uv = uvAt(u);
+    return glm::vec3(shading_.textures->sample(layer, uv, shading_.textures->lodFor(uvAt(u + du) - uv)));
   }
 
   void store(Image& img, int x, int y, const glm::vec3& c) const {

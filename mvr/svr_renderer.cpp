@@ -11,6 +11,7 @@
 #include "mvr/view_loop.h"
 #include "shading/lighting.h"
 #include "shading/shading_plan.h"
+#include "shading/texture_set.h"
 #include "shading/view_dependent.h"
 
 namespace mvr {
@@ -38,6 +39,7 @@ out vec3 vPosition;
 out vec3 vNormal;
 flat out float vMaterial;
 flat out vec3 vEye;
+out vec2 vUv;
 void main() {
 #ifdef LAYERED
   mat4 viewProj = uViewProjs[uLayerBase + gl_InstanceID];
@@ -58,6 +60,7 @@ void main() {
   vPosition = aPosition;
   vNormal = aNormal;
   vMaterial = aMaterial;
+  vUv = aUv;
 }
 )";
 
@@ -71,10 +74,18 @@ in vec3 vPosition;
 in vec3 vNormal;
 flat in float vMaterial;
 flat in vec3 vEye;
+in vec2 vUv;
 layout(location = 0) out vec4 oColor;
+#ifdef TEXTURE
+layout(binding = 0) uniform sampler2DArray uTextures;
+#endif
 void main() {
   if (!gl_FrontFacing && vCull > 0.5) discard;
   vec3 c = gl_FrontFacing ? vFront : vBack;
+#ifdef TEXTURE
+  vec4 texel = texture(uTextures, vec3(vUv, uMaterials[int(vMaterial)].params.y));
+  if (uMaterials[int(vMaterial)].params.y >= 0.0) c *= texel.rgb;
+#endif
 #ifdef VIEW_DEPENDENT
   c += specularLight(int(vMaterial), vPosition, gl_FrontFacing ? vNormal : -vNormal, vEye);
 #endif
@@ -94,6 +105,7 @@ in vec3 vPosition[];
 in vec3 vNormal[];
 flat in float vMaterial[];
 flat in vec3 vEye[];
+in vec2 vUv[];
 out vec3 gFront;
 out vec3 gBack;
 flat out float gCull;
@@ -101,6 +113,7 @@ out vec3 gPosition;
 out vec3 gNormal;
 flat out float gMaterial;
 flat out vec3 gEye;
+out vec2 gUv;
 void main() {
   for (int i = 0; i < 3; ++i) {
     gl_Layer = vLayer[0];
@@ -112,6 +125,7 @@ void main() {
     gNormal = vNormal[i];
     gMaterial = vMaterial[i];
     gEye = vEye[i];
+    gUv = vUv[i];
     EmitVertex();
   }
 }
@@ -126,11 +140,15 @@ std::string vertexSource(std::initializer_list<std::string_view> defines) {
 }
 
 // renames: the geometry shader's outputs when it routes layers.
+// The plan's passes become defines: one shader computes their sum.
 std::string fragmentSource(const Scene& scene, bool renamed) {
-  const bool viewDependent = shading::planShading(scene).passes().back() == shading::Pass::ViewDependent;
-  std::string header = viewDependent ? gl::glslHeader({"VIEW_DEPENDENT"}) : gl::glslHeader();
+  std::string header = gl::glslHeader();
+  for (shading::Pass pass : shading::planShading(scene).passes()) {
+    if (pass == shading::Pass::Texture) header += "#define TEXTURE\n";
+    if (pass == shading::Pass::ViewDependent) header += "#define VIEW_DEPENDENT\n";
+  }
   if (renamed)
-    for (const char* name : {"Front", "Back", "Cull", "Position", "Normal", "Material", "Eye"})
+    for (const char* name : {"Front", "Back", "Cull", "Position", "Normal", "Material", "Eye", "Uv"})
       header += std::string("#define v") + name + " g" + name + "\n";
   return header + shading::glslLighting() + shading::glslSpecular() + kSvrFragment;
 }
@@ -142,8 +160,10 @@ class SvrRenderer final : public Renderer {
         buffers_(scene, shading::vertexAlbedo(scene), shading::vertexCullFlags(scene)),
         program_(gl::linkProgram("svr", {{GL_VERTEX_SHADER, vertexSource({})},
                                          {GL_FRAGMENT_SHADER, fragmentSource(scene, false)}})),
-        materials_(shading::makeMaterialBuffer(scene)) {
+        textures_(shading::TextureSet::load(scene)),
+        materials_(shading::makeMaterialBuffer(scene, textures_.materialLayers())) {
     shading::setLightUniforms(program_, scene_);
+    if (!textures_.empty()) textureArray_ = textures_.upload();
   }
   std::string name() const override { return "svr"; }
   FrameOrder order() const override { return FrameOrder::View; }
@@ -157,6 +177,7 @@ class SvrRenderer final : public Renderer {
     target.bind();
     gl::UseProgram(program_.id());
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, materials_.id());
+    if (!textures_.empty()) gl::BindTextureUnit(0, textureArray_.id());
     buffers_.bind();
     renderEachView(cam, target, "svr", sink, stats, [&](int row, int view) {
       ScopedStage s(stats.times, "draw");
@@ -175,7 +196,9 @@ class SvrRenderer final : public Renderer {
   PixelType type_;
   SceneBuffers buffers_;
   gl::Program program_;
+  shading::TextureSet textures_;
   gl::Buffer materials_;
+  gl::Texture textureArray_;
 };
 
 class LayeredSvrRenderer final : public Renderer {
@@ -194,7 +217,9 @@ class LayeredSvrRenderer final : public Renderer {
                           {GL_GEOMETRY_SHADER, gl::glslHeader() + kLayerGeometry},
                           {GL_FRAGMENT_SHADER, fragmentSource(scene, true)}});
     }
-    materials_ = shading::makeMaterialBuffer(scene);
+    textures_ = shading::TextureSet::load(scene);
+    materials_ = shading::makeMaterialBuffer(scene, textures_.materialLayers());
+    if (!textures_.empty()) textureArray_ = textures_.upload();
     shading::setLightUniforms(program_, scene_);
   }
   std::string name() const override { return "svr-layered"; }
@@ -215,6 +240,7 @@ class LayeredSvrRenderer final : public Renderer {
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, views.id());
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, materials_.id());
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, eyeBuffer.id());
+    if (!textures_.empty()) gl::BindTextureUnit(0, textureArray_.id());
     setDepthConvention();
     gl::FrontFace(GL_CW);
     target.bind();
@@ -262,7 +288,9 @@ class LayeredSvrRenderer final : public Renderer {
   SceneBuffers buffers_;
   bool vsLayer_;
   gl::Program program_;
+  shading::TextureSet textures_;
   gl::Buffer materials_;
+  gl::Texture textureArray_;
 };
 
 }  // namespace

@@ -1,0 +1,133 @@
+#include "shading/texture_set.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "mvr/error.h"
+#include "mvr/image.h"
+
+namespace mvr::shading {
+namespace {
+
+int wrap(int i, int n) { return ((i % n) + n) % n; }
+
+// Bilinear resample of src (rows top first) to w x h, rows flipped so that
+// row 0 is v = 0, quantised to 8 bits.
+std::vector<uint8_t> resampleFlipped(const Image& src, int w, int h) {
+  std::vector<uint8_t> out(size_t(w) * h * 4);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float sx = (x + 0.5f) * src.width / w - 0.5f, sy = (y + 0.5f) * src.height / h - 0.5f;
+      const int x0 = int(std::floor(sx)), y0 = int(std::floor(sy));
+      const float fx = sx - x0, fy = sy - y0;
+      auto at = [&](int px, int py) {
+        return src.pixel(std::clamp(px, 0, src.width - 1), std::clamp(py, 0, src.height - 1));
+      };
+      const glm::vec4 c = glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx),
+                                   glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx), fy);
+      uint8_t* p = out.data() + (size_t(h - 1 - y) * w + x) * 4;
+      for (int k = 0; k < 4; ++k) p[k] = uint8_t(std::lrint(std::clamp(c[k], 0.0f, 1.0f) * 255.0f));
+    }
+  return out;
+}
+
+}  // namespace
+
+TextureSet TextureSet::load(const Scene& scene) {
+  TextureSet set;
+  std::map<std::string, int> layerOf;
+  std::vector<Image> images;
+  for (const Material& m : scene.materials) {
+    if (m.texture.empty()) {
+      set.materialLayer_.push_back(-1);
+      continue;
+    }
+    auto [it, added] = layerOf.emplace(m.texture, int(images.size()));
+    if (added) {
+      images.push_back(readImage(m.texture));
+      set.width_ = std::max(set.width_, images.back().width);
+      set.height_ = std::max(set.height_, images.back().height);
+    }
+    set.materialLayer_.push_back(it->second);
+  }
+  set.layers_ = int(images.size());
+  if (set.empty()) return set;
+  const int w = set.width_, h = set.height_;
+  std::vector<uint8_t> base;
+  for (const Image& img : images) {
+    std::vector<uint8_t> layer = resampleFlipped(img, w, h);
+    base.insert(base.end(), layer.begin(), layer.end());
+  }
+  set.levelSize_.push_back({w, h});
+  set.levels_.push_back(std::move(base));
+  // Box-filtered chain down to 1 x 1 (odd sizes drop the last texel).
+  while (set.levelSize_.back() != glm::ivec2(1)) {
+    const glm::ivec2 from = set.levelSize_.back(), to = glm::max(from / 2, glm::ivec2(1));
+    const std::vector<uint8_t>& src = set.levels_.back();
+    std::vector<uint8_t> dst(size_t(to.x) * to.y * 4 * set.layers_);
+    for (int l = 0; l < set.layers_; ++l)
+      for (int y = 0; y < to.y; ++y)
+        for (int x = 0; x < to.x; ++x)
+          for (int k = 0; k < 4; ++k) {
+            int sum = 0;
+            for (int dy = 0; dy < 2; ++dy)
+              for (int dx = 0; dx < 2; ++dx) {
+                const int sx = std::min(2 * x + dx, from.x - 1), sy = std::min(2 * y + dy, from.y - 1);
+                sum += src[((size_t(l) * from.y + sy) * from.x + sx) * 4 + k];
+              }
+            dst[((size_t(l) * to.y + y) * to.x + x) * 4 + k] = uint8_t((sum + 2) / 4);
+          }
+    set.levelSize_.push_back(to);
+    set.levels_.push_back(std::move(dst));
+  }
+  return set;
+}
+
+glm::vec4 TextureSet::texel(int layer, int level, int x, int y) const {
+  const glm::ivec2 s = levelSize_[level];
+  const uint8_t* p = levels_[level].data() +
+                     ((size_t(layer) * s.y + wrap(y, s.y)) * s.x + wrap(x, s.x)) * 4;
+  return glm::vec4(p[0], p[1], p[2], p[3]) / 255.0f;
+}
+
+glm::vec4 TextureSet::bilinear(int layer, int level, glm::vec2 uv) const {
+  const glm::ivec2 s = levelSize_[level];
+  const float sx = uv.x * s.x - 0.5f, sy = uv.y * s.y - 0.5f;
+  const float fx0 = std::floor(sx), fy0 = std::floor(sy);
+  const int x0 = int(fx0), y0 = int(fy0);
+  const float fx = sx - fx0, fy = sy - fy0;
+  return glm::mix(glm::mix(texel(layer, level, x0, y0), texel(layer, level, x0 + 1, y0), fx),
+                  glm::mix(texel(layer, level, x0, y0 + 1), texel(layer, level, x0 + 1, y0 + 1), fx),
+                  fy);
+}
+
+glm::vec4 TextureSet::sample(int layer, glm::vec2 uv, float lod) const {
+  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return glm::vec4(0.0f);
+  uv -= glm::floor(uv);  // repeat; keeps float precision for large uv
+  lod = std::clamp(std::isfinite(lod) ? lod : 0.0f, 0.0f, float(levels() - 1));
+  const int l0 = int(std::floor(lod)), l1 = std::min(l0 + 1, levels() - 1);
+  return glm::mix(bilinear(layer, l0, uv), bilinear(layer, l1, uv), lod - float(l0));
+}
+
+float TextureSet::lodFor(glm::vec2 duv) const {
+  const float texels = glm::length(duv * glm::vec2(width_, height_));
+  return texels > 0.0f ? std::log2(texels) : 0.0f;
+}
+
+gl::Texture TextureSet::upload() const {
+  gl::Texture tex(GL_TEXTURE_2D_ARRAY);
+  gl::TextureStorage3D(tex.id(), levels(), GL_RGBA8, width_, height_, layers_);
+  gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  for (int l = 0; l < levels(); ++l)
+    gl::TextureSubImage3D(tex.id(), l, 0, 0, 0, levelSize_[l].x, levelSize_[l].y, layers_, GL_RGBA,
+                          GL_UNSIGNED_BYTE, levels_[l].data());
+  gl::TextureParameteri(tex.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  gl::TextureParameteri(tex.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  gl::TextureParameteri(tex.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
+  gl::TextureParameteri(tex.id(), GL_TEXTURE_WRAP_T, GL_REPEAT);
+  gl::checkError("uploading textures");
+  return tex;
+}
+
+}  // namespace mvr::shading

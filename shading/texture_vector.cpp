@@ -1,0 +1,68 @@
+#include "shading/texture_vector.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+namespace mvr::shading {
+
+int TextureVectors::lengthFor(float widthPixels) {
+  const int k = std::clamp(int(std::ceil(std::isfinite(widthPixels) ? widthPixels : 1.0f)), 1, kMaxLength);
+  return int(std::bit_ceil(unsigned(k)));
+}
+
+int TextureVectors::add(const TextureSet& textures, int layer, glm::vec2 uv0w, glm::vec2 uv1w,
+                        float iw0, float iw1, float widthPixels) {
+  const int k = lengthFor(widthPixels);
+  const int base = int(texels_.size());
+  auto uvAt = [&](float u) {
+    return (uv0w + (uv1w - uv0w) * u) / (iw0 + (iw1 - iw0) * u);
+  };
+  for (int i = 0; i < k; ++i) {
+    const float u = (i + 0.5f) / k;
+    // Footprint of one vector texel on the texture: the level to read.
+    const glm::vec2 duv = uvAt(std::min(1.0f, u + 0.5f / k)) - uvAt(std::max(0.0f, u - 0.5f / k));
+    texels_.push_back(textures.sample(layer, uvAt(u), textures.lodFor(duv)));
+  }
+  for (int len = k / 2, from = base; len >= 1; from += 2 * len, len /= 2)
+    for (int i = 0; i < len; ++i)
+      texels_.push_back(0.5f * (texels_[from + 2 * i] + texels_[from + 2 * i + 1]));
+  return base;
+}
+
+// Keep in step with the GLSL below.
+glm::vec4 TextureVectors::sample(int base, int k, float u, float texelsPerPixel) const {
+  const int maxLevel = std::countr_zero(unsigned(k));
+  const float lod = std::clamp(std::log2(std::max(texelsPerPixel, 1.0f)), 0.0f, float(maxLevel));
+  auto level = [&](int l) {
+    const int len = k >> l, start = base + 2 * k - (2 * k >> l);
+    const float s = std::clamp(u, 0.0f, 1.0f) * len - 0.5f;
+    const float f0 = std::floor(s);
+    const int i0 = std::clamp(int(f0), 0, len - 1), i1 = std::clamp(int(f0) + 1, 0, len - 1);
+    return glm::mix(texels_[start + i0], texels_[start + i1], s - f0);
+  };
+  const int l0 = int(std::floor(lod)), l1 = std::min(l0 + 1, maxLevel);
+  return glm::mix(level(l0), level(l1), lod - float(l0));
+}
+
+const char* glslTextureVector() {
+  return R"(
+vec4 textureVectorLevel(samplerBuffer vectors, float base, float k, int l, float u) {
+  float len = k / float(1 << l);
+  float start = base + 2.0 * k - 2.0 * len;
+  float s = clamp(u, 0.0, 1.0) * len - 0.5;
+  float f0 = floor(s);
+  int i0 = int(clamp(f0, 0.0, len - 1.0)), i1 = int(clamp(f0 + 1.0, 0.0, len - 1.0));
+  return mix(texelFetch(vectors, int(start) + i0), texelFetch(vectors, int(start) + i1), s - f0);
+}
+vec4 sampleTextureVector(samplerBuffer vectors, float base, float k, float u, float texelsPerPixel) {
+  float maxLevel = log2(k);
+  float lod = clamp(log2(max(texelsPerPixel, 1.0)), 0.0, maxLevel);
+  int l0 = int(floor(lod)), l1 = min(l0 + 1, int(maxLevel));
+  return mix(textureVectorLevel(vectors, base, k, l0, u),
+             textureVectorLevel(vectors, base, k, l1, u), lod - float(l0));
+}
+)";
+}
+
+}  // namespace mvr::shading
