@@ -39,6 +39,10 @@ void RenderTarget::bind() const {
 }
 
 void RenderTarget::clear() const {
+  // Clears obey the write masks; a pass that tests depth EQUAL leaves the
+  // depth mask off, and a stale depth buffer would hide the next batch.
+  gl::DepthMask(GL_TRUE);
+  gl::ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   const float zero[4] = {0, 0, 0, 0};
   gl::ClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zero);
   gl::ClearNamedFramebufferfi(fbo_.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
