@@ -9,6 +9,9 @@
 #include "mvr/scene_buffers.h"
 #include "mvr/view_loop.h"
 #include "shading/lighting.h"
+#include "shading/shading_plan.h"
+#include "shading/texture_set.h"
+#include "shading/view_dependent.h"
 
 namespace mvr {
 namespace {
@@ -18,11 +21,15 @@ uniform mat4 uViewProj;
 out vec3 vNormal;
 out vec3 vAlbedo;
 flat out float vCull;
+flat out float vMaterial;
+out vec2 vUv;
 void main() {
   gl_Position = uViewProj * vec4(aPosition, 1.0);
   vNormal = aNormal;
   vAlbedo = aAlbedo;
   vCull = aCull;
+  vMaterial = aMaterial;
+  vUv = aUv;
 }
 )";
 
@@ -30,12 +37,23 @@ const char* const kGeometryFragment = R"(
 in vec3 vNormal;
 in vec3 vAlbedo;
 flat in float vCull;
+flat in float vMaterial;
+in vec2 vUv;
 layout(location = 0) out vec4 oAlbedo;  // a = 1 marks covered pixels
-layout(location = 1) out vec4 oNormal;
+layout(location = 1) out vec4 oNormal;  // w: material index
+#ifdef TEXTURE
+layout(binding = 3) uniform sampler2DArray uTextures;
+#endif
 void main() {
   if (!gl_FrontFacing && vCull > 0.5) discard;
-  oAlbedo = vec4(vAlbedo, 1.0);
-  oNormal = vec4(gl_FrontFacing ? vNormal : -vNormal, 0.0);
+  vec3 albedo = vAlbedo;
+#ifdef TEXTURE
+  float layer = uMaterials[int(vMaterial)].params.y;
+  vec4 texel = texture(uTextures, vec3(vUv, layer));
+  if (layer >= 0.0) albedo *= texel.rgb;
+#endif
+  oAlbedo = vec4(albedo, 1.0);
+  oNormal = vec4(gl_FrontFacing ? vNormal : -vNormal, vMaterial);
 }
 )";
 
@@ -45,6 +63,7 @@ layout(binding = 1) uniform sampler2D uNormal;
 layout(binding = 2) uniform sampler2D uDepth;
 uniform mat4 uInverseViewProj;
 uniform vec2 uSize;
+uniform vec3 uEye;
 layout(location = 0) out vec4 oColor;
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
@@ -53,8 +72,13 @@ void main() {
   float depth = texelFetch(uDepth, px, 0).r;  // zero-to-one clip depth
   vec4 ndc = vec4(gl_FragCoord.xy / uSize * 2.0 - 1.0, depth, 1.0);
   vec4 world = uInverseViewProj * ndc;
-  vec3 n = normalize(texelFetch(uNormal, px, 0).xyz);
-  oColor = vec4(diffuseLight(albedo.rgb, world.xyz / world.w, n), 1.0);
+  vec4 normal = texelFetch(uNormal, px, 0);
+  vec3 n = normalize(normal.xyz), p = world.xyz / world.w;
+  vec3 c = diffuseLight(albedo.rgb, p, n);
+#ifdef VIEW_DEPENDENT
+  c += specularLight(int(normal.w + 0.5), p, n, uEye);
+#endif
+  oColor = vec4(c, 1.0);
 }
 )";
 
@@ -98,17 +122,22 @@ class DeferredRenderer final : public Renderer {
   DeferredRenderer(const Scene& scene, PixelType type)
       : scene_(scene), type_(type),
         buffers_(scene, shading::vertexAlbedo(scene), shading::vertexCullFlags(scene)),
+        plan_(shading::planShading(scene)),
         geometry_(gl::linkProgram(
             "deferred-geometry",
             {{GL_VERTEX_SHADER, gl::glslHeader() + kSceneVertexInputs + kGeometryVertex},
-             {GL_FRAGMENT_SHADER, gl::glslHeader() + kGeometryFragment}})),
+             {GL_FRAGMENT_SHADER, header() + shading::glslLighting() + shading::glslSpecular() +
+                                      kGeometryFragment}})),
         lighting_(gl::linkProgram(
             "deferred-lighting",
             {{GL_VERTEX_SHADER, gl::glslHeader() + gl::kFullScreenTriangleVertex},
-             {GL_FRAGMENT_SHADER,
-              gl::glslHeader() + shading::glslLighting() + kLightingFragment}})),
-        emptyVao_(gl::VertexArray::create()) {
+             {GL_FRAGMENT_SHADER, header() + shading::glslLighting() + shading::glslSpecular() +
+                                      kLightingFragment}})),
+        emptyVao_(gl::VertexArray::create()),
+        textures_(shading::TextureSet::load(scene)),
+        materials_(shading::makeMaterialBuffer(scene, textures_.materialLayers())) {
     shading::setLightUniforms(lighting_, scene_);
+    if (!textures_.empty()) textureArray_ = textures_.upload();
   }
   std::string name() const override { return "deferred"; }
   FrameOrder order() const override { return FrameOrder::View; }
@@ -119,6 +148,8 @@ class DeferredRenderer final : public Renderer {
     setDepthConvention();
     gl::FrontFace(GL_CW);
     gl::setUniform(lighting_, "uSize", glm::vec2(cam.width(), cam.height()));
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, materials_.id());
+    if (!textures_.empty()) gl::BindTextureUnit(3, textureArray_.id());
     renderEachView(cam, target, "deferred", sink, stats, [&](int row, int view) {
       const glm::dmat4 viewProj = cam.viewProjection(view, row);
       {
@@ -137,6 +168,7 @@ class DeferredRenderer final : public Renderer {
       gl::Disable(GL_DEPTH_TEST);
       gl::UseProgram(lighting_.id());
       gl::setUniform(lighting_, "uInverseViewProj", glm::mat4(glm::inverse(viewProj)));
+      gl::setUniform(lighting_, "uEye", glm::vec3(cam.eye(view, row)));
       gbuffer.bindForReading();
       gl::BindVertexArray(emptyVao_.id());
       gl::DrawArrays(GL_TRIANGLES, 0, 3);
@@ -146,11 +178,24 @@ class DeferredRenderer final : public Renderer {
   }
 
  private:
+  // The plan's passes as defines: the geometry pass textures, the lighting
+  // pass adds highlights.
+  std::string header() const {
+    std::string h = gl::glslHeader();
+    if (plan_.texture) h += "#define TEXTURE\n";
+    if (plan_.specular || plan_.reflection) h += "#define VIEW_DEPENDENT\n";
+    return h;
+  }
+
   const Scene& scene_;
   PixelType type_;
   SceneBuffers buffers_;
+  shading::ShadingPlan plan_;
   gl::Program geometry_, lighting_;
   gl::VertexArray emptyVao_;
+  shading::TextureSet textures_;
+  gl::Buffer materials_;
+  gl::Texture textureArray_;
 };
 
 }  // namespace

@@ -119,6 +119,8 @@ TEST_F(TextureVsSvr, EveryPathIsCloseToSvrWithoutShimmer) {
   ShearingCamera cam(*scene.camera, 160, 120, 7);
   auto svr = makeSvrRenderer(scene, PixelType::U8);
   const test::CaptureSink reference = test::renderViews(*svr, cam);
+  auto deferred = makeDeferredRenderer(scene, PixelType::U8);
+  EXPECT_GE(test::compareViews(reference, test::renderViews(*deferred, cam)).minPsnr, 40.0);
   struct Case {
     PstMode mode;
     TextureMode texture;
