@@ -180,8 +180,6 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading)
   vao_ = gl::VertexArray::create();
   if (pass != shading::Pass::Diffuse) {
     shading::setLightUniforms(program_, *shading.scene);
-    materials_ = shading::makeMaterialBuffer(
-        *shading.scene, shading.textures ? shading.textures->materialLayers() : std::vector<int>{});
   }
 }
 
@@ -220,7 +218,6 @@ void EpiPass::begin(const glm::vec2& scale, const glm::vec3& eye0, const glm::ve
     gl::DepthMask(GL_TRUE);
     return;
   }
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, materials_.id());
   gl::Enable(GL_BLEND);
   gl::DepthFunc(GL_EQUAL);
   gl::DepthMask(GL_FALSE);

@@ -32,7 +32,8 @@ class EpiPass {
   // Uses the program and sets its uniforms and the blend and depth state.
   void begin(const glm::vec2& scale, const glm::vec3& eye0, const glm::vec3& eyeStep) const;
   // Texture units the texture pass reads (direct: the 2D array; vector:
-  // the buffer texture of this batch's vectors).
+  // the buffer texture of this batch's vectors). Passes after the first
+  // also read the Materials storage block, which the caller binds.
   static constexpr GLuint kTextureUnit = 0, kVectorUnit = 3;
   // Binds this pass's vertex array over these vertex and index buffers.
   void bindVertices(GLuint vertices, GLuint indices) const;
@@ -46,7 +47,6 @@ class EpiPass {
   int count_ = 0;
   gl::Program program_;
   gl::VertexArray vao_;
-  gl::Buffer materials_;
 };
 
 }  // namespace mvr

@@ -14,6 +14,7 @@
 // (epi/epi_pass.h) in a float target.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "epi/epi_pass.h"
 #include "epi/epi_rasterizer.h"
@@ -22,6 +23,7 @@
 #include "mvr/gl_program.h"
 #include "mvr/progress.h"
 #include "mvr/render_target.h"
+#include "shading/gpu_materials.h"
 #include "shading/texture_vector.h"
 
 namespace mvr {
@@ -47,8 +49,11 @@ class GlRasterizer final : public EpiRasterizer {
   GlRasterizer(PstMode mode, PixelType type, const EpiShading& shading)
       : mode_(mode), type_(type), shading_(shading) {
     for (shading::Pass p : shading_.plan.passes()) passes_.emplace_back(mode, p, shading_);
-    if (shading_.plan.texture && shading_.textureMode == TextureMode::Direct)
-      textureArray_ = shading_.textures->upload();
+    if (shading_.scene) {
+      static const shading::TextureSet kNone;
+      const bool direct = shading_.textureMode == TextureMode::Direct;
+      materials_.emplace(*shading_.scene, shading_.textures ? *shading_.textures : kNone, direct);
+    }
   }
 
   void rasterize(const ExtremeVertices& v, const SliceTable& table, const ShearingCamera& cam,
@@ -69,6 +74,7 @@ class GlRasterizer final : public EpiRasterizer {
     const glm::vec2 scale(2.0f / w, 2.0f / (batch * chunkRows));
     const glm::vec3 eye0(cam.eye(0, row)), eyeStep(cam.eye(1, row) - cam.eye(0, row));
     gl::Enable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
+    if (materials_) materials_->bind(EpiPass::kTextureUnit);
     Progress progress("mvr " + std::string(pstModeName(mode_)), h);
     std::vector<Image> epis(batch);
     for (int first = 0; first < h; first += batch) {
@@ -116,11 +122,7 @@ class GlRasterizer final : public EpiRasterizer {
 
   // Returns the buffer behind the vector texture: it must outlive the draw.
   gl::Buffer bindTextures(const EpiPass& pass) {
-    if (pass.pass() != shading::Pass::Texture) return {};
-    if (!pass.linear()) {
-      gl::BindTextureUnit(EpiPass::kTextureUnit, textureArray_.id());
-      return {};
-    }
+    if (!pass.linear()) return {};
     vectorTexels_ += vectors_.texels().size();
     gl::Buffer buffer = gl::makeBuffer(vectors_.texels().data(), std::max<size_t>(1, vectors_.texels().size()));
     vectorTexture_ = gl::Texture(GL_TEXTURE_BUFFER);
@@ -218,7 +220,8 @@ class GlRasterizer final : public EpiRasterizer {
   std::vector<float> vertices_;
   std::vector<uint32_t> indices_;
   shading::TextureVectors vectors_;
-  gl::Texture textureArray_, vectorTexture_;
+  std::optional<shading::GpuMaterials> materials_;  // with a scene
+  gl::Texture vectorTexture_;
   size_t verticesEmitted_ = 0, vectorTexels_ = 0;
 };
 

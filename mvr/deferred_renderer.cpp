@@ -10,7 +10,7 @@
 #include "mvr/view_loop.h"
 #include "shading/lighting.h"
 #include "shading/shading_plan.h"
-#include "shading/texture_set.h"
+#include "shading/gpu_materials.h"
 #include "shading/view_dependent.h"
 
 namespace mvr {
@@ -134,10 +134,8 @@ class DeferredRenderer final : public Renderer {
              {GL_FRAGMENT_SHADER, header() + shading::glslLighting() + shading::glslSpecular() +
                                       kLightingFragment}})),
         emptyVao_(gl::VertexArray::create()),
-        textures_(shading::TextureSet::load(scene)),
-        materials_(shading::makeMaterialBuffer(scene, textures_.materialLayers())) {
+        materials_(scene, shading::TextureSet::load(scene)) {
     shading::setLightUniforms(lighting_, scene_);
-    if (!textures_.empty()) textureArray_ = textures_.upload();
   }
   std::string name() const override { return "deferred"; }
   FrameOrder order() const override { return FrameOrder::View; }
@@ -148,8 +146,7 @@ class DeferredRenderer final : public Renderer {
     setDepthConvention();
     gl::FrontFace(GL_CW);
     gl::setUniform(lighting_, "uSize", glm::vec2(cam.width(), cam.height()));
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, materials_.id());
-    if (!textures_.empty()) gl::BindTextureUnit(3, textureArray_.id());
+    materials_.bind(3);  // units 0-2 read the G-buffer
     renderEachView(cam, target, "deferred", sink, stats, [&](int row, int view) {
       const glm::dmat4 viewProj = cam.viewProjection(view, row);
       {
@@ -180,12 +177,7 @@ class DeferredRenderer final : public Renderer {
  private:
   // The plan's passes as defines: the geometry pass textures, the lighting
   // pass adds highlights.
-  std::string header() const {
-    std::string h = gl::glslHeader();
-    if (plan_.texture) h += "#define TEXTURE\n";
-    if (plan_.specular || plan_.reflection) h += "#define VIEW_DEPENDENT\n";
-    return h;
-  }
+  std::string header() const { return gl::glslHeader() + plan_.glslDefines(); }
 
   const Scene& scene_;
   PixelType type_;
@@ -193,9 +185,7 @@ class DeferredRenderer final : public Renderer {
   shading::ShadingPlan plan_;
   gl::Program geometry_, lighting_;
   gl::VertexArray emptyVao_;
-  shading::TextureSet textures_;
-  gl::Buffer materials_;
-  gl::Texture textureArray_;
+  shading::GpuMaterials materials_;
 };
 
 }  // namespace

@@ -4,6 +4,13 @@
 
 namespace mvr {
 
+std::vector<uint32_t> Scene::vertexMaterials() const {
+  std::vector<uint32_t> m(vertexCount(), 0);
+  for (size_t t = 0; t < triangleCount(); ++t)
+    for (int k = 0; k < 3; ++k) m[triangles[t][k]] = materialIds[t];
+  return m;
+}
+
 Bounds Scene::bounds() const {
   if (positions.empty()) return {};
   Bounds b{glm::vec3(std::numeric_limits<float>::max()),

@@ -55,6 +55,9 @@ struct Scene {
   size_t vertexCount() const { return positions.size(); }
   size_t triangleCount() const { return triangles.size(); }
   Bounds bounds() const;
+  // Per vertex: its material. A vertex belongs to one mesh, so any of its
+  // triangles names it.
+  std::vector<uint32_t> vertexMaterials() const;
   // Appends another scene's geometry and materials (lights stay ours).
   void append(const Scene& other);
 };

@@ -20,12 +20,10 @@ void attach(GLuint vao, GLuint attrib, const gl::Buffer& buffer, int components)
   gl::EnableVertexArrayAttrib(vao, attrib);
 }
 
-// A vertex belongs to one mesh, so any of its triangles names its material.
+// GLSL reads the material index as a float attribute.
 std::vector<float> vertexMaterials(const Scene& scene) {
-  std::vector<float> m(scene.vertexCount(), 0.0f);
-  for (size_t t = 0; t < scene.triangleCount(); ++t)
-    for (int k = 0; k < 3; ++k) m[scene.triangles[t][k]] = float(scene.materialIds[t]);
-  return m;
+  const std::vector<uint32_t> ids = scene.vertexMaterials();
+  return std::vector<float>(ids.begin(), ids.end());
 }
 
 std::vector<glm::vec2> vertexUvs(const Scene& scene) {

@@ -9,9 +9,9 @@
 #include "mvr/render_target.h"
 #include "mvr/scene_buffers.h"
 #include "mvr/view_loop.h"
+#include "shading/gpu_materials.h"
 #include "shading/lighting.h"
 #include "shading/shading_plan.h"
-#include "shading/texture_set.h"
 #include "shading/view_dependent.h"
 
 namespace mvr {
@@ -142,11 +142,7 @@ std::string vertexSource(std::initializer_list<std::string_view> defines) {
 // renames: the geometry shader's outputs when it routes layers.
 // The plan's passes become defines: one shader computes their sum.
 std::string fragmentSource(const Scene& scene, bool renamed) {
-  std::string header = gl::glslHeader();
-  for (shading::Pass pass : shading::planShading(scene).passes()) {
-    if (pass == shading::Pass::Texture) header += "#define TEXTURE\n";
-    if (pass == shading::Pass::ViewDependent) header += "#define VIEW_DEPENDENT\n";
-  }
+  std::string header = gl::glslHeader() + shading::planShading(scene).glslDefines();
   if (renamed)
     for (const char* name : {"Front", "Back", "Cull", "Position", "Normal", "Material", "Eye", "Uv"})
       header += std::string("#define v") + name + " g" + name + "\n";
@@ -160,10 +156,8 @@ class SvrRenderer final : public Renderer {
         buffers_(scene, shading::vertexAlbedo(scene), shading::vertexCullFlags(scene)),
         program_(gl::linkProgram("svr", {{GL_VERTEX_SHADER, vertexSource({})},
                                          {GL_FRAGMENT_SHADER, fragmentSource(scene, false)}})),
-        textures_(shading::TextureSet::load(scene)),
-        materials_(shading::makeMaterialBuffer(scene, textures_.materialLayers())) {
+        materials_(scene, shading::TextureSet::load(scene)) {
     shading::setLightUniforms(program_, scene_);
-    if (!textures_.empty()) textureArray_ = textures_.upload();
   }
   std::string name() const override { return "svr"; }
   FrameOrder order() const override { return FrameOrder::View; }
@@ -176,8 +170,7 @@ class SvrRenderer final : public Renderer {
     gl::FrontFace(GL_CW);
     target.bind();
     gl::UseProgram(program_.id());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, materials_.id());
-    if (!textures_.empty()) gl::BindTextureUnit(0, textureArray_.id());
+    materials_.bind(0);
     buffers_.bind();
     renderEachView(cam, target, "svr", sink, stats, [&](int row, int view) {
       ScopedStage s(stats.times, "draw");
@@ -196,9 +189,7 @@ class SvrRenderer final : public Renderer {
   PixelType type_;
   SceneBuffers buffers_;
   gl::Program program_;
-  shading::TextureSet textures_;
-  gl::Buffer materials_;
-  gl::Texture textureArray_;
+  shading::GpuMaterials materials_;
 };
 
 class LayeredSvrRenderer final : public Renderer {
@@ -206,7 +197,8 @@ class LayeredSvrRenderer final : public Renderer {
   LayeredSvrRenderer(const Scene& scene, PixelType type)
       : scene_(scene), type_(type),
         buffers_(scene, shading::vertexAlbedo(scene), shading::vertexCullFlags(scene)),
-        vsLayer_(gl::hasExtension("GL_ARB_shader_viewport_layer_array")) {
+        vsLayer_(gl::hasExtension("GL_ARB_shader_viewport_layer_array")),
+        materials_(scene, shading::TextureSet::load(scene)) {
     if (vsLayer_) {
       program_ = gl::linkProgram(
           "svr-layered", {{GL_VERTEX_SHADER, vertexSource({"LAYERED", "VS_LAYER"})},
@@ -217,9 +209,6 @@ class LayeredSvrRenderer final : public Renderer {
                           {GL_GEOMETRY_SHADER, gl::glslHeader() + kLayerGeometry},
                           {GL_FRAGMENT_SHADER, fragmentSource(scene, true)}});
     }
-    textures_ = shading::TextureSet::load(scene);
-    materials_ = shading::makeMaterialBuffer(scene, textures_.materialLayers());
-    if (!textures_.empty()) textureArray_ = textures_.upload();
     shading::setLightUniforms(program_, scene_);
   }
   std::string name() const override { return "svr-layered"; }
@@ -238,9 +227,8 @@ class LayeredSvrRenderer final : public Renderer {
     gl::Buffer views = gl::makeBuffer(matrices.data(), matrices.size());
     gl::Buffer eyeBuffer = gl::makeBuffer(eyes.data(), eyes.size());
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, views.id());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, materials_.id());
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, eyeBuffer.id());
-    if (!textures_.empty()) gl::BindTextureUnit(0, textureArray_.id());
+    materials_.bind(0);
     setDepthConvention();
     gl::FrontFace(GL_CW);
     target.bind();
@@ -287,10 +275,8 @@ class LayeredSvrRenderer final : public Renderer {
   PixelType type_;
   SceneBuffers buffers_;
   bool vsLayer_;
+  shading::GpuMaterials materials_;
   gl::Program program_;
-  shading::TextureSet textures_;
-  gl::Buffer materials_;
-  gl::Texture textureArray_;
 };
 
 }  // namespace

@@ -9,10 +9,7 @@ namespace mvr::shading {
 
 std::vector<glm::vec3> vertexAlbedo(const Scene& scene) {
   std::vector<glm::vec3> albedo(scene.colors);
-  // A vertex belongs to one mesh, so any of its triangles names its material.
-  std::vector<uint32_t> material(scene.vertexCount(), 0);
-  for (size_t t = 0; t < scene.triangleCount(); ++t)
-    for (int k = 0; k < 3; ++k) material[scene.triangles[t][k]] = scene.materialIds[t];
+  const std::vector<uint32_t> material = scene.vertexMaterials();
   for (size_t v = 0; v < albedo.size(); ++v) albedo[v] *= scene.materials[material[v]].diffuse;
   return albedo;
 }

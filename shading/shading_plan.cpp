@@ -41,6 +41,15 @@ const char* passName(Pass pass) {
   return "?";
 }
 
+std::string ShadingPlan::glslDefines() const {
+  std::string s;
+  for (Pass p : passes()) {
+    if (p == Pass::Texture) s += "#define TEXTURE\n";
+    if (p == Pass::ViewDependent) s += "#define VIEW_DEPENDENT\n";
+  }
+  return s;
+}
+
 std::string ShadingPlan::passNames() const {
   std::string s;
   for (Pass p : passes()) s += (s.empty() ? "" : "+") + std::string(passName(p));
