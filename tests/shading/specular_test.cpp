@@ -87,9 +87,7 @@ TEST_F(SpecularVsSvr, EveryModeMatchesSvr) {
   for (PstMode mode : {PstMode::Cpu, PstMode::Exact, PstMode::Strip, PstMode::Quad}) {
     auto mvr = makeMvrRenderer(scene, mode, PixelType::U8);
     RenderStats stats;
-    test::CaptureSink views;
-    EpisToViews reorder(views, cam.width(), cam.height(), cam.views(), PixelType::U8);
-    mvr->render(cam, reorder, stats);
+    const test::CaptureSink views = test::renderViews(*mvr, cam, stats);
     EXPECT_EQ(stats.notes["passes"], "diffuse+view-dependent");
     auto d = test::compareViews(reference, views);
     EXPECT_GE(d.minPsnr, 40.0) << pstModeName(mode);
@@ -129,13 +127,9 @@ TEST_F(SpecularVsSvr, PassesSurviveSeveralBatches) {
   auto exact = makeMvrRenderer(scene, PstMode::Exact, PixelType::U8, 2, TextureMode::Direct);
   auto cpu = makeMvrRenderer(scene, PstMode::Cpu, PixelType::U8);
   RenderStats stats;
-  test::CaptureSink a, b;
-  EpisToViews ra(a, cam.width(), cam.height(), cam.views(), PixelType::U8);
-  EpisToViews rb(b, cam.width(), cam.height(), cam.views(), PixelType::U8);
-  exact->render(cam, ra, stats);
+  const test::CaptureSink a = test::renderViews(*exact, cam, stats);
   ASSERT_LT(stats.counters["epis_per_draw"], cam.height());
-  RenderStats cpuStats;
-  cpu->render(cam, rb, cpuStats);
+  const test::CaptureSink b = test::renderViews(*cpu, cam);
   // Texture filtering arithmetic differs (about 34 dB at this size); a stale
   // depth buffer drops whole polygons (about 14 dB).
   EXPECT_GE(test::compareViews(a, b).minPsnr, 30.0);

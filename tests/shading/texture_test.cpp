@@ -131,9 +131,7 @@ TEST_F(TextureVsSvr, EveryPathIsCloseToSvrWithoutShimmer) {
                  Case{PstMode::Exact, TextureMode::Vector, 26.0}}) {
     auto mvr = makeMvrRenderer(scene, c.mode, PixelType::U8, 2, c.texture);
     RenderStats stats;
-    test::CaptureSink views;
-    EpisToViews reorder(views, cam.width(), cam.height(), cam.views(), PixelType::U8);
-    mvr->render(cam, reorder, stats);
+    const test::CaptureSink views = test::renderViews(*mvr, cam, stats);
     EXPECT_EQ(stats.notes["passes"], "diffuse+texture+view-dependent");
     const std::vector<double> psnr = perViewPsnr(reference, views);
     const auto [lo, hi] = std::minmax_element(psnr.begin(), psnr.end());

@@ -13,14 +13,20 @@
 
 namespace mvr::test {
 
-inline CaptureSink renderViews(Renderer& renderer, const ShearingCamera& cam,
+// stats: the renderer's stats, for tests that check passes or counters.
+inline CaptureSink renderViews(Renderer& renderer, const ShearingCamera& cam, RenderStats& stats,
                                PixelType type = PixelType::U8) {
   CaptureSink capture;
   EpisToViews reorder(capture, cam.width(), cam.height(), cam.views(), type);
   FrameSink& sink = renderer.order() == FrameOrder::Epi ? static_cast<FrameSink&>(reorder) : capture;
-  RenderStats stats;
   renderer.render(cam, sink, stats);
   return capture;
+}
+
+inline CaptureSink renderViews(Renderer& renderer, const ShearingCamera& cam,
+                               PixelType type = PixelType::U8) {
+  RenderStats stats;
+  return renderViews(renderer, cam, stats, type);
 }
 
 struct SetDifference {
