@@ -41,4 +41,13 @@ Pst makePst(const SliceEnd& e0, const SliceEnd& e1, int views, bool cullBack);
 glm::vec3 pstColor(const Pst& pst, bool front, float u);
 float pstDepth(const Pst& pst, float u);
 
+// N of the slice's extra attributes from index `at`, at screen parameter u:
+// hyperbolic, as pstColor.
+template <int N>
+glm::vec<N, float> pstExtras(const Pst& pst, int at, float u) {
+  glm::vec<N, float> a, b;
+  for (int c = 0; c < N; ++c) a[c] = pst.e0.extrasOverW[at + c], b[c] = pst.e1.extrasOverW[at + c];
+  return (a + (b - a) * u) / (pst.e0.invW + (pst.e1.invW - pst.e0.invW) * u);
+}
+
 }  // namespace mvr

@@ -100,13 +100,8 @@ class SpanRasterizer final : public EpiRasterizer {
     const shading::ShadingPlan& plan = shading_.plan;
     if (plan.uv >= 0) color *= texel(pst, material, u, du);
     if (plan.position < 0) return color;
-    const float invW = pst.e0.invW + (pst.e1.invW - pst.e0.invW) * u;
-    auto extra3 = [&](int at) {
-      glm::vec3 a, b;
-      for (int c = 0; c < 3; ++c) a[c] = pst.e0.extrasOverW[at + c], b[c] = pst.e1.extrasOverW[at + c];
-      return (a + (b - a) * u) / invW;
-    };
-    const glm::vec3 p = extra3(plan.position), n = extra3(plan.normal) * (front ? 1.0f : -1.0f);
+    const glm::vec3 p = pstExtras<3>(pst, plan.position, u);
+    const glm::vec3 n = pstExtras<3>(pst, plan.normal, u) * (front ? 1.0f : -1.0f);
     const glm::vec3 eye = eye0_ + view * eyeStep_;
     color += shading::specularLight(*shading_.scene, shading_.scene->materials[material], p, n, eye);
     return color;
@@ -118,13 +113,8 @@ class SpanRasterizer final : public EpiRasterizer {
     const int layer = shading_.textures->materialLayers()[material];
     if (layer < 0) return glm::vec3(1.0f);
     const int at = shading_.plan.uv;
-    auto uvAt = [&](float t) {
-      const glm::vec2 a(pst.e0.extrasOverW[at], pst.e0.extrasOverW[at + 1]);
-      const glm::vec2 b(pst.e1.extrasOverW[at], pst.e1.extrasOverW[at + 1]);
-      return (a + (b - a) * t) / (pst.e0.invW + (pst.e1.invW - pst.e0.invW) * t);
-    };
-    const glm::vec2 uv = uvAt(u);
-    return glm::vec3(shading_.textures->sample(layer, uv, shading_.textures->lodFor(uvAt(u + du) - uv)));
+    const glm::vec2 uv = pstExtras<2>(pst, at, u), next = pstExtras<2>(pst, at, u + du);
+    return glm::vec3(shading_.textures->sample(layer, uv, shading_.textures->lodFor(next - uv)));
   }
 
   void store(Image& img, int x, int y, const glm::vec3& c) const {
