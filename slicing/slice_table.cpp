@@ -93,12 +93,15 @@ namespace {
 
 SliceEnd endAt(const ExtremeVertices& v, uint32_t p, uint32_t q, float t) {
   auto mix = [t](float a, float b) { return a + (b - a) * t; };
-  SliceEnd e{mix(v.x0[p], v.x0[q]),
-             mix(v.dx[p], v.dx[q]),
-             mix(v.depth[p], v.depth[q]),
-             mix(v.invW[p], v.invW[q]),
-             glm::mix(v.frontOverW[p], v.frontOverW[q], t),
-             glm::mix(v.backOverW[p], v.backOverW[q], t)};
+  // Default-initialised: only the first extraCount extras are written or
+  // read, and zeroing the rest costs on the hottest path of diffuse scenes.
+  SliceEnd e;
+  e.x0 = mix(v.x0[p], v.x0[q]);
+  e.dx = mix(v.dx[p], v.dx[q]);
+  e.depth = mix(v.depth[p], v.depth[q]);
+  e.invW = mix(v.invW[p], v.invW[q]);
+  e.frontOverW = glm::mix(v.frontOverW[p], v.frontOverW[q], t);
+  e.backOverW = glm::mix(v.backOverW[p], v.backOverW[q], t);
   const int k = v.extraCount;
   const float *ep = v.extrasOverW.data() + size_t(p) * k, *eq = v.extrasOverW.data() + size_t(q) * k;
   for (int c = 0; c < k; ++c) e.extrasOverW[c] = mix(ep[c], eq[c]);
