@@ -86,7 +86,14 @@ TEST(Cli, CompareReportsIdenticalAndRejectsMismatch) {
 
 TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
   fs::path d = outDir("bad");
+  const fs::path noTexture = outDir("bad_scene") / "missing_texture.json";
+  fs::create_directories(noTexture.parent_path());
+  std::ofstream(noTexture) << R"({"meshes": [{"file": ")" << MVR_TEST_ASSETS
+                           << R"(/plane.obj", "material": {"texture": "nothere.png"}}]})";
   for (std::string args : std::vector<std::string>{"render /nonexistent/scene.json --out " + d.string(),
+                           "render " + noTexture.string() + " --out " + d.string(),
+                           "render --texture nope --out " + d.string(),
+                           "render --backend svr --texture direct --out " + d.string(),
                            "render --views 0 --out " + d.string(),
                            "render --size 10 --out " + d.string(),
                            "render --backend nope --out " + d.string(),
@@ -96,6 +103,8 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
     EXPECT_EQ(r.err.rfind("mvr: ", 0), 0u) << r.err;
     EXPECT_FALSE(fs::exists(d / "manifest.json")) << args;
+    if (args.find(noTexture.string()) != std::string::npos)
+      EXPECT_NE(r.err.find("nothere.png"), std::string::npos) << r.err;
   }
 }
 
