@@ -137,6 +137,9 @@ void main() {
   vec3 eye = uEye0 + vView * uEyeStep;
   int material = int(vFlat.y);
   vec3 c = specularLight(material, attr3(0), attr3(3) * vFlat.x, eye);
+#ifdef REFLECT
+  c += environmentLight(material, reflectionVector(attr3(6), attr3(9), attr3(12), eye));
+#endif
   oColor = vec4(c, 1.0);
 }
 )";
@@ -160,13 +163,14 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading)
   if (pass == shading::Pass::Texture && !shading.textures)
     fail("EpiPass", "texture pass needs the scene's textures");
   const bool exact = mode == PstMode::Exact;
-  const std::string nv = "NV " + std::to_string(chunks());
-  const std::string header = exact ? gl::glslHeader({nv, "EXACT"}) : gl::glslHeader({nv});
+  std::string header = gl::glslHeader({"NV " + std::to_string(chunks())});
+  if (exact) header += "#define EXACT\n";
+  if (pass == shading::Pass::ViewDependent && shading.plan.reflect >= 0) header += "#define REFLECT\n";
   std::string fragment = header + (exact ? kExactFragment : kSliverFragment) + kAttributeHelpers;
   if (pass == shading::Pass::Diffuse) {
     fragment += kDiffuseMain;
   } else {
-    fragment += shading::glslLighting() + shading::glslSpecular();
+    fragment += shading::glslLighting() + shading::glslSpecular() + shading::glslEnvironment();
     if (pass == shading::Pass::ViewDependent)
       fragment += kViewDependentMain;
     else if (linear())

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "mvr/renderer.h"
+#include "shading/environment_set.h"
 #include "shading/shading_plan.h"
 #include "shading/texture_set.h"
 #include "slicing/slice_table.h"
@@ -28,6 +29,7 @@ struct EpiShading {
   const Scene* scene = nullptr;
   shading::ShadingPlan plan;
   const shading::TextureSet* textures = nullptr;  // when plan.texture
+  const shading::EnvironmentSet* environment = nullptr;  // when plan.reflection
   TextureMode textureMode = TextureMode::Vector;
 };
 

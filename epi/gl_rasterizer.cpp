@@ -50,9 +50,11 @@ class GlRasterizer final : public EpiRasterizer {
       : mode_(mode), type_(type), shading_(shading) {
     for (shading::Pass p : shading_.plan.passes()) passes_.emplace_back(mode, p, shading_);
     if (shading_.scene) {
-      static const shading::TextureSet kNone;
+      static const shading::TextureSet kNoTextures;
+      static const shading::EnvironmentSet kNoMaps;
       const bool direct = shading_.textureMode == TextureMode::Direct;
-      materials_.emplace(*shading_.scene, shading_.textures ? *shading_.textures : kNone, direct);
+      materials_.emplace(*shading_.scene, shading_.textures ? *shading_.textures : kNoTextures,
+                         shading_.environment ? *shading_.environment : kNoMaps, direct);
     }
   }
 

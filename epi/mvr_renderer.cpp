@@ -14,7 +14,8 @@ class MvrRenderer final : public Renderer {
   MvrRenderer(const Scene& scene, PstMode mode, PixelType type, int threads, TextureMode texture)
       : scene_(scene), mode_(mode), threads_(threads),
         textures_(shading::TextureSet::load(scene)),
-        shading_{&scene, shading::planShading(scene), &textures_, texture},
+        environment_(shading::EnvironmentSet::load(scene)),
+        shading_{&scene, shading::planShading(scene), &textures_, &environment_, texture},
         rasterizer_(mode == PstMode::Cpu ? makeSpanRasterizer(type, threads, shading_)
                                          : makeGlRasterizer(mode, type, shading_)) {}
 
@@ -66,6 +67,7 @@ class MvrRenderer final : public Renderer {
   PstMode mode_;
   int threads_;
   shading::TextureSet textures_;
+  shading::EnvironmentSet environment_;
   EpiShading shading_;
   std::unique_ptr<EpiRasterizer> rasterizer_;
 };

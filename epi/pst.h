@@ -43,11 +43,18 @@ float pstDepth(const Pst& pst, float u);
 
 // N of the slice's extra attributes from index `at`, at screen parameter u:
 // hyperbolic, as pstColor.
+inline void pstExtras(const Pst& pst, int at, int count, float u, float* out) {
+  const float invW = pst.e0.invW + (pst.e1.invW - pst.e0.invW) * u;
+  for (int c = 0; c < count; ++c) {
+    const float a = pst.e0.extrasOverW[at + c], b = pst.e1.extrasOverW[at + c];
+    out[c] = (a + (b - a) * u) / invW;
+  }
+}
 template <int N>
 glm::vec<N, float> pstExtras(const Pst& pst, int at, float u) {
-  glm::vec<N, float> a, b;
-  for (int c = 0; c < N; ++c) a[c] = pst.e0.extrasOverW[at + c], b[c] = pst.e1.extrasOverW[at + c];
-  return (a + (b - a) * u) / (pst.e0.invW + (pst.e1.invW - pst.e0.invW) * u);
+  glm::vec<N, float> v;
+  pstExtras(pst, at, N, u, &v[0]);
+  return v;
 }
 
 }  // namespace mvr

@@ -23,6 +23,8 @@ class SpanRasterizer final : public EpiRasterizer {
     if (shading_.plan.passes().size() > 1 && !shading_.scene)
       fail("cpu rasterizer", "shading passes need a scene");
     if (shading_.plan.texture && !shading_.textures) fail("cpu rasterizer", "texturing needs textures");
+    if (shading_.plan.reflection && !shading_.environment)
+      fail("cpu rasterizer", "reflection needs the reflection maps");
   }
 
   void rasterize(const ExtremeVertices& v, const SliceTable& table, const ShearingCamera& cam,
@@ -104,6 +106,13 @@ class SpanRasterizer final : public EpiRasterizer {
     const glm::vec3 n = pstExtras<3>(pst, plan.normal, u) * (front ? 1.0f : -1.0f);
     const glm::vec3 eye = eye0_ + view * eyeStep_;
     color += shading::specularLight(*shading_.scene, shading_.scene->materials[material], p, n, eye);
+    if (plan.reflect >= 0) {
+      float affine[9];
+      pstExtras(pst, plan.reflect, 9, u, affine);
+      const glm::vec3 r = shading::reflectionVector(affine, eye);
+      const glm::vec3 reflectivity = shading_.scene->materials[material].reflectivity;
+      color += reflectivity * shading_.environment->sample(shading_.environment->materialMaps()[material], r);
+    }
     return color;
   }
 

@@ -78,6 +78,11 @@ void main() {
 #ifdef VIEW_DEPENDENT
   c += specularLight(int(normal.w + 0.5), p, n, uEye);
 #endif
+#ifdef REFLECT
+  // Per pixel from the G-buffer's normal, unlike the interpolated
+  // per-vertex reflection vectors of svr and mvr (Halle eq. 5.2).
+  c += environmentLight(int(normal.w + 0.5), reflect(p - uEye, n));
+#endif
   oColor = vec4(c, 1.0);
 }
 )";
@@ -132,9 +137,9 @@ class DeferredRenderer final : public Renderer {
             "deferred-lighting",
             {{GL_VERTEX_SHADER, gl::glslHeader() + gl::kFullScreenTriangleVertex},
              {GL_FRAGMENT_SHADER, header() + shading::glslLighting() + shading::glslSpecular() +
-                                      kLightingFragment}})),
+                                      shading::glslEnvironment() + kLightingFragment}})),
         emptyVao_(gl::VertexArray::create()),
-        materials_(scene, shading::TextureSet::load(scene)) {
+        materials_(scene, shading::TextureSet::load(scene), shading::EnvironmentSet::load(scene)) {
     shading::setLightUniforms(lighting_, scene_);
   }
   std::string name() const override { return "deferred"; }

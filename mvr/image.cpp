@@ -2,12 +2,33 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 
 #include "mvr/error.h"
 
 namespace mvr {
+
+std::vector<uint8_t> resampleRgba8(const Image& src, glm::ivec4 rect, int width, int height,
+                                   bool bottomUp) {
+  std::vector<uint8_t> out(size_t(width) * height * 4);
+  auto at = [&](int px, int py) {
+    return src.pixel(rect.x + std::clamp(px, 0, rect.z - 1), rect.y + std::clamp(py, 0, rect.w - 1));
+  };
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const float sx = (x + 0.5f) * rect.z / width - 0.5f, sy = (y + 0.5f) * rect.w / height - 0.5f;
+      const int x0 = int(std::floor(sx)), y0 = int(std::floor(sy));
+      const float fx = sx - x0, fy = sy - y0;
+      const glm::vec4 c = glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx),
+                                   glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx), fy);
+      uint8_t* p = out.data() + (size_t(bottomUp ? height - 1 - y : y) * width + x) * 4;
+      for (int k = 0; k < 4; ++k) p[k] = uint8_t(std::lrint(std::clamp(c[k], 0.0f, 1.0f) * 255.0f));
+    }
+  return out;
+}
 
 glm::vec4 Image::pixel(int x, int y) const {
   const size_t i = (size_t(y) * width + x) * 4;

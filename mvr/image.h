@@ -32,4 +32,10 @@ struct Image {
 void writeImage(const Image& image, const std::string& path, int bits = 8);
 Image readImage(const std::string& path);  // 4 channels, U8 or F32
 
+// The rectangle (x, y, w, h) of src resampled bilinearly (edges clamped) to
+// width x height and quantised to RGBA8. bottomUp: output row 0 is the
+// rectangle's bottom row, as GL's 2D texture convention wants.
+std::vector<uint8_t> resampleRgba8(const Image& src, glm::ivec4 rect, int width, int height,
+                                   bool bottomUp);
+
 }  // namespace mvr

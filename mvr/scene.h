@@ -21,6 +21,7 @@ struct Material {
   float shininess = 32.0f;
   SpecularModel specularModel = SpecularModel::BlinnPhong;
   std::string reflectionMap;  // empty for none
+  glm::vec3 reflectivity{1.0f};  // scales the reflected environment
   bool twoSided = true;       // false: back faces are culled
 };
 

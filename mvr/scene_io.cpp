@@ -90,7 +90,7 @@ class SceneReader {
   Material readMaterial(const Json& j, const std::string& where) const {
     expectObject(j, where,
                  {"diffuse", "texture", "specular", "shininess", "specular_model",
-                  "reflection_map", "two_sided"});
+                  "reflection_map", "reflectivity", "two_sided"});
     Material m;
     if (j.contains("diffuse")) m.diffuse = vec3(j["diffuse"], where + ".diffuse");
     if (j.contains("texture")) m.texture = relative(j["texture"], where + ".texture");
@@ -105,6 +105,7 @@ class SceneReader {
     if (m.shininess < 0 || m.shininess > 10000) bad(where + ".shininess", "must be in [0, 10000]");
     if (j.contains("reflection_map"))
       m.reflectionMap = relative(j["reflection_map"], where + ".reflection_map");
+    if (j.contains("reflectivity")) m.reflectivity = vec3(j["reflectivity"], where + ".reflectivity");
     if (j.contains("two_sided")) {
       if (!j["two_sided"].is_boolean()) bad(where + ".two_sided", "must be true or false");
       m.twoSided = j["two_sided"].get<bool>();

@@ -40,6 +40,9 @@ out vec3 vNormal;
 flat out float vMaterial;
 flat out vec3 vEye;
 out vec2 vUv;
+#ifdef REFLECT
+out vec3 vReflect;  // unnormalised, interpolated (Halle eq. 5.2)
+#endif
 void main() {
 #ifdef LAYERED
   mat4 viewProj = uViewProjs[uLayerBase + gl_InstanceID];
@@ -61,6 +64,9 @@ void main() {
   vNormal = aNormal;
   vMaterial = aMaterial;
   vUv = aUv;
+#ifdef REFLECT
+  vReflect = reflect(aPosition - vEye, aNormal);
+#endif
 }
 )";
 
@@ -75,6 +81,9 @@ in vec3 vNormal;
 flat in float vMaterial;
 flat in vec3 vEye;
 in vec2 vUv;
+#ifdef REFLECT
+in vec3 vReflect;
+#endif
 layout(location = 0) out vec4 oColor;
 #ifdef TEXTURE
 layout(binding = 0) uniform sampler2DArray uTextures;
@@ -88,6 +97,9 @@ void main() {
 #endif
 #ifdef VIEW_DEPENDENT
   c += specularLight(int(vMaterial), vPosition, gl_FrontFacing ? vNormal : -vNormal, vEye);
+#endif
+#ifdef REFLECT
+  c += environmentLight(int(vMaterial), vReflect);
 #endif
   oColor = vec4(c, 1.0);
 }
@@ -106,6 +118,10 @@ in vec3 vNormal[];
 flat in float vMaterial[];
 flat in vec3 vEye[];
 in vec2 vUv[];
+#ifdef REFLECT
+in vec3 vReflect[];
+out vec3 gReflect;
+#endif
 out vec3 gFront;
 out vec3 gBack;
 flat out float gCull;
@@ -126,27 +142,34 @@ void main() {
     gMaterial = vMaterial[i];
     gEye = vEye[i];
     gUv = vUv[i];
+#ifdef REFLECT
+    gReflect = vReflect[i];
+#endif
     EmitVertex();
   }
 }
 )";
 
-std::string vertexSource(std::initializer_list<std::string_view> defines) {
+// The plan's passes become defines: one shader computes their sum.
+std::string planDefines(const Scene& scene) { return shading::planShading(scene).glslDefines(); }
+
+std::string vertexSource(const Scene& scene, std::initializer_list<std::string_view> defines) {
   std::string header = gl::glslHeader(defines);
   // #extension must precede every declaration.
   for (std::string_view d : defines)
     if (d == "VS_LAYER") header += "#extension GL_ARB_shader_viewport_layer_array : require\n";
-  return header + kSceneVertexInputs + shading::glslLighting() + kSvrVertex;
+  return header + planDefines(scene) + kSceneVertexInputs + shading::glslLighting() + kSvrVertex;
 }
 
 // renames: the geometry shader's outputs when it routes layers.
-// The plan's passes become defines: one shader computes their sum.
 std::string fragmentSource(const Scene& scene, bool renamed) {
-  std::string header = gl::glslHeader() + shading::planShading(scene).glslDefines();
+  std::string header = gl::glslHeader() + planDefines(scene);
   if (renamed)
-    for (const char* name : {"Front", "Back", "Cull", "Position", "Normal", "Material", "Eye", "Uv"})
+    for (const char* name :
+         {"Front", "Back", "Cull", "Position", "Normal", "Material", "Eye", "Uv", "Reflect"})
       header += std::string("#define v") + name + " g" + name + "\n";
-  return header + shading::glslLighting() + shading::glslSpecular() + kSvrFragment;
+  return header + shading::glslLighting() + shading::glslSpecular() + shading::glslEnvironment() +
+         kSvrFragment;
 }
 
 class SvrRenderer final : public Renderer {
@@ -154,9 +177,9 @@ class SvrRenderer final : public Renderer {
   SvrRenderer(const Scene& scene, PixelType type)
       : scene_(scene), type_(type),
         buffers_(scene, shading::vertexAlbedo(scene), shading::vertexCullFlags(scene)),
-        program_(gl::linkProgram("svr", {{GL_VERTEX_SHADER, vertexSource({})},
+        program_(gl::linkProgram("svr", {{GL_VERTEX_SHADER, vertexSource(scene, {})},
                                          {GL_FRAGMENT_SHADER, fragmentSource(scene, false)}})),
-        materials_(scene, shading::TextureSet::load(scene)) {
+        materials_(scene, shading::TextureSet::load(scene), shading::EnvironmentSet::load(scene)) {
     shading::setLightUniforms(program_, scene_);
   }
   std::string name() const override { return "svr"; }
@@ -198,15 +221,15 @@ class LayeredSvrRenderer final : public Renderer {
       : scene_(scene), type_(type),
         buffers_(scene, shading::vertexAlbedo(scene), shading::vertexCullFlags(scene)),
         vsLayer_(gl::hasExtension("GL_ARB_shader_viewport_layer_array")),
-        materials_(scene, shading::TextureSet::load(scene)) {
+        materials_(scene, shading::TextureSet::load(scene), shading::EnvironmentSet::load(scene)) {
     if (vsLayer_) {
       program_ = gl::linkProgram(
-          "svr-layered", {{GL_VERTEX_SHADER, vertexSource({"LAYERED", "VS_LAYER"})},
+          "svr-layered", {{GL_VERTEX_SHADER, vertexSource(scene, {"LAYERED", "VS_LAYER"})},
                           {GL_FRAGMENT_SHADER, fragmentSource(scene, false)}});
     } else {
       program_ = gl::linkProgram(
-          "svr-layered", {{GL_VERTEX_SHADER, vertexSource({"LAYERED"})},
-                          {GL_GEOMETRY_SHADER, gl::glslHeader() + kLayerGeometry},
+          "svr-layered", {{GL_VERTEX_SHADER, vertexSource(scene, {"LAYERED"})},
+                          {GL_GEOMETRY_SHADER, gl::glslHeader() + planDefines(scene) + kLayerGeometry},
                           {GL_FRAGMENT_SHADER, fragmentSource(scene, true)}});
     }
     shading::setLightUniforms(program_, scene_);

@@ -35,8 +35,9 @@ struct ShadingPlan {
 
   std::vector<Pass> passes() const;
   std::string passNames() const;  // e.g. "diffuse+texture"
-  // "#define TEXTURE" and "#define VIEW_DEPENDENT" lines for the passes
-  // after the first: shaders that compute every pass at once.
+  // "#define TEXTURE", "#define VIEW_DEPENDENT" and "#define REFLECT"
+  // lines for the passes after the first: shaders that compute every pass
+  // at once.
   std::string glslDefines() const;
 };
 

@@ -12,26 +12,6 @@ namespace {
 
 int wrap(int i, int n) { return ((i % n) + n) % n; }
 
-// Bilinear resample of src (rows top first) to w x h, rows flipped so that
-// row 0 is v = 0, quantised to 8 bits.
-std::vector<uint8_t> resampleFlipped(const Image& src, int w, int h) {
-  std::vector<uint8_t> out(size_t(w) * h * 4);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const float sx = (x + 0.5f) * src.width / w - 0.5f, sy = (y + 0.5f) * src.height / h - 0.5f;
-      const int x0 = int(std::floor(sx)), y0 = int(std::floor(sy));
-      const float fx = sx - x0, fy = sy - y0;
-      auto at = [&](int px, int py) {
-        return src.pixel(std::clamp(px, 0, src.width - 1), std::clamp(py, 0, src.height - 1));
-      };
-      const glm::vec4 c = glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx),
-                                   glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx), fy);
-      uint8_t* p = out.data() + (size_t(h - 1 - y) * w + x) * 4;
-      for (int k = 0; k < 4; ++k) p[k] = uint8_t(std::lrint(std::clamp(c[k], 0.0f, 1.0f) * 255.0f));
-    }
-  return out;
-}
-
 }  // namespace
 
 TextureSet TextureSet::load(const Scene& scene) {
@@ -56,7 +36,7 @@ TextureSet TextureSet::load(const Scene& scene) {
   const int w = set.width_, h = set.height_;
   std::vector<uint8_t> base;
   for (const Image& img : images) {
-    std::vector<uint8_t> layer = resampleFlipped(img, w, h);
+    std::vector<uint8_t> layer = resampleRgba8(img, {0, 0, img.width, img.height}, w, h, true);
     base.insert(base.end(), layer.begin(), layer.end());
   }
   set.levelSize_.push_back({w, h});

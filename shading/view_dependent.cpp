@@ -8,7 +8,8 @@ namespace {
 // std430 layout of one material in the storage block.
 struct GpuMaterial {
   glm::vec4 specular;  // rgb, shininess
-  glm::vec4 params;    // model (0 Phong, 1 Blinn-Phong), texture layer, reflection layer, 0
+  glm::vec4 params;    // model (0 Phong, 1 Blinn-Phong), texture layer, reflection layer, map kind
+  glm::vec4 reflectivity;
 };
 
 }  // namespace
@@ -36,7 +37,8 @@ const std::string& glslSpecular() {
   static const std::string src = R"(
 struct Material {
   vec4 specular;  // rgb, shininess
-  vec4 params;    // model (0 Phong, 1 Blinn-Phong), texture layer, reflection layer
+  vec4 params;    // model (0 Phong, 1 Blinn-Phong), texture layer, reflection layer, map kind
+  vec4 reflectivity;
 };
 layout(std430, binding = 1) readonly buffer Materials { Material uMaterials[]; };
 
@@ -60,14 +62,16 @@ vec3 specularLight(int material, vec3 p, vec3 nIn, vec3 eye) {
 }
 
 gl::Buffer makeMaterialBuffer(const Scene& scene, const std::vector<int>& textureLayer,
-                              const std::vector<int>& reflectionLayer) {
+                              const std::vector<EnvironmentSet::Map>& reflectionMaps) {
   std::vector<GpuMaterial> gpu;
   for (size_t i = 0; i < scene.materials.size(); ++i) {
     const Material& m = scene.materials[i];
     const float tex = i < textureLayer.size() ? float(textureLayer[i]) : -1.0f;
-    const float refl = i < reflectionLayer.size() ? float(reflectionLayer[i]) : -1.0f;
+    const EnvironmentSet::Map map = i < reflectionMaps.size() ? reflectionMaps[i] : EnvironmentSet::Map{};
     gpu.push_back({glm::vec4(m.specular, m.shininess),
-                   glm::vec4(m.specularModel == SpecularModel::Phong ? 0.0f : 1.0f, tex, refl, 0.0f)});
+                   glm::vec4(m.specularModel == SpecularModel::Phong ? 0.0f : 1.0f, tex,
+                             float(map.layer), float(map.kind)),
+                   glm::vec4(m.reflectivity, 0.0f)});
   }
   return gl::makeBuffer(gpu.data(), gpu.size());
 }

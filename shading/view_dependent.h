@@ -10,6 +10,7 @@
 
 #include "mvr/gl_handles.h"
 #include "mvr/scene.h"
+#include "shading/environment_set.h"
 
 namespace mvr::shading {
 
@@ -23,8 +24,8 @@ glm::vec3 specularLight(const Scene& scene, const Material& material, const glm:
 const std::string& glslSpecular();
 
 // The scene's materials as the storage block glslSpecular() declares.
-// textureLayer/reflectionLayer: per material, -1 for none.
+// Per material: its texture layer (-1 for none) and reflection map.
 gl::Buffer makeMaterialBuffer(const Scene& scene, const std::vector<int>& textureLayer = {},
-                              const std::vector<int>& reflectionLayer = {});
+                              const std::vector<EnvironmentSet::Map>& reflectionMaps = {});
 
 }  // namespace mvr::shading

@@ -90,8 +90,15 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
   fs::create_directories(noTexture.parent_path());
   std::ofstream(noTexture) << R"({"meshes": [{"file": ")" << MVR_TEST_ASSETS
                            << R"(/plane.obj", "material": {"texture": "nothere.png"}}]})";
+  // A square image is neither a cube strip (6:1) nor a sphere map pair (2:1).
+  const fs::path squareMap = noTexture.parent_path() / "square_map.json";
+  std::ofstream(squareMap) << R"({"meshes": [{"file": ")" << MVR_TEST_ASSETS
+                           << R"(/plane.obj", "material": {"reflection_map": ")" << MVR_TEST_ASSETS
+                           << R"(/checker.png"}}]})";
   for (std::string args : std::vector<std::string>{"render /nonexistent/scene.json --out " + d.string(),
                            "render " + noTexture.string() + " --out " + d.string(),
+                           "render " + squareMap.string() + " --backend mvr --pst cpu --out " + d.string(),
+                           "render " + squareMap.string() + " --backend deferred --out " + d.string(),
                            "render --texture nope --out " + d.string(),
                            "render --backend svr --texture direct --out " + d.string(),
                            "render --views 0 --out " + d.string(),
@@ -105,6 +112,8 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
     EXPECT_FALSE(fs::exists(d / "manifest.json")) << args;
     if (args.find(noTexture.string()) != std::string::npos)
       EXPECT_NE(r.err.find("nothere.png"), std::string::npos) << r.err;
+    if (args.find(squareMap.string()) != std::string::npos)
+      EXPECT_NE(r.err.find("checker.png: a reflection map must be"), std::string::npos) << r.err;
   }
 }
 

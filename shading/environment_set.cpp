@@ -1,0 +1,183 @@
+#include "shading/environment_set.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "mvr/error.h"
+#include "mvr/image.h"
+
+namespace mvr::shading {
+namespace {
+
+struct Loaded {
+  EnvironmentKind kind;
+  Image image;
+};
+
+EnvironmentKind kindOf(const Image& img, const std::string& path) {
+  if (img.width == 6 * img.height) return EnvironmentKind::Cube;
+  if (img.width == 2 * img.height) return EnvironmentKind::SpherePair;
+  fail(path, "a reflection map must be a 6:1 cube strip or a 2:1 sphere map pair, not " +
+                 std::to_string(img.width) + "x" + std::to_string(img.height));
+}
+
+// GL 4.5 table 8.19: the face and its (sc, tc, ma) for direction r.
+int cubeFace(const glm::vec3& r, glm::vec2& st) {
+  const glm::vec3 a = glm::abs(r);
+  int face;
+  float sc, tc, ma;
+  if (a.x >= a.y && a.x >= a.z) {
+    face = r.x >= 0 ? 0 : 1, ma = a.x, sc = r.x >= 0 ? -r.z : r.z, tc = -r.y;
+  } else if (a.y >= a.z) {
+    face = r.y >= 0 ? 2 : 3, ma = a.y, sc = r.x, tc = r.y >= 0 ? r.z : -r.z;
+  } else {
+    face = r.z >= 0 ? 4 : 5, ma = a.z, sc = r.z >= 0 ? r.x : -r.x, tc = -r.y;
+  }
+  st = 0.5f * (glm::vec2(sc, tc) / ma + 1.0f);
+  return face;
+}
+
+// GL_SPHERE_MAP's coordinates for unit n; the back map sees the world
+// turned half way round the y axis.
+glm::vec2 sphereCoordinates(glm::vec3 n, bool back) {
+  if (back) n = glm::vec3(-n.x, n.y, -n.z);
+  const float m = 2.0f * std::sqrt(n.x * n.x + n.y * n.y + (n.z + 1.0f) * (n.z + 1.0f));
+  return glm::vec2(n.x, n.y) / m + 0.5f;
+}
+
+}  // namespace
+
+EnvironmentSet EnvironmentSet::load(const Scene& scene) {
+  EnvironmentSet set;
+  std::map<std::string, Map> mapOf;
+  std::vector<Image> cubes, spheres;
+  for (const Material& m : scene.materials) {
+    if (m.reflectionMap.empty()) {
+      set.materialMap_.push_back({});
+      continue;
+    }
+    auto it = mapOf.find(m.reflectionMap);
+    if (it == mapOf.end()) {
+      Image img = readImage(m.reflectionMap);
+      const EnvironmentKind kind = kindOf(img, m.reflectionMap);
+      std::vector<Image>& list = kind == EnvironmentKind::Cube ? cubes : spheres;
+      it = mapOf.emplace(m.reflectionMap, Map{kind, int(list.size())}).first;
+      list.push_back(std::move(img));
+    }
+    set.materialMap_.push_back(it->second);
+  }
+  // Every map resampled to the largest face or map of its kind.
+  for (const Image& img : cubes) set.cubeSize_ = std::max(set.cubeSize_, img.height);
+  for (const Image& img : cubes)
+    for (int f = 0; f < 6; ++f) {
+      const int s = img.height;
+      std::vector<uint8_t> face = resampleRgba8(img, {f * s, 0, s, s}, set.cubeSize_, set.cubeSize_, false);
+      set.cube_.insert(set.cube_.end(), face.begin(), face.end());
+    }
+  for (const Image& img : spheres) set.sphereSize_ = std::max(set.sphereSize_, img.height);
+  for (const Image& img : spheres)
+    for (int half = 0; half < 2; ++half) {
+      const int s = img.height;
+      std::vector<uint8_t> map = resampleRgba8(img, {half * s, 0, s, s}, set.sphereSize_, set.sphereSize_, true);
+      set.sphere_.insert(set.sphere_.end(), map.begin(), map.end());
+    }
+  set.cubeLayers_ = int(cubes.size());
+  set.sphereLayers_ = int(spheres.size());
+  return set;
+}
+
+glm::vec3 EnvironmentSet::texel(const std::vector<uint8_t>& texels, int size, int layer, int x,
+                                int y) const {
+  x = std::clamp(x, 0, size - 1), y = std::clamp(y, 0, size - 1);
+  const uint8_t* p = texels.data() + ((size_t(layer) * size + y) * size + x) * 4;
+  return glm::vec3(p[0], p[1], p[2]) / 255.0f;
+}
+
+glm::vec3 EnvironmentSet::bilinear(const std::vector<uint8_t>& texels, int size, int layer,
+                                   glm::vec2 st) const {
+  const glm::vec2 s = st * float(size) - 0.5f, f0 = glm::floor(s), f = s - f0;
+  const int x = int(f0.x), y = int(f0.y);
+  return glm::mix(glm::mix(texel(texels, size, layer, x, y), texel(texels, size, layer, x + 1, y), f.x),
+                  glm::mix(texel(texels, size, layer, x, y + 1),
+                           texel(texels, size, layer, x + 1, y + 1), f.x),
+                  f.y);
+}
+
+glm::vec3 EnvironmentSet::sample(const Map& map, glm::vec3 r) const {
+  if (map.layer < 0 || !(glm::dot(r, r) > 1e-30f) || !std::isfinite(glm::dot(r, r)))
+    return glm::vec3(0.0f);
+  if (map.kind == EnvironmentKind::Cube) {
+    glm::vec2 st;
+    const int face = cubeFace(r, st);
+    return bilinear(cube_, cubeSize_, 6 * map.layer + face, st);
+  }
+  const glm::vec3 n = glm::normalize(r);
+  const bool back = n.z < 0.0f;
+  return bilinear(sphere_, sphereSize_, 2 * map.layer + int(back), sphereCoordinates(n, back));
+}
+
+namespace {
+
+gl::Texture uploadLayers(GLenum target, int size, int depth, const std::vector<uint8_t>& texels) {
+  if (depth == 0) return {};
+  gl::Texture tex(target);
+  gl::TextureStorage3D(tex.id(), 1, GL_RGBA8, size, size, depth);
+  gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  gl::TextureSubImage3D(tex.id(), 0, 0, 0, 0, size, size, depth, GL_RGBA, GL_UNSIGNED_BYTE,
+                        texels.data());
+  gl::TextureParameteri(tex.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  gl::TextureParameteri(tex.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  gl::TextureParameteri(tex.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  gl::TextureParameteri(tex.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  gl::checkError("uploading reflection maps");
+  return tex;
+}
+
+}  // namespace
+
+gl::Texture EnvironmentSet::uploadCubes() const {
+  // The CPU lookup filters each face on its own, as non-seamless GL does.
+  gl::Disable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+  return uploadLayers(GL_TEXTURE_CUBE_MAP_ARRAY, cubeSize_, 6 * cubeLayers_, cube_);
+}
+
+gl::Texture EnvironmentSet::uploadSpheres() const {
+  return uploadLayers(GL_TEXTURE_2D_ARRAY, sphereSize_, 2 * sphereLayers_, sphere_);
+}
+
+glm::vec3 reflectionVector(const float* m, const glm::vec3& e) {
+  return glm::vec3(m[0] + m[3] * e.x + m[6] * e.y + m[7] * e.z,
+                   m[1] + m[6] * e.x + m[4] * e.y + m[8] * e.z,
+                   m[2] + m[7] * e.x + m[8] * e.y + m[5] * e.z);
+}
+
+// Keep in step with sample() and reflectionVector() above.
+const std::string& glslEnvironment() {
+  static const std::string src = R"(
+layout(binding = 4) uniform samplerCubeArray uCubeMaps;
+layout(binding = 5) uniform sampler2DArray uSphereMaps;
+
+vec3 reflectionVector(vec3 a, vec3 d, vec3 o, vec3 e) {
+  return a + vec3(d.x * e.x + o.x * e.y + o.y * e.z,
+                  o.x * e.x + d.y * e.y + o.z * e.z,
+                  o.y * e.x + o.z * e.y + d.z * e.z);
+}
+
+vec3 environmentLight(int material, vec3 r) {
+  Material m = uMaterials[material];
+  float layer = m.params.z;
+  if (layer < 0.0 || !(dot(r, r) > 1e-30)) return vec3(0.0);
+  if (m.params.w == 0.0) return m.reflectivity.rgb * textureLod(uCubeMaps, vec4(r, layer), 0.0).rgb;
+  vec3 n = normalize(r);
+  bool back = n.z < 0.0;
+  if (back) n = vec3(-n.x, n.y, -n.z);
+  float k = 2.0 * sqrt(n.x * n.x + n.y * n.y + (n.z + 1.0) * (n.z + 1.0));
+  vec3 st = vec3(n.xy / k + 0.5, 2.0 * layer + (back ? 1.0 : 0.0));
+  return m.reflectivity.rgb * textureLod(uSphereMaps, st, 0.0).rgb;
+}
+)";
+  return src;
+}
+
+}  // namespace mvr::shading
