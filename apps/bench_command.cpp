@@ -68,15 +68,24 @@ std::string cpuModel() {
   return "unknown CPU";
 }
 
-// NAME[:PST[:TEXTURE]], e.g. mvr:exact:direct.
+// NAME[:PST[:TEXTURE]], e.g. mvr:exact:direct; interp[:ACQUIRE[:LAYERS]],
+// e.g. interp:center:6 (pixel slices drawn in quad mode).
 BackendChoice parseBackend(const std::string& s) {
-  BackendChoice c{s, "strip", "vector"};
-  const auto first = s.find(':');
-  if (first == std::string::npos) return c;
-  c.backend = s.substr(0, first);
-  const auto second = s.find(':', first + 1);
-  c.pst = s.substr(first + 1, second == std::string::npos ? std::string::npos : second - first - 1);
-  if (second != std::string::npos) c.texture = s.substr(second + 1);
+  std::vector<std::string> field;
+  for (size_t at = 0;;) {
+    const size_t next = s.find(':', at);
+    field.push_back(s.substr(at, next == std::string::npos ? std::string::npos : next - at));
+    if (next == std::string::npos) break;
+    at = next + 1;
+  }
+  BackendChoice c{field[0], field[0] == "interp" ? "quad" : "strip", "vector"};
+  if (c.backend == "interp") {
+    if (field.size() > 1) c.acquire = field[1];
+    if (field.size() > 2) c.maxLayers = std::max(1, std::atoi(field[2].c_str()));
+  } else {
+    if (field.size() > 1) c.pst = field[1];
+    if (field.size() > 2) c.texture = field[2];
+  }
   return c;
 }
 

@@ -12,6 +12,7 @@
 #include "apps/args.h"
 #include "epi/epi_stream.h"
 #include "epi/stream_queue.h"
+#include "epi/interp_renderer.h"
 #include "epi/mvr_renderer.h"
 #include "epi/volume.h"
 #include "mvr/baselines.h"
@@ -28,8 +29,11 @@ const char* const kRenderHelp =
     "usage: mvr render [SCENE] [options]\n"
     "SCENE is a JSON scene file or a mesh (OBJ, PLY, OFF, STL); without it the\n"
     "bundled default scene is rendered.\n"
-    "  --backend mvr|svr|svr-layered|deferred   renderer (default mvr)\n"
-    "  --pst quad|strip|exact|cpu   MVR accuracy mode (default strip)\n"
+    "  --backend mvr|interp|svr|svr-layered|deferred   renderer (default mvr)\n"
+    "  --pst quad|strip|exact|cpu   MVR accuracy mode (default strip; interp: quad)\n"
+    "  --acquire center|dual   interp: source views from the middle of the track or\n"
+    "                     from both ends (default dual)\n"
+    "  --max-layers L     interp: depth-peeled layers per source view (default 4)\n"
     "  --texture vector|direct   MVR texturing: 1-D texture vectors per slice\n"
     "                     (default) or the 2D texture with a per-pixel divide\n"
     "  --views N          views on the horizontal track (default 16)\n"
@@ -50,10 +54,13 @@ const char* const kRenderHelp =
 std::unique_ptr<Renderer> makeRenderer(const BackendChoice& c, const Scene& scene, PixelType type) {
   if (c.backend == "mvr")
     return makeMvrRenderer(scene, parsePstMode(c.pst), type, 2, parseTextureMode(c.texture));
+  if (c.backend == "interp")
+    return makeInterpRenderer(scene, type, {parseAcquire(c.acquire), c.maxLayers, parsePstMode(c.pst)});
   if (c.backend == "svr") return makeSvrRenderer(scene, type);
   if (c.backend == "svr-layered") return makeLayeredSvrRenderer(scene, type);
   if (c.backend == "deferred") return makeDeferredRenderer(scene, type);
-  fail("--backend", "unknown back end '" + c.backend + "' (expected mvr, svr, svr-layered or deferred)");
+  fail("--backend",
+       "unknown back end '" + c.backend + "' (expected mvr, interp, svr, svr-layered or deferred)");
 }
 
 namespace {
@@ -125,10 +132,12 @@ const char* const kStreamHelp =
     "  --backend, --pst, --views, --rows, --size, --format, --gl as for render\n";
 
 int runRender(int argc, char** argv, bool streamCommand) {
-  std::set<std::string> flags = {"backend", "pst", "texture", "views", "rows", "size", "out", "format",
-                                 "order", "gl", "stream", "bits", "quilt", "predistort", "queue"};
+  std::set<std::string> flags = {"backend", "pst", "texture", "acquire", "max-layers", "views",
+                                 "rows", "size", "out", "format", "order", "gl", "stream", "bits",
+                                 "quilt", "predistort", "queue"};
   if (streamCommand)
-    flags = {"backend", "pst", "texture", "views", "rows", "size", "format", "gl", "to", "queue"};
+    flags = {"backend", "pst", "texture", "acquire", "max-layers", "views", "rows", "size",
+             "format", "gl", "to", "queue"};
   Args args(argc, argv, 2, flags, {});
   const char* streamFlag = streamCommand ? "to" : "stream";
   const bool streaming = args.has(streamFlag);
@@ -136,8 +145,10 @@ int runRender(int argc, char** argv, bool streamCommand) {
   if (args.positional().size() > 1) fail("render", "takes at most one scene file");
   const std::string scenePath =
       args.positional().empty() ? defaultScenePath() : args.positional()[0];
-  BackendChoice choice{args.get("backend", "mvr"), args.get("pst", "strip"),
-                       args.get("texture", "vector")};
+  const std::string backend = args.get("backend", "mvr");
+  BackendChoice choice{backend, args.get("pst", backend == "interp" ? "quad" : "strip"),
+                       args.get("texture", "vector"), args.get("acquire", "dual"),
+                       args.getInt("max-layers", 4, 1, 64)};
   const int views = args.getInt("views", 16, 1, 65536);
   const int rows = args.getInt("rows", 1, 1, 4096);
   const auto [width, height] = args.getSize("size", {320, 240});
@@ -148,7 +159,11 @@ int runRender(int argc, char** argv, bool streamCommand) {
   const PixelType type = format == "png" && bits == 8 ? PixelType::U8 : PixelType::F32;
   const std::string order = args.get("order", "view");
   if (order != "view" && order != "epi") fail("--order", "expected view or epi, not '" + order + "'");
-  if (choice.backend != "mvr" && args.has("pst")) fail("--pst", "applies to --backend mvr only");
+  if (choice.backend != "mvr" && choice.backend != "interp" && args.has("pst"))
+    fail("--pst", "applies to --backend mvr and interp only");
+  for (const char* flag : {"acquire", "max-layers"})
+    if (choice.backend != "interp" && args.has(flag))
+      fail(std::string("--") + flag, "applies to --backend interp only");
   if (choice.backend != "mvr" && args.has("texture")) fail("--texture", "applies to --backend mvr only");
   const GlPlatform platform = parseGlPlatform(args.get("gl", "auto"));
 
@@ -193,7 +208,7 @@ int runRender(int argc, char** argv, bool streamCommand) {
   m["scene"] = scene.source;
   m["triangles"] = scene.triangleCount();
   m["backend"] = renderer->name();
-  if (choice.backend == "mvr") m["pst"] = choice.pst;
+  if (choice.backend == "mvr" || choice.backend == "interp") m["pst"] = choice.pst;
   m["views"] = views;
   m["rows"] = rows;
   m["width"] = width;

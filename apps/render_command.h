@@ -19,6 +19,8 @@ struct BackendChoice {
   std::string backend = "mvr";  // mvr | svr | svr-layered | deferred
   std::string pst = "strip";    // quad | strip | exact | cpu (mvr only)
   std::string texture = "vector";  // vector | direct (mvr GL modes only)
+  std::string acquire = "dual";    // center | dual (interp only)
+  int maxLayers = 4;               // depth-peeled layers per source view (interp only)
 };
 
 // Throws mvr::Error for unknown names. Needs a current GL context.

@@ -2,6 +2,7 @@
 // of albedo, normal and depth, then a full-screen pass lights every pixel.
 // Lighting is per pixel here, so its images differ slightly from Gouraud.
 #include "mvr/baselines.h"
+#include "mvr/source_layers.h"
 #include "mvr/error.h"
 #include "mvr/gl_program.h"
 #include "mvr/progress.h"
@@ -44,8 +45,22 @@ layout(location = 1) out vec4 oNormal;  // w: material index
 #ifdef TEXTURE
 layout(binding = 3) uniform sampler2DArray uTextures;
 #endif
+#ifdef PEEL
+layout(binding = 6) uniform sampler2D uPreviousDepth;
+uniform vec4 uPeel;  // near, far, pixel footprint per unit distance, track width E
+float distanceOf(float depth) { return uPeel.x * uPeel.y / (depth * (uPeel.y - uPeel.x) + uPeel.x); }
+#endif
 void main() {
   if (!gl_FrontFacing && vCull > 0.5) discard;
+#ifdef PEEL
+  // Depth peeling with de Quilletes' extended offset d s / (E - s): a
+  // surface closer behind the last layer than that never moves a pixel
+  // away from it anywhere on a track of width E, so it is not a new layer.
+  float previous = texelFetch(uPreviousDepth, ivec2(gl_FragCoord.xy), 0).r;
+  if (previous == 0.0) discard;  // nothing in front here: nothing behind
+  float d = distanceOf(previous), s = uPeel.z * d;
+  if (uPeel.w <= s || distanceOf(gl_FragCoord.z) <= d + d * s / (uPeel.w - s)) discard;
+#endif
   vec3 albedo = vAlbedo;
 #ifdef TEXTURE
   float layer = uMaterials[int(vMaterial)].params.y;
@@ -111,6 +126,7 @@ class GBuffer {
     gl::ClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 1, zero);
     gl::ClearNamedFramebufferfi(fbo_.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
   }
+  GLuint depthTexture() const { return depth_.id(); }
   void bindForReading() const {
     gl::BindTextureUnit(0, albedo_.id());
     gl::BindTextureUnit(1, normal_.id());
@@ -122,17 +138,15 @@ class GBuffer {
   gl::Framebuffer fbo_;
 };
 
-class DeferredRenderer final : public Renderer {
+// The two passes of deferred shading, shared by the baseline and the
+// image-based back end's source views.
+class DeferredPipeline {
  public:
-  DeferredRenderer(const Scene& scene, PixelType type)
-      : scene_(scene), type_(type),
+  explicit DeferredPipeline(const Scene& scene)
+      : scene_(scene),
         buffers_(scene, shading::vertexAlbedo(scene), shading::vertexCullFlags(scene)),
         plan_(shading::planShading(scene)),
-        geometry_(gl::linkProgram(
-            "deferred-geometry",
-            {{GL_VERTEX_SHADER, gl::glslHeader() + kSceneVertexInputs + kGeometryVertex},
-             {GL_FRAGMENT_SHADER, header() + shading::glslLighting() + shading::glslSpecular() +
-                                      kGeometryFragment}})),
+        geometry_(geometryProgram(false)),
         lighting_(gl::linkProgram(
             "deferred-lighting",
             {{GL_VERTEX_SHADER, gl::glslHeader() + gl::kFullScreenTriangleVertex},
@@ -142,61 +156,147 @@ class DeferredRenderer final : public Renderer {
         materials_(scene, shading::TextureSet::load(scene), shading::EnvironmentSet::load(scene)) {
     shading::setLightUniforms(lighting_, scene_);
   }
-  std::string name() const override { return "deferred"; }
-  FrameOrder order() const override { return FrameOrder::View; }
 
-  void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
-    RenderTarget target(cam.width(), cam.height(), type_);
-    GBuffer gbuffer(cam.width(), cam.height());
+  // Before the passes of a sequence of views of this size.
+  void begin(int width, int height) {
     setDepthConvention();
     gl::FrontFace(GL_CW);
-    gl::setUniform(lighting_, "uSize", glm::vec2(cam.width(), cam.height()));
+    gl::setUniform(lighting_, "uSize", glm::vec2(width, height));
     materials_.bind(3);  // units 0-2 read the G-buffer
-    renderEachView(cam, target, "deferred", sink, stats, [&](int row, int view) {
-      const glm::dmat4 viewProj = cam.viewProjection(view, row);
-      {
-        ScopedStage s(stats.times, "geometry");
-        gbuffer.bindForWriting();
-        gl::Enable(GL_DEPTH_TEST);
-        gl::UseProgram(geometry_.id());
-        gl::setUniform(geometry_, "uViewProj", glm::mat4(viewProj));
-        buffers_.bind();
-        buffers_.draw();
-        gl::Finish();
-      }
-      ScopedStage s(stats.times, "lighting");
-      target.bind();
-      target.clear();
-      gl::Disable(GL_DEPTH_TEST);
-      gl::UseProgram(lighting_.id());
-      gl::setUniform(lighting_, "uInverseViewProj", glm::mat4(glm::inverse(viewProj)));
-      gl::setUniform(lighting_, "uEye", glm::vec3(cam.eye(view, row)));
-      gbuffer.bindForReading();
-      gl::BindVertexArray(emptyVao_.id());
-      gl::DrawArrays(GL_TRIANGLES, 0, 3);
-      gl::Finish();
-    });
-    gl::checkError("deferred render");
+  }
+
+  // previous: the G-buffer of the layer in front (depth peeling), or null.
+  void geometry(const glm::dmat4& viewProj, const GBuffer& gbuffer, const GBuffer* previous,
+                const glm::vec4& peel = glm::vec4(0.0f)) {
+    gbuffer.bindForWriting();
+    gl::Enable(GL_DEPTH_TEST);
+    const gl::Program* program = &geometry_;
+    if (previous) {
+      if (!peeling_.id()) peeling_ = geometryProgram(true);
+      program = &peeling_;
+      gl::BindTextureUnit(6, previous->depthTexture());
+      gl::setUniform(peeling_, "uPeel", peel);
+    }
+    gl::UseProgram(program->id());
+    gl::setUniform(*program, "uViewProj", glm::mat4(viewProj));
+    buffers_.bind();
+    buffers_.draw();
+  }
+
+  void lighting(const glm::dmat4& viewProj, const glm::dvec3& eye, const GBuffer& gbuffer,
+                const RenderTarget& target) {
+    target.bind();
+    target.clear();
+    gl::Disable(GL_DEPTH_TEST);
+    gl::UseProgram(lighting_.id());
+    gl::setUniform(lighting_, "uInverseViewProj", glm::mat4(glm::inverse(viewProj)));
+    gl::setUniform(lighting_, "uEye", glm::vec3(eye));
+    gbuffer.bindForReading();
+    gl::BindVertexArray(emptyVao_.id());
+    gl::DrawArrays(GL_TRIANGLES, 0, 3);
   }
 
  private:
   // The plan's passes as defines: the geometry pass textures, the lighting
   // pass adds highlights.
   std::string header() const { return gl::glslHeader() + plan_.glslDefines(); }
+  gl::Program geometryProgram(bool peel) const {
+    return gl::linkProgram(
+        peel ? "deferred-geometry-peel" : "deferred-geometry",
+        {{GL_VERTEX_SHADER, gl::glslHeader() + kSceneVertexInputs + kGeometryVertex},
+         {GL_FRAGMENT_SHADER, header() + (peel ? "#define PEEL\n" : "") + shading::glslLighting() +
+                                  shading::glslSpecular() + kGeometryFragment}});
+  }
 
   const Scene& scene_;
-  PixelType type_;
   SceneBuffers buffers_;
   shading::ShadingPlan plan_;
-  gl::Program geometry_, lighting_;
+  gl::Program geometry_, peeling_, lighting_;
   gl::VertexArray emptyVao_;
   shading::GpuMaterials materials_;
+};
+
+class DeferredRenderer final : public Renderer {
+ public:
+  DeferredRenderer(const Scene& scene, PixelType type) : type_(type), pipeline_(scene) {}
+  std::string name() const override { return "deferred"; }
+  FrameOrder order() const override { return FrameOrder::View; }
+
+  void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
+    RenderTarget target(cam.width(), cam.height(), type_);
+    GBuffer gbuffer(cam.width(), cam.height());
+    pipeline_.begin(cam.width(), cam.height());
+    renderEachView(cam, target, "deferred", sink, stats, [&](int row, int view) {
+      const glm::dmat4 viewProj = cam.viewProjection(view, row);
+      {
+        ScopedStage s(stats.times, "geometry");
+        pipeline_.geometry(viewProj, gbuffer, nullptr);
+        gl::Finish();
+      }
+      ScopedStage s(stats.times, "lighting");
+      pipeline_.lighting(viewProj, cam.eye(view, row), gbuffer, target);
+      gl::Finish();
+    });
+    gl::checkError("deferred render");
+  }
+
+ private:
+  PixelType type_;
+  DeferredPipeline pipeline_;
+};
+
+class SourceLayerRendererImpl final : public SourceLayerRenderer {
+ public:
+  explicit SourceLayerRendererImpl(const Scene& scene) : pipeline_(scene) {}
+
+  std::vector<SourceLayer> render(const ShearingCamera& cam, const glm::dvec2& eye, int maxLayers,
+                                  double trackWidth, RenderStats& stats) override {
+    const int w = cam.width(), h = cam.height();
+    RenderTarget target(w, h, PixelType::F32);
+    GBuffer gbuffers[2] = {GBuffer(w, h), GBuffer(w, h)};
+    pipeline_.begin(w, h);
+    const glm::dmat4 viewProj = cam.viewProjectionAt(eye.x, eye.y);
+    const CameraSpec& spec = cam.spec();
+    const glm::vec4 peel(spec.nearDistance, spec.farDistance,
+                         cam.planeWidth() / (w * spec.distance), trackWidth);
+    GLuint query = 0;
+    gl::CreateQueries(GL_SAMPLES_PASSED, 1, &query);
+    std::vector<SourceLayer> layers;
+    for (int k = 0; k < maxLayers; ++k) {
+      const GBuffer& gbuffer = gbuffers[k % 2];
+      GLuint samples = 0;
+      {
+        ScopedStage s(stats.times, "acquire");
+        gl::BeginQuery(GL_SAMPLES_PASSED, query);
+        pipeline_.geometry(viewProj, gbuffer, k ? &gbuffers[(k + 1) % 2] : nullptr, peel);
+        gl::EndQuery(GL_SAMPLES_PASSED);
+        gl::GetQueryObjectuiv(query, GL_QUERY_RESULT, &samples);
+      }
+      if (samples == 0) break;  // an empty layer: nothing lies further back
+      ScopedStage s(stats.times, "acquire");
+      pipeline_.lighting(viewProj, glm::dvec3(eye, spec.distance), gbuffer, target);
+      SourceLayer layer{eye, k, target.read(), std::vector<float>(size_t(w) * h), long(samples)};
+      gl::GetTextureSubImage(gbuffer.depthTexture(), 0, 0, 0, 0, w, h, 1, GL_DEPTH_COMPONENT,
+                             GL_FLOAT, GLsizei(layer.depth.size() * sizeof(float)), layer.depth.data());
+      layers.push_back(std::move(layer));
+    }
+    gl::DeleteQueries(1, &query);
+    gl::checkError("source layers");
+    return layers;
+  }
+
+ private:
+  DeferredPipeline pipeline_;
 };
 
 }  // namespace
 
 std::unique_ptr<Renderer> makeDeferredRenderer(const Scene& scene, PixelType type) {
   return std::make_unique<DeferredRenderer>(scene, type);
+}
+
+std::unique_ptr<SourceLayerRenderer> makeSourceLayerRenderer(const Scene& scene) {
+  return std::make_unique<SourceLayerRendererImpl>(scene);
 }
 
 }  // namespace mvr

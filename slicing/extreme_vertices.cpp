@@ -36,60 +36,43 @@ int clipPolygon(const ClipVertex* in, int n, ClipVertex* out, double D, double l
   return m;
 }
 
-class Transformer {
- public:
-  Transformer(const ShearingCamera& cam, int row, ExtremeVertices& out) : cam_(cam), out_(out) {
-    const CameraSpec& s = cam.spec();
-    D_ = s.distance;
-    n_ = s.nearDistance;
-    f_ = s.farDistance;
-    sx_ = 2.0 / cam.planeWidth();
-    sy_ = 2.0 / cam.planeHeight();
-    cxLeft_ = cam.viewX(0);
-    cxRight_ = cam.viewX(cam.views() - 1);
-    cy_ = cam.rowY(row);
-    firstRow_ = row;
-    rowStep_ = cam.rows() > 1 ? cam.rowY(1) - cam.rowY(0) : 0.0;
-  }
-
-  void add(const glm::dvec3& p, const glm::vec3& front, const glm::vec3& back,
-           const float* extras) {
-    const double w = D_ - p.z;
-    const double xl = (sx_ * (D_ * p.x - cxLeft_ * p.z) / w + 1.0) * 0.5 * cam_.width();
-    const double xr = (sx_ * (D_ * p.x - cxRight_ * p.z) / w + 1.0) * 0.5 * cam_.width();
-    const double y = (-sy_ * (D_ * p.y - cy_ * p.z) / w + 1.0) * 0.5 * cam_.height();
-    out_.x0.push_back(float(xl));
-    out_.dx.push_back(cam_.views() > 1 ? float((xr - xl) / (cam_.views() - 1)) : 0.0f);
-    out_.y.push_back(float(y));
-    // dy/dcy = (H / Hp) Z / w: pixels per unit of camera y; y of row 0 is
-    // recovered exactly from this row's y.
-    const double step = cam_.height() / cam_.planeHeight() * p.z / w * rowStep_;
-    out_.yStep.push_back(float(step));
-    out_.yFirst.push_back(float(y - firstRow_ * step));
-    out_.depth.push_back(float(n_ * (f_ - w) / ((f_ - n_) * w)));
-    out_.invW.push_back(float(1.0 / w));
-    out_.frontOverW.push_back(front * float(1.0 / w));
-    out_.backOverW.push_back(back * float(1.0 / w));
-    for (int k = 0; k < out_.extraCount; ++k) out_.extrasOverW.push_back(extras[k] * float(1.0 / w));
-  }
-
-  bool inside(const glm::dvec3& p) const {
-    const double d = D_ - p.z;
-    return d >= n_ && d <= f_;
-  }
-
-  double D() const { return D_; }
-  double nearDistance() const { return n_; }
-  double farDistance() const { return f_; }
-
- private:
-  const ShearingCamera& cam_;
-  ExtremeVertices& out_;
-  double D_, n_, f_, sx_, sy_, cxLeft_, cxRight_, cy_, rowStep_;
-  int firstRow_;
-};
-
 }  // namespace
+
+ExtremeTransform::ExtremeTransform(const ShearingCamera& cam, int row, ExtremeVertices& out)
+    : cam_(cam), out_(out) {
+  const CameraSpec& s = cam.spec();
+  D_ = s.distance;
+  n_ = s.nearDistance;
+  f_ = s.farDistance;
+  sx_ = 2.0 / cam.planeWidth();
+  sy_ = 2.0 / cam.planeHeight();
+  cxLeft_ = cam.viewX(0);
+  cxRight_ = cam.viewX(cam.views() - 1);
+  cy_ = cam.rowY(row);
+  firstRow_ = row;
+  rowStep_ = cam.rows() > 1 ? cam.rowY(1) - cam.rowY(0) : 0.0;
+}
+
+void ExtremeTransform::add(const glm::dvec3& p, const glm::vec3& front, const glm::vec3& back,
+                           const float* extras) {
+  const double w = D_ - p.z;
+  const double xl = (sx_ * (D_ * p.x - cxLeft_ * p.z) / w + 1.0) * 0.5 * cam_.width();
+  const double xr = (sx_ * (D_ * p.x - cxRight_ * p.z) / w + 1.0) * 0.5 * cam_.width();
+  const double y = (-sy_ * (D_ * p.y - cy_ * p.z) / w + 1.0) * 0.5 * cam_.height();
+  out_.x0.push_back(float(xl));
+  out_.dx.push_back(cam_.views() > 1 ? float((xr - xl) / (cam_.views() - 1)) : 0.0f);
+  out_.y.push_back(float(y));
+  // dy/dcy = (H / Hp) Z / w: pixels per unit of camera y; y of row 0 is
+  // recovered exactly from this row's y.
+  const double step = cam_.height() / cam_.planeHeight() * p.z / w * rowStep_;
+  out_.yStep.push_back(float(step));
+  out_.yFirst.push_back(float(y - firstRow_ * step));
+  out_.depth.push_back(float(n_ * (f_ - w) / ((f_ - n_) * w)));
+  out_.invW.push_back(float(1.0 / w));
+  out_.frontOverW.push_back(front * float(1.0 / w));
+  out_.backOverW.push_back(back * float(1.0 / w));
+  for (int k = 0; k < out_.extraCount; ++k) out_.extrasOverW.push_back(extras[k] * float(1.0 / w));
+}
 
 void moveToRow(ExtremeVertices& v, int row) {
   const float r = float(row);
@@ -109,7 +92,7 @@ ExtremeVertices transformToExtremes(const Scene& scene, const shading::VertexCol
   ExtremeVertices out;
   out.extraCount = extraCount;
   out.extrasOverW.reserve(extras.size());
-  Transformer t(camera, row, out);
+  ExtremeTransform t(camera, row, out);
   const size_t nv = scene.vertexCount();
   for (auto* v : {&out.x0, &out.dx, &out.y, &out.depth, &out.invW, &out.yFirst, &out.yStep})
     v->reserve(nv);

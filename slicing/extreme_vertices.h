@@ -47,6 +47,29 @@ ExtremeVertices transformToExtremes(const Scene& scene, const shading::VertexCol
                                     const ShearingCamera& camera, int row = 0,
                                     std::span<const float> extras = {}, int extraCount = 0);
 
+// Appends world points as extreme vertices of one row of views: what
+// transformToExtremes does per vertex, for callers with points of their
+// own (the image-based back end's source pixels).
+class ExtremeTransform {
+ public:
+  ExtremeTransform(const ShearingCamera& cam, int row, ExtremeVertices& out);
+  // Colours as lit; extras: out.extraCount floats (null when none).
+  void add(const glm::dvec3& p, const glm::vec3& front, const glm::vec3& back, const float* extras);
+  bool inside(const glm::dvec3& p) const {  // between the near and far planes
+    const double d = D_ - p.z;
+    return d >= n_ && d <= f_;
+  }
+  double D() const { return D_; }
+  double nearDistance() const { return n_; }
+  double farDistance() const { return f_; }
+
+ private:
+  const ShearingCamera& cam_;
+  ExtremeVertices& out_;
+  double D_, n_, f_, sx_, sy_, cxLeft_, cxRight_, cy_, rowStep_;
+  int firstRow_;
+};
+
 // Moves the vertices to another row of views: y only.
 void moveToRow(ExtremeVertices& vertices, int row);
 

@@ -89,6 +89,18 @@ SliceTable SliceTable::build(const ExtremeVertices& v, int height, int threads) 
   return table;
 }
 
+SliceTable SliceTable::fromSegments(const std::vector<uint32_t>& scanlineOf, int height) {
+  SliceTable table;
+  table.offsets_.assign(height + 1, 0);
+  for (uint32_t j : scanlineOf) ++table.offsets_[j + 1];
+  for (int j = 0; j < height; ++j) table.offsets_[j + 1] += table.offsets_[j];
+  table.slices_.resize(scanlineOf.size());
+  std::vector<uint32_t> cursor(table.offsets_.begin(), table.offsets_.end() - 1);
+  for (uint32_t k = 0; k < scanlineOf.size(); ++k)
+    table.slices_[cursor[scanlineOf[k]]++] = Slice{k, 0.0f, 0.0f, kSegmentSlice};
+  return table;
+}
+
 namespace {
 
 SliceEnd endAt(const ExtremeVertices& v, uint32_t p, uint32_t q, float t) {
@@ -112,6 +124,7 @@ SliceEnd endAt(const ExtremeVertices& v, uint32_t p, uint32_t q, float t) {
 
 std::pair<SliceEnd, SliceEnd> sliceEnds(const ExtremeVertices& v, const Slice& s) {
   const glm::uvec3 t = v.triangles[s.triangle];
+  if (s.flags & kSegmentSlice) return {endAt(v, t.x, t.x, 0.0f), endAt(v, t.y, t.y, 0.0f)};
   const uint32_t a = t[s.flags & 3], b = t[(s.flags >> 2) & 3], c = t[(s.flags >> 4) & 3];
   const SliceEnd onLong = endAt(v, a, c, s.tLong);
   const SliceEnd onShort = (s.flags & (1u << 6)) ? endAt(v, b, c, s.tShort) : endAt(v, a, b, s.tShort);

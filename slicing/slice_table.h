@@ -20,8 +20,11 @@ struct Slice {
   float tShort;  // along a -> b (upper half) or b -> c (lower half)
   uint32_t flags;
   // flags: bits 0-5 the triangle corners sorted by y (a, b, c; 2 bits
-  // each), bit 6 lower half (short edge b -> c), bit 7 endpoints swapped.
+  // each), bit 6 lower half (short edge b -> c), bit 7 endpoints swapped,
+  // bit 8 a segment: the "triangle" (a, b, -) is a horizontal run whose
+  // endpoints are its vertices a and b (image-based slices).
 };
+constexpr uint32_t kSegmentSlice = 1u << 8;
 static_assert(sizeof(Slice) == 16);
 
 // One slice endpoint: a fixed 3D point, so its EPI track is a line.
@@ -45,6 +48,9 @@ class SliceTable {
   // Builds the table with `threads` threads, each owning a band of
   // scanlines: no locks, no sort, slices in triangle order per scanline.
   static SliceTable build(const ExtremeVertices& v, int height, int threads = 2);
+  // A table of segments: v's triangle k is the segment from its vertex x
+  // to its vertex y, on scanline scanlineOf[k].
+  static SliceTable fromSegments(const std::vector<uint32_t>& scanlineOf, int height);
 
  private:
   std::vector<uint32_t> offsets_;  // height + 1 prefix sums

@@ -1,0 +1,33 @@
+#pragma once
+// The image-based back end (de Quilletes 2018): a few source views are
+// rendered with the deferred pipeline and depth peeled; their pixels become
+// slices of the same slice table MVR builds from geometry, and the same EPI
+// rasterizers fill every EPI from them.
+#include <memory>
+#include <string>
+
+#include "epi/epi_rasterizer.h"
+#include "mvr/renderer.h"
+#include "mvr/scene.h"
+
+namespace mvr {
+
+// Where the source views come from:
+//   center  the middle of the track, depth peeled
+//   dual    both ends of the track, each depth peeled
+enum class Acquire { Center, Dual };
+Acquire parseAcquire(const std::string& name);  // throws on unknown
+const char* acquireName(Acquire acquire);
+
+struct InterpOptions {
+  Acquire acquire = Acquire::Dual;
+  int maxLayers = 4;        // depth-peeled layers per source view
+  PstMode mode = PstMode::Quad;  // a pixel slice has one colour: quad is exact
+  float overlap = 0.25f;    // footprint widening per side, pixels
+};
+
+// Needs a current GL context.
+std::unique_ptr<Renderer> makeInterpRenderer(const Scene& scene, PixelType type,
+                                             const InterpOptions& options);
+
+}  // namespace mvr
