@@ -143,8 +143,7 @@ class GBuffer {
 class DeferredPipeline {
  public:
   explicit DeferredPipeline(const Scene& scene)
-      : scene_(scene),
-        buffers_(scene, shading::vertexAlbedo(scene), shading::vertexCullFlags(scene)),
+      : buffers_(scene, shading::vertexAlbedo(scene), shading::vertexCullFlags(scene)),
         plan_(shading::planShading(scene)),
         geometry_(geometryProgram(false)),
         lighting_(gl::linkProgram(
@@ -154,7 +153,7 @@ class DeferredPipeline {
                                       shading::glslEnvironment() + kLightingFragment}})),
         emptyVao_(gl::VertexArray::create()),
         materials_(scene, shading::TextureSet::load(scene), shading::EnvironmentSet::load(scene)) {
-    shading::setLightUniforms(lighting_, scene_);
+    shading::setLightUniforms(lighting_, scene);
   }
 
   // Before the passes of a sequence of views of this size.
@@ -208,7 +207,6 @@ class DeferredPipeline {
                                   shading::glslSpecular() + kGeometryFragment}});
   }
 
-  const Scene& scene_;
   SceneBuffers buffers_;
   shading::ShadingPlan plan_;
   gl::Program geometry_, peeling_, lighting_;

@@ -46,6 +46,21 @@ glm::vec2 sphereCoordinates(glm::vec3 n, bool back) {
   return glm::vec2(n.x, n.y) / m + 0.5f;
 }
 
+// Each image is `count` squares side by side; all squares resampled to the
+// largest one's size (returned in size), one after another, as RGBA8.
+std::vector<uint8_t> packSquares(const std::vector<Image>& images, int count, bool bottomUp, int& size) {
+  size = 0;
+  for (const Image& img : images) size = std::max(size, img.height);
+  std::vector<uint8_t> texels;
+  for (const Image& img : images)
+    for (int k = 0; k < count; ++k) {
+      const int s = img.height;
+      const std::vector<uint8_t> square = resampleRgba8(img, {k * s, 0, s, s}, size, size, bottomUp);
+      texels.insert(texels.end(), square.begin(), square.end());
+    }
+  return texels;
+}
+
 }  // namespace
 
 EnvironmentSet EnvironmentSet::load(const Scene& scene) {
@@ -68,20 +83,8 @@ EnvironmentSet EnvironmentSet::load(const Scene& scene) {
     set.materialMap_.push_back(it->second);
   }
   // Every map resampled to the largest face or map of its kind.
-  for (const Image& img : cubes) set.cubeSize_ = std::max(set.cubeSize_, img.height);
-  for (const Image& img : cubes)
-    for (int f = 0; f < 6; ++f) {
-      const int s = img.height;
-      std::vector<uint8_t> face = resampleRgba8(img, {f * s, 0, s, s}, set.cubeSize_, set.cubeSize_, false);
-      set.cube_.insert(set.cube_.end(), face.begin(), face.end());
-    }
-  for (const Image& img : spheres) set.sphereSize_ = std::max(set.sphereSize_, img.height);
-  for (const Image& img : spheres)
-    for (int half = 0; half < 2; ++half) {
-      const int s = img.height;
-      std::vector<uint8_t> map = resampleRgba8(img, {half * s, 0, s, s}, set.sphereSize_, set.sphereSize_, true);
-      set.sphere_.insert(set.sphere_.end(), map.begin(), map.end());
-    }
+  set.cube_ = packSquares(cubes, 6, false, set.cubeSize_);
+  set.sphere_ = packSquares(spheres, 2, true, set.sphereSize_);
   set.cubeLayers_ = int(cubes.size());
   set.sphereLayers_ = int(spheres.size());
   return set;
