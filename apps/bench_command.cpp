@@ -78,7 +78,7 @@ BackendChoice parseBackend(const std::string& s) {
     if (next == std::string::npos) break;
     at = next + 1;
   }
-  BackendChoice c{field[0], field[0] == "interp" ? "quad" : "strip", "vector"};
+  BackendChoice c{field[0], defaultPst(field[0]), "vector"};
   if (c.backend == "interp") {
     if (field.size() > 1) c.acquire = field[1];
     if (field.size() > 2) c.maxLayers = std::max(1, std::atoi(field[2].c_str()));

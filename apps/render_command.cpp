@@ -146,7 +146,7 @@ int runRender(int argc, char** argv, bool streamCommand) {
   const std::string scenePath =
       args.positional().empty() ? defaultScenePath() : args.positional()[0];
   const std::string backend = args.get("backend", "mvr");
-  BackendChoice choice{backend, args.get("pst", backend == "interp" ? "quad" : "strip"),
+  BackendChoice choice{backend, args.get("pst", defaultPst(backend)),
                        args.get("texture", "vector"), args.get("acquire", "dual"),
                        args.getInt("max-layers", 4, 1, 64)};
   const int views = args.getInt("views", 16, 1, 65536);

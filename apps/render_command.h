@@ -16,12 +16,18 @@ extern const char* const kStreamHelp;
 int runRender(int argc, char** argv, bool streamCommand = false);
 
 struct BackendChoice {
-  std::string backend = "mvr";  // mvr | svr | svr-layered | deferred
-  std::string pst = "strip";    // quad | strip | exact | cpu (mvr only)
+  std::string backend = "mvr";  // mvr | interp | svr | svr-layered | deferred
+  std::string pst = "strip";    // quad | strip | exact | cpu (mvr and interp)
   std::string texture = "vector";  // vector | direct (mvr GL modes only)
   std::string acquire = "dual";    // center | dual (interp only)
   int maxLayers = 4;               // depth-peeled layers per source view (interp only)
 };
+
+// The accuracy mode a back end uses unless told: interp's pixel slices have
+// one colour each, so quad is exact for them; MVR's default is strip.
+inline const char* defaultPst(const std::string& backend) {
+  return backend == "interp" ? "quad" : "strip";
+}
 
 // Throws mvr::Error for unknown names. Needs a current GL context.
 std::unique_ptr<Renderer> makeRenderer(const BackendChoice& choice, const Scene& scene,
