@@ -85,6 +85,16 @@ glm::dvec3 ShearingCamera::project(const glm::dvec3& p, int view, int row) const
   return {(c.x / c.w + 1.0) * 0.5 * width_, (c.y / c.w + 1.0) * 0.5 * height_, c.z / c.w};
 }
 
+glm::dvec3 ShearingCamera::unprojectAt(double cx, double cy, const glm::dvec3& window) const {
+  // Inverse of viewProjectionAt: depth = n (f - w) / ((f - n) w), w = D - Z.
+  const double n = spec_.nearDistance, f = spec_.farDistance, D = spec_.distance;
+  const double w = n * f / (window.z * (f - n) + n), Z = D - w;
+  const double xNdc = 2.0 * window.x / width_ - 1.0, yNdc = 2.0 * window.y / height_ - 1.0;
+  const double X = (xNdc * w * planeWidth_ / 2.0 + cx * Z) / D;
+  const double Y = (-yNdc * w * planeHeight_ / 2.0 + cy * Z) / D;
+  return {X, Y, Z};
+}
+
 double ShearingCamera::disparityPerUnitTrack(double z) const {
   return -(width_ / planeWidth_) * z / (spec_.distance - z);
 }

@@ -53,6 +53,9 @@ class ShearingCamera {
   glm::dmat4 viewProjectionAt(double cameraX, double cameraY) const;
   // World point -> (pixel x, pixel y, window depth) in one view.
   glm::dvec3 project(const glm::dvec3& p, int view, int row = 0) const;
+  // Window (pixel x, pixel y, window depth) -> world point, for an eye at
+  // (cameraX, cameraY) on the camera plane: the inverse of project.
+  glm::dvec3 unprojectAt(double cameraX, double cameraY, const glm::dvec3& window) const;
   // Pixel x movement of a point at depth z per unit of camera x:
   // -(W / Wp) z / (D - z). Zero on the image plane.
   double disparityPerUnitTrack(double z) const;

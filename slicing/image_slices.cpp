@@ -4,18 +4,6 @@
 
 namespace mvr {
 
-glm::dvec3 unproject(const ShearingCamera& cam, const glm::dvec2& eye, double x, double y,
-                     double depth) {
-  // Inverse of ShearingCamera::viewProjectionAt: depth = n (f - w) / ((f - n) w).
-  const CameraSpec& s = cam.spec();
-  const double n = s.nearDistance, f = s.farDistance, D = s.distance;
-  const double w = n * f / (depth * (f - n) + n), Z = D - w;
-  const double xNdc = 2.0 * x / cam.width() - 1.0, yNdc = 2.0 * y / cam.height() - 1.0;
-  const double X = (xNdc * w * cam.planeWidth() / 2.0 + eye.x * Z) / D;
-  const double Y = (-yNdc * w * cam.planeHeight() / 2.0 + eye.y * Z) / D;
-  return {X, Y, Z};
-}
-
 ImageSlices sliceSourceLayers(const std::vector<SourceLayer>& layers, const ShearingCamera& cam,
                               int row, float overlap) {
   ImageSlices out;
@@ -31,8 +19,8 @@ ImageSlices sliceSourceLayers(const std::vector<SourceLayer>& layers, const Shea
         if (depth == 0.0f) continue;
         const glm::vec3 c(layer.color.pixel(x, j));
         const auto base = uint32_t(out.vertices.vertexCount());
-        transform.add(unproject(cam, layer.eye, x - overlap, j + 0.5, depth), c, c, nullptr);
-        transform.add(unproject(cam, layer.eye, x + 1.0 + overlap, j + 0.5, depth), c, c, nullptr);
+        for (double edge : {double(x) - overlap, x + 1.0 + overlap})
+          transform.add(cam.unprojectAt(layer.eye.x, layer.eye.y, {edge, j + 0.5, depth}), c, c, nullptr);
         out.vertices.triangles.push_back({base, base + 1, base + 1});
         scanlineOf.push_back(uint32_t(j));
       }

@@ -26,9 +26,4 @@ struct ImageSlices {
 ImageSlices sliceSourceLayers(const std::vector<SourceLayer>& layers, const ShearingCamera& camera,
                               int row, float overlap = 0.25f);
 
-// The world point seen at window position (x, y) with window depth
-// `depth` by the eye (eyeX, eyeY) through camera's image-plane window.
-glm::dvec3 unproject(const ShearingCamera& camera, const glm::dvec2& eye, double x, double y,
-                     double depth);
-
 }  // namespace mvr

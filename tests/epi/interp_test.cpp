@@ -26,7 +26,7 @@ TEST(ImageSlices, UnprojectInvertsTheCamera) {
   const glm::dvec3 p(0.4, -0.3, 1.1);
   for (int view : {0, 3}) {
     const glm::dvec3 w = cam.project(p, view);
-    const glm::dvec3 q = unproject(cam, {cam.viewX(view), 0.0}, w.x, w.y, w.z);
+    const glm::dvec3 q = cam.unprojectAt(cam.viewX(view), 0.0, w);
     EXPECT_NEAR(glm::length(q - p), 0.0, 1e-9);
   }
 }
