@@ -154,23 +154,16 @@ class ReflectionVsSvr : public test::GlTest {};
 TEST_F(ReflectionVsSvr, EveryBackEndMatchesSvr) {
   Scene scene = loadScene(test::assetPath("mirror.json"));
   ShearingCamera cam(*scene.camera, 120, 90, 6);
-  auto svr = makeSvrRenderer(scene, PixelType::U8);
-  const test::CaptureSink reference = test::renderViews(*svr, cam);
-  auto layered = makeLayeredSvrRenderer(scene, PixelType::U8);
-  EXPECT_EQ(test::compareViews(reference, test::renderViews(*layered, cam)).minIdentical, 1.0);
-  auto deferred = makeDeferredRenderer(scene, PixelType::U8);
-  EXPECT_GE(test::compareViews(reference, test::renderViews(*deferred, cam)).minPsnr, 30.0);
-  for (PstMode mode : {PstMode::Cpu, PstMode::Exact, PstMode::Strip, PstMode::Quad}) {
-    auto mvr = makeMvrRenderer(scene, mode, PixelType::U8);
-    RenderStats stats;
-    const test::CaptureSink views = test::renderViews(*mvr, cam, stats);
-    EXPECT_EQ(stats.notes["passes"], "diffuse+view-dependent");
-    auto d = test::compareViews(reference, views);
-    const bool exactish = mode == PstMode::Cpu || mode == PstMode::Exact;
-    EXPECT_GE(d.minPsnr, exactish ? 45.0 : 35.0) << pstModeName(mode);
-    if (mode == PstMode::Exact) EXPECT_GE(d.minIdentical, 0.995);
-    if (mode == PstMode::Cpu) EXPECT_GE(d.minClose, 0.995);
+  const test::BackEndsAgainstSvr r = test::compareBackEndsWithSvr(scene, cam);
+  EXPECT_EQ(r.difference.at("svr-layered").minIdentical, 1.0);
+  EXPECT_GE(r.difference.at("deferred").minPsnr, 30.0);
+  for (const char* mode : {"cpu", "exact", "strip", "quad"}) {
+    EXPECT_EQ(r.passes.at(mode), "diffuse+view-dependent") << mode;
+    const bool exactish = std::string(mode) == "cpu" || std::string(mode) == "exact";
+    EXPECT_GE(r.difference.at(mode).minPsnr, exactish ? 45.0 : 35.0) << mode;
   }
+  EXPECT_GE(r.difference.at("exact").minIdentical, 0.995);
+  EXPECT_GE(r.difference.at("cpu").minClose, 0.995);
 }
 
 // A mirror on the image plane has zero disparity: every view sees the same

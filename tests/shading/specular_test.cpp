@@ -77,22 +77,16 @@ class SpecularVsSvr : public test::GlTest {};
 TEST_F(SpecularVsSvr, EveryModeMatchesSvr) {
   Scene scene = loadScene(test::assetPath("shiny.json"));
   ShearingCamera cam(*scene.camera, 120, 90, 6);
-  auto svr = makeSvrRenderer(scene, PixelType::U8);
-  const test::CaptureSink reference = test::renderViews(*svr, cam);
-  auto layered = makeLayeredSvrRenderer(scene, PixelType::U8);
-  EXPECT_EQ(test::compareViews(reference, test::renderViews(*layered, cam)).minIdentical, 1.0);
+  const test::BackEndsAgainstSvr r = test::compareBackEndsWithSvr(scene, cam);
+  EXPECT_EQ(r.difference.at("svr-layered").minIdentical, 1.0);
   // Deferred lights diffuse per pixel, not per vertex: close, not equal.
-  auto deferred = makeDeferredRenderer(scene, PixelType::U8);
-  EXPECT_GE(test::compareViews(reference, test::renderViews(*deferred, cam)).minPsnr, 40.0);
-  for (PstMode mode : {PstMode::Cpu, PstMode::Exact, PstMode::Strip, PstMode::Quad}) {
-    auto mvr = makeMvrRenderer(scene, mode, PixelType::U8);
-    RenderStats stats;
-    const test::CaptureSink views = test::renderViews(*mvr, cam, stats);
-    EXPECT_EQ(stats.notes["passes"], "diffuse+view-dependent");
-    auto d = test::compareViews(reference, views);
-    EXPECT_GE(d.minPsnr, 40.0) << pstModeName(mode);
-    if (mode == PstMode::Cpu || mode == PstMode::Exact) EXPECT_GE(d.minIdentical, 0.995) << pstModeName(mode);
+  EXPECT_GE(r.difference.at("deferred").minPsnr, 40.0);
+  for (const char* mode : {"cpu", "exact", "strip", "quad"}) {
+    EXPECT_EQ(r.passes.at(mode), "diffuse+view-dependent") << mode;
+    EXPECT_GE(r.difference.at(mode).minPsnr, 40.0) << mode;
   }
+  EXPECT_GE(r.difference.at("cpu").minIdentical, 0.995);
+  EXPECT_GE(r.difference.at("exact").minIdentical, 0.995);
 }
 
 TEST_F(SpecularVsSvr, HighlightsMoveWithTheViewAndTheRow) {

@@ -1,6 +1,7 @@
 #pragma once
 // Renders a scene with a named back end into memory, as views.
 #include <cstdlib>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -55,6 +56,31 @@ inline SetDifference compareViews(const CaptureSink& a, const CaptureSink& b) {
     d.minClose = std::min(d.minClose, x.closeFraction);
   }
   return d;
+}
+
+// One scene in every back end, each against svr: "svr-layered",
+// "deferred" and the MVR modes by name ("cpu", "exact", "strip", "quad");
+// passes holds each MVR run's "passes" note.
+struct BackEndsAgainstSvr {
+  std::map<std::string, SetDifference> difference;
+  std::map<std::string, std::string> passes;
+};
+
+inline BackEndsAgainstSvr compareBackEndsWithSvr(const Scene& scene, const ShearingCamera& cam) {
+  BackEndsAgainstSvr out;
+  auto svr = makeSvrRenderer(scene, PixelType::U8);
+  const CaptureSink reference = renderViews(*svr, cam);
+  auto layered = makeLayeredSvrRenderer(scene, PixelType::U8);
+  out.difference["svr-layered"] = compareViews(reference, renderViews(*layered, cam));
+  auto deferred = makeDeferredRenderer(scene, PixelType::U8);
+  out.difference["deferred"] = compareViews(reference, renderViews(*deferred, cam));
+  for (PstMode mode : {PstMode::Cpu, PstMode::Exact, PstMode::Strip, PstMode::Quad}) {
+    auto mvr = makeMvrRenderer(scene, mode, PixelType::U8);
+    RenderStats stats;
+    out.difference[pstModeName(mode)] = compareViews(reference, renderViews(*mvr, cam, stats));
+    out.passes[pstModeName(mode)] = stats.notes["passes"];
+  }
+  return out;
 }
 
 }  // namespace mvr::test
