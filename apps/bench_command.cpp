@@ -68,8 +68,25 @@ std::string cpuModel() {
   return "unknown CPU";
 }
 
-// NAME[:PST[:TEXTURE]], e.g. mvr:exact:direct; interp[:ACQUIRE[:LAYERS]],
-// e.g. interp:center:6 (pixel slices drawn in quad mode).
+// NAME[:PST[:TEXTURE]], e.g. mvr:exact:direct; interp[:ACQUIRE[:OPTION...]]
+// with options LAYERS (a number), cT (coalesce T pixels) and an accuracy
+// mode, e.g. interp:center:6:c0.5:exact.
+void interpOption(const std::string& token, BackendChoice& c) {
+  char* end = nullptr;
+  const char* text = token.c_str();
+  if (token == "quad" || token == "strip" || token == "exact" || token == "cpu") {
+    c.pst = token;
+    return;
+  }
+  if (token.size() > 1 && token[0] == 'c') {
+    c.coalesce = std::strtof(text + 1, &end);
+  } else {
+    const long layers = std::strtol(text, &end, 10);
+    c.maxLayers = int(std::clamp(layers, 1L, 64L));
+  }
+  if (token.empty() || *end != '\0') fail("--backends", "unknown interp option '" + token + "'");
+}
+
 BackendChoice parseBackend(const std::string& s) {
   std::vector<std::string> field;
   for (size_t at = 0;;) {
@@ -81,7 +98,7 @@ BackendChoice parseBackend(const std::string& s) {
   BackendChoice c{field[0], defaultPst(field[0]), "vector"};
   if (c.backend == "interp") {
     if (field.size() > 1) c.acquire = field[1];
-    if (field.size() > 2) c.maxLayers = std::max(1, std::atoi(field[2].c_str()));
+    for (size_t i = 2; i < field.size(); ++i) interpOption(field[i], c);
   } else {
     if (field.size() > 1) c.pst = field[1];
     if (field.size() > 2) c.texture = field[2];

@@ -34,6 +34,9 @@ const char* const kRenderHelp =
     "  --acquire center|dual   interp: source views from the middle of the track or\n"
     "                     from both ends (default dual)\n"
     "  --max-layers L     interp: depth-peeled layers per source view (default 4)\n"
+    "  --coalesce T       interp: draw runs of source pixels with close depths as one\n"
+    "                     slice when that moves no pixel more than T pixels in any\n"
+    "                     view (default 0: a slice per pixel)\n"
     "  --texture vector|direct   MVR texturing: 1-D texture vectors per slice\n"
     "                     (default) or the 2D texture with a per-pixel divide\n"
     "  --views N          views on the horizontal track (default 16)\n"
@@ -55,7 +58,9 @@ std::unique_ptr<Renderer> makeRenderer(const BackendChoice& c, const Scene& scen
   if (c.backend == "mvr")
     return makeMvrRenderer(scene, parsePstMode(c.pst), type, 2, parseTextureMode(c.texture));
   if (c.backend == "interp")
-    return makeInterpRenderer(scene, type, {parseAcquire(c.acquire), c.maxLayers, parsePstMode(c.pst)});
+    return makeInterpRenderer(scene, type,
+                              {.acquire = parseAcquire(c.acquire), .maxLayers = c.maxLayers,
+                               .mode = parsePstMode(c.pst), .coalesce = c.coalesce});
   if (c.backend == "svr") return makeSvrRenderer(scene, type);
   if (c.backend == "svr-layered") return makeLayeredSvrRenderer(scene, type);
   if (c.backend == "deferred") return makeDeferredRenderer(scene, type);
@@ -132,11 +137,11 @@ const char* const kStreamHelp =
     "  --backend, --pst, --views, --rows, --size, --format, --gl as for render\n";
 
 int runRender(int argc, char** argv, bool streamCommand) {
-  std::set<std::string> flags = {"backend", "pst", "texture", "acquire", "max-layers", "views",
+  std::set<std::string> flags = {"backend", "pst", "texture", "acquire", "max-layers", "coalesce", "views",
                                  "rows", "size", "out", "format", "order", "gl", "stream", "bits",
                                  "quilt", "predistort", "queue"};
   if (streamCommand)
-    flags = {"backend", "pst", "texture", "acquire", "max-layers", "views", "rows", "size",
+    flags = {"backend", "pst", "texture", "acquire", "max-layers", "coalesce", "views", "rows", "size",
              "format", "gl", "to", "queue"};
   Args args(argc, argv, 2, flags, {});
   const char* streamFlag = streamCommand ? "to" : "stream";
@@ -148,7 +153,7 @@ int runRender(int argc, char** argv, bool streamCommand) {
   const std::string backend = args.get("backend", "mvr");
   BackendChoice choice{backend, args.get("pst", defaultPst(backend)),
                        args.get("texture", "vector"), args.get("acquire", "dual"),
-                       args.getInt("max-layers", 4, 1, 64)};
+                       args.getInt("max-layers", 4, 1, 64), float(args.getDouble("coalesce", 0.0))};
   const int views = args.getInt("views", 16, 1, 65536);
   const int rows = args.getInt("rows", 1, 1, 4096);
   const auto [width, height] = args.getSize("size", {320, 240});
@@ -161,7 +166,7 @@ int runRender(int argc, char** argv, bool streamCommand) {
   if (order != "view" && order != "epi") fail("--order", "expected view or epi, not '" + order + "'");
   if (choice.backend != "mvr" && choice.backend != "interp" && args.has("pst"))
     fail("--pst", "applies to --backend mvr and interp only");
-  for (const char* flag : {"acquire", "max-layers"})
+  for (const char* flag : {"acquire", "max-layers", "coalesce"})
     if (choice.backend != "interp" && args.has(flag))
       fail(std::string("--") + flag, "applies to --backend interp only");
   if (choice.backend != "mvr" && args.has("texture")) fail("--texture", "applies to --backend mvr only");

@@ -21,6 +21,7 @@ struct BackendChoice {
   std::string texture = "vector";  // vector | direct (mvr GL modes only)
   std::string acquire = "dual";    // center | dual (interp only)
   int maxLayers = 4;               // depth-peeled layers per source view (interp only)
+  float coalesce = 0.0f;           // pixels a coalesced run may move a pixel (interp only)
 };
 
 // The accuracy mode a back end uses unless told: interp's pixel slices have

@@ -104,16 +104,18 @@ void main() {
 }
 )";
 
-// Vector: attributes u, first texel, length, linear in screen space.
+// Vector: the parameter u, first texel and length. Exact mode has u from
+// the slice parameter; the sliver modes divide u times the slice's width
+// by the width (both affine in x and r) so that u is exact there too.
 const char* const kTextureVectorMain = R"(
 layout(binding = 3) uniform samplerBuffer uVectors;
 void main() {
   prepare();
 #ifdef EXACT
-  float u = gU, base = vA0[0].y, k = vA0[0].z;
-  float perPixel = k / abs(vNumDen.y);  // du/dx = 1 / slice width
+  float u = mix(vA0[0].x, vA1[0].x, gU), base = vA0[0].y, k = vA0[0].z;
+  float perPixel = k * abs(vA1[0].x - vA0[0].x) / abs(vNumDen.y);  // du/dx
 #else
-  float u = vA[0].x, base = round(vA[0].y), k = round(vA[0].z);
+  float u = vA[0].y == 0.0 ? 0.0 : vA[0].x / vA[0].y, base = round(vA[0].z), k = round(vA[0].w);
   float perPixel = abs(dFdx(u)) * k;
 #endif
   oColor = k == 0.0 ? vec4(1.0) : sampleTextureVector(uVectors, base, k, u, perPixel);
@@ -148,7 +150,8 @@ int passAttributeCount(shading::Pass pass, const EpiShading& shading) {
   const shading::ShadingPlan& plan = shading.plan;
   switch (pass) {
     case shading::Pass::Diffuse: return 3;
-    case shading::Pass::Texture: return shading.textureMode == TextureMode::Vector ? 3 : 2;
+    case shading::Pass::Texture:
+      return shading.textureMode == TextureMode::Vector || shading.sliceVectors ? 4 : 2;
     case shading::Pass::ViewDependent: return plan.reflect >= 0 ? 15 : 6;
   }
   return 0;
@@ -158,9 +161,11 @@ int passAttributeCount(shading::Pass pass, const EpiShading& shading) {
 
 EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading)
     : mode_(mode), pass_(pass), shading_(shading), count_(passAttributeCount(pass, shading)) {
-  if (pass != shading::Pass::Diffuse && !shading.scene)
+  if (shading.sliceVectors && pass != shading::Pass::Texture)
+    fail("EpiPass", "slices coloured by vectors take the texture pass only");
+  if (pass != shading::Pass::Diffuse && !shading.scene && !shading.sliceVectors)
     fail("EpiPass", std::string(shading::passName(pass)) + " pass needs a scene");
-  if (pass == shading::Pass::Texture && !shading.textures)
+  if (pass == shading::Pass::Texture && !shading.textures && !shading.sliceVectors)
     fail("EpiPass", "texture pass needs the scene's textures");
   const bool exact = mode == PstMode::Exact;
   std::string header = gl::glslHeader({"NV " + std::to_string(chunks())});
@@ -182,14 +187,15 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading)
                              {{GL_VERTEX_SHADER, header + (exact ? kExactVertex : kSliverVertex)},
                               {GL_FRAGMENT_SHADER, fragment}});
   vao_ = gl::VertexArray::create();
-  if (pass != shading::Pass::Diffuse) {
-    shading::setLightUniforms(program_, *shading.scene);
-  }
+  if (pass != shading::Pass::Diffuse && shading.scene) shading::setLightUniforms(program_, *shading.scene);
 }
 
 bool EpiPass::linear() const {
-  return pass_ == shading::Pass::Texture && shading_.textureMode == TextureMode::Vector;
+  return pass_ == shading::Pass::Texture &&
+         (shading_.textureMode == TextureMode::Vector || shading_.sliceVectors);
 }
+
+bool EpiPass::first() const { return pass_ == shading::Pass::Diffuse || shading_.sliceVectors; }
 
 int EpiPass::stride() const {
   return mode_ == PstMode::Exact ? 12 + 8 * chunks() : 8 + 4 * chunks();
@@ -216,7 +222,7 @@ void EpiPass::gather(const SliceEnd& e, bool front, float* out) const {
 void EpiPass::begin(const glm::vec2& scale, const glm::vec3& eye0, const glm::vec3& eyeStep) const {
   gl::UseProgram(program_.id());
   gl::setUniform(program_, "uScale", scale);
-  if (pass_ == shading::Pass::Diffuse) {
+  if (first()) {
     gl::Disable(GL_BLEND);
     gl::DepthFunc(GL_GREATER);
     gl::DepthMask(GL_TRUE);

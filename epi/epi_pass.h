@@ -24,8 +24,14 @@ class EpiPass {
   shading::Pass pass() const { return pass_; }
   int attributeCount() const { return count_; }
   // The texture-vector pass: attributes (u, first texel, length) are linear
-  // in screen space and are not divided by w; gather() does not apply.
+  // in screen space and are not divided by w; gather() does not apply. u
+  // runs from SliceVector::u0 at end 0 to u1 at end 1 (0 and 1 for the
+  // vectors the rasterizer extracts itself). The sliver modes carry u as
+  // (u times the slice width, the width, first texel, length).
   bool linear() const;
+  // The pass that writes colour and depth; later passes test depth EQUAL
+  // and blend.
+  bool first() const;
   int stride() const;  // floats per vertex
   // This pass's attributes of one endpoint, divided by w.
   void gather(const SliceEnd& e, bool front, float* out) const;

@@ -31,6 +31,9 @@ struct EpiShading {
   const shading::TextureSet* textures = nullptr;  // when plan.texture
   const shading::EnvironmentSet* environment = nullptr;  // when plan.reflection
   TextureMode textureMode = TextureMode::Vector;
+  // Image-based slices: every slice is coloured by its own texture vector
+  // (ExtremeVertices::vectors) in one pass, with no scene and no lighting.
+  bool sliceVectors = false;
 };
 
 class EpiRasterizer {

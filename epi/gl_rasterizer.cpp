@@ -48,7 +48,10 @@ class GlRasterizer final : public EpiRasterizer {
  public:
   GlRasterizer(PstMode mode, PixelType type, const EpiShading& shading)
       : mode_(mode), type_(type), shading_(shading) {
-    for (shading::Pass p : shading_.plan.passes()) passes_.emplace_back(mode, p, shading_);
+    if (shading_.sliceVectors)
+      passes_.emplace_back(mode, shading::Pass::Texture, shading_);
+    else
+      for (shading::Pass p : shading_.plan.passes()) passes_.emplace_back(mode, p, shading_);
     if (shading_.scene) {
       static const shading::TextureSet kNoTextures;
       static const shading::EnvironmentSet kNoMaps;
@@ -140,15 +143,15 @@ class GlRasterizer final : public EpiRasterizer {
       auto [e0, e1] = sliceEnds(v, s);
       const Pst pst = makePst(e0, e1, n, v.cullBack[s.triangle]);
       const uint32_t material = v.materials.empty() ? 0 : v.materials[s.triangle];
-      const glm::vec2 vector = pass.linear() ? addVector(pst, material) : glm::vec2(0.0f);
+      const SliceVector vector = pass.linear() ? addVector(v, s.triangle, pst, material) : SliceVector{};
       for (int p = 0; p < pst.pieceCount; ++p)
         emitPiece(pass, pst, pst.pieces[p], float(material), vector, yBase);
     }
   }
 
-  // vector: first texel and length of the slice's texture vector.
+  // vector: the slice's texture vector in this batch (linear passes).
   void emitPiece(const EpiPass& pass, const Pst& pst, const PstPiece& piece, float material,
-                 glm::vec2 vector, float yBase) {
+                 const SliceVector& vector, float yBase) {
     const int slivers = mode_ == PstMode::Strip ? sliverCount(pst, piece) : 1;
     const float rows[2] = {piece.rTop, piece.rBottom};
     const float iw0 = pst.e0.invW, iw1 = pst.e1.invW;
@@ -156,9 +159,10 @@ class GlRasterizer final : public EpiRasterizer {
     const int count = pass.attributeCount(), stride = pass.stride();
     float a0[shading::kMaxExtras], a1[shading::kMaxExtras];
     if (pass.linear()) {
-      a0[0] = 0.0f, a1[0] = 1.0f;
-      a0[1] = a1[1] = vector.x;
-      a0[2] = a1[2] = vector.y;
+      a0[0] = vector.u0, a1[0] = vector.u1;
+      a0[1] = a1[1] = float(vector.base);
+      a0[2] = a1[2] = float(vector.length);
+      a0[3] = a1[3] = 0.0f;
     } else {
       pass.gather(pst.e0, piece.front, a0);
       pass.gather(pst.e1, piece.front, a1);
@@ -184,8 +188,17 @@ class GlRasterizer final : public EpiRasterizer {
         } else {
           const float head[8] = {x, yBase + r, pstDepth(pst, u), r - 0.5f, side, material, 0, 0};
           std::copy_n(head, 8, out);
-          // Attributes divided back at the ruling (linear ones need not be).
-          const float invW = pass.linear() ? 1.0f : iw0 + (iw1 - iw0) * u;
+          if (pass.linear()) {
+            // The vector parameter times the slice's width, and the width:
+            // both affine in (x, r), so any triangulation interpolates them
+            // exactly and their quotient is the exact parameter.
+            const float t = a0[0] + (a1[0] - a0[0]) * u, width = pst.width(r);
+            const float linear[4] = {t * width, width, a0[1], a0[2]};
+            std::copy_n(linear, 4, out + 8);
+            continue;
+          }
+          // Attributes divided back at the ruling.
+          const float invW = iw0 + (iw1 - iw0) * u;
           for (int c = 0; c < count; ++c) out[8 + c] = (a0[c] + (a1[c] - a0[c]) * u) / invW;
         }
       }
@@ -193,17 +206,23 @@ class GlRasterizer final : public EpiRasterizer {
     indices_.push_back(kRestart);
   }
 
-  // The slice's 1-D texture vector, at the wider p-edge's resolution.
-  glm::vec2 addVector(const Pst& pst, uint32_t material) {
+  // The slice's 1-D texture vector in this batch's store: its own (image
+  // slices), or extracted at the wider p-edge's resolution.
+  SliceVector addVector(const ExtremeVertices& v, uint32_t triangle, const Pst& pst, uint32_t material) {
+    if (shading_.sliceVectors) {
+      SliceVector own = v.vectors.at(triangle);
+      own.base = vectors_.append(v.vectorTexels, own.base, own.length);
+      return own;
+    }
     const int layer = shading_.textures->materialLayers()[material];
-    if (layer < 0 || pst.pieceCount == 0) return glm::vec2(0.0f);
+    if (layer < 0 || pst.pieceCount == 0) return SliceVector{};
     const int uv = shading_.plan.uv;
     const glm::vec2 uv0(pst.e0.extrasOverW[uv], pst.e0.extrasOverW[uv + 1]);
     const glm::vec2 uv1(pst.e1.extrasOverW[uv], pst.e1.extrasOverW[uv + 1]);
     const float rBottom = pst.pieces[pst.pieceCount - 1].rBottom;
     const float widest = std::max(std::abs(pst.width(0.0f)), std::abs(pst.width(rBottom)));
     const int base = vectors_.add(*shading_.textures, layer, uv0, uv1, pst.e0.invW, pst.e1.invW, widest);
-    return glm::vec2(float(base), float(shading::TextureVectors::lengthFor(widest)));
+    return SliceVector{base, shading::TextureVectors::lengthFor(widest), 0.0f, 1.0f};
   }
 
   void drawGeometry(const EpiPass& pass) {

@@ -1,5 +1,7 @@
 #include "epi/interp_renderer.h"
 
+#include <cmath>
+
 #include "mvr/error.h"
 #include "mvr/source_layers.h"
 #include "slicing/image_slices.h"
@@ -16,13 +18,18 @@ const char* acquireName(Acquire acquire) { return acquire == Acquire::Center ? "
 
 namespace {
 
+// Every image slice is coloured by its own vector of source pixels.
+const EpiShading kVectors{.sliceVectors = true};
+
 class InterpRenderer final : public Renderer {
  public:
   InterpRenderer(const Scene& scene, PixelType type, const InterpOptions& options)
       : options_(options), sources_(makeSourceLayerRenderer(scene)),
-        rasterizer_(options.mode == PstMode::Cpu ? makeSpanRasterizer(type, 2)
-                                                 : makeGlRasterizer(options.mode, type)) {
+        rasterizer_(options.mode == PstMode::Cpu ? makeSpanRasterizer(type, 2, kVectors)
+                                                 : makeGlRasterizer(options.mode, type, kVectors)) {
     if (options.maxLayers < 1) fail("--max-layers", "must be at least 1");
+    if (!(options.coalesce >= 0.0f) || !std::isfinite(options.coalesce))
+      fail("--coalesce", "must be a finite number of pixels, at least 0");
   }
 
   std::string name() const override { return "interp"; }
@@ -42,9 +49,10 @@ class InterpRenderer final : public Renderer {
       ImageSlices slices;
       {
         ScopedStage s(stats.times, "slicing");
-        slices = sliceSourceLayers(layers, cam, row, options_.overlap);
+        slices = sliceSourceLayers(layers, cam, row, {options_.overlap, options_.coalesce});
       }
       stats.counters["slices"] += double(slices.table.sliceCount());
+      stats.counters["slice_pixels"] += double(slices.pixels);
       stats.counters["slice_table_bytes"] =
           std::max(stats.counters["slice_table_bytes"], double(slices.table.bytes()));
       rasterizer_->rasterize(slices.vertices, slices.table, cam, row, sink, stats);
@@ -52,6 +60,7 @@ class InterpRenderer final : public Renderer {
     stats.notes["acquire"] = acquireName(options_.acquire);
     stats.notes["pst"] = pstModeName(options_.mode);
     stats.counters["max_layers"] = options_.maxLayers;
+    stats.counters["coalesce"] = options_.coalesce;
   }
 
  private:

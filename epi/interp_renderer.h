@@ -24,6 +24,7 @@ struct InterpOptions {
   int maxLayers = 4;        // depth-peeled layers per source view
   PstMode mode = PstMode::Quad;  // a pixel slice has one colour: quad is exact
   float overlap = 0.25f;    // footprint widening per side, pixels
+  float coalesce = 0.0f;    // pixels a coalesced run may move a pixel; 0: off
 };
 
 // Needs a current GL context.

@@ -20,7 +20,7 @@ class SpanRasterizer final : public EpiRasterizer {
  public:
   SpanRasterizer(PixelType type, int threads, const EpiShading& shading)
       : type_(type), threads_(std::max(1, threads)), shading_(shading) {
-    if (shading_.plan.passes().size() > 1 && !shading_.scene)
+    if (shading_.plan.passes().size() > 1 && !shading_.scene && !shading_.sliceVectors)
       fail("cpu rasterizer", "shading passes need a scene");
     if (shading_.plan.texture && !shading_.textures) fail("cpu rasterizer", "texturing needs textures");
     if (shading_.plan.reflection && !shading_.environment)
@@ -66,13 +66,21 @@ class SpanRasterizer final : public EpiRasterizer {
       auto [e0, e1] = sliceEnds(v, s);
       const Pst pst = makePst(e0, e1, n, v.cullBack[s.triangle]);
       const uint32_t material = v.materials.empty() ? 0 : v.materials[s.triangle];
-      for (int p = 0; p < pst.pieceCount; ++p) fillPiece(pst, pst.pieces[p], material, epi, depth);
+      const SliceVector* vector = shading_.sliceVectors ? &v.vectors.at(s.triangle) : nullptr;
+      for (int p = 0; p < pst.pieceCount; ++p)
+        fillPiece(pst, pst.pieces[p], material, vector ? Colors{&v.vectorTexels, vector} : Colors{}, epi, depth);
     }
     return epi;
   }
 
-  void fillPiece(const Pst& pst, const PstPiece& piece, uint32_t material, Image& epi,
-                 std::vector<float>& depth) const {
+  // Where a slice's colour comes from: its vertices, or its own vector.
+  struct Colors {
+    const shading::TextureVectors* texels = nullptr;
+    const SliceVector* vector = nullptr;
+  };
+
+  void fillPiece(const Pst& pst, const PstPiece& piece, uint32_t material, Colors colors,
+                 Image& epi, std::vector<float>& depth) const {
     const int w = epi.width, n = epi.height;
     // Views whose row centre i + 0.5 lies in [rTop, rBottom).
     const int iFirst = std::max(0, int(std::ceil(piece.rTop - 0.5f)));
@@ -90,7 +98,13 @@ class SpanRasterizer final : public EpiRasterizer {
         float& dz = depth[size_t(i) * w + x];
         if (!(z > dz)) continue;
         dz = z;
-        store(epi, x, i, shade(pst, piece.front, material, u, 1.0f / width, float(i)));
+        if (colors.vector) {
+          const SliceVector& sv = *colors.vector;
+          const float t = sv.u0 + (sv.u1 - sv.u0) * u, perPixel = sv.length * std::abs((sv.u1 - sv.u0) / width);
+          store(epi, x, i, glm::vec3(colors.texels->sample(sv.base, sv.length, t, perPixel)));
+        } else {
+          store(epi, x, i, shade(pst, piece.front, material, u, 1.0f / width, float(i)));
+        }
       }
     }
   }

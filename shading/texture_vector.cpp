@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <string>
+
+#include "mvr/error.h"
 
 namespace mvr::shading {
 
@@ -24,10 +27,33 @@ int TextureVectors::add(const TextureSet& textures, int layer, glm::vec2 uv0w, g
     const glm::vec2 duv = uvAt(std::min(1.0f, u + 0.5f / k)) - uvAt(std::max(0.0f, u - 0.5f / k));
     texels_.push_back(textures.sample(layer, uvAt(u), textures.lodFor(duv)));
   }
+  addLevels(base, k);
+  return base;
+}
+
+int TextureVectors::addTexels(std::span<const glm::vec4> level0) {
+  const size_t k = level0.size();
+  if (k == 0 || k > size_t(kMaxLength) || !std::has_single_bit(k))
+    fail("texture vector", "length " + std::to_string(k) + " is not a power of two up to " +
+                               std::to_string(kMaxLength));
+  const int base = int(texels_.size());
+  texels_.insert(texels_.end(), level0.begin(), level0.end());
+  addLevels(base, int(k));
+  return base;
+}
+
+int TextureVectors::append(const TextureVectors& from, int base, int length) {
+  const int at = int(texels_.size());
+  const auto first = from.texels_.begin() + base;
+  texels_.insert(texels_.end(), first, first + (2 * length - 1));
+  return at;
+}
+
+// The box-filtered MIP chain after level 0 (k texels at base).
+void TextureVectors::addLevels(int base, int k) {
   for (int len = k / 2, from = base; len >= 1; from += 2 * len, len /= 2)
     for (int i = 0; i < len; ++i)
       texels_.push_back(0.5f * (texels_[from + 2 * i] + texels_[from + 2 * i + 1]));
-  return base;
 }
 
 // Keep in step with the GLSL below.

@@ -7,6 +7,7 @@
 // linearly in u, with no per-pixel divide. K is the wider p-edge's pixel
 // width rounded up to a power of two; a 1-D MIP chain (box filter) serves
 // the narrower views. Level l (K >> l texels) starts at 2K - (2K >> l).
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -24,6 +25,12 @@ class TextureVectors {
   // returns its first texel. widthPixels: the wider p-edge.
   int add(const TextureSet& textures, int layer, glm::vec2 uv0OverW, glm::vec2 uv1OverW,
           float invW0, float invW1, float widthPixels);
+  // Appends a vector of the given level-0 texels (a power of two of them,
+  // at most kMaxLength) and its MIP chain; returns its first texel. The
+  // image-based back end's source pixel runs are such vectors already.
+  int addTexels(std::span<const glm::vec4> level0);
+  // Appends a copy of `length` texels' vector at `base` of another store.
+  int append(const TextureVectors& from, int base, int length);
   static int lengthFor(float widthPixels);
   // Sample at screen parameter u with `texelsPerPixel` level-0 texels per
   // pixel: linear within a level, linear between levels.
@@ -32,6 +39,8 @@ class TextureVectors {
   const std::vector<glm::vec4>& texels() const { return texels_; }
 
  private:
+  void addLevels(int base, int k);
+
   std::vector<glm::vec4> texels_;
 };
 

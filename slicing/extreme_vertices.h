@@ -15,8 +15,17 @@
 #include "mvr/scene.h"
 #include "shading/lighting.h"
 #include "shading/shading_plan.h"
+#include "shading/texture_vector.h"
 
 namespace mvr {
+
+// A slice coloured by a 1-D texture vector of its own (Halle 6.5.3): the
+// image-based back end's run of source pixels. The vector's parameter runs
+// from u0 at the slice's end 0 to u1 at end 1, linearly in screen space.
+struct SliceVector {
+  int base = 0, length = 0;  // first texel and level-0 length in vectorTexels
+  float u0 = 0.0f, u1 = 1.0f;
+};
 
 struct ExtremeVertices {
   // Per vertex, pixel units. x at EPI row coordinate r (view i is sampled
@@ -34,6 +43,10 @@ struct ExtremeVertices {
   std::vector<glm::uvec3> triangles;
   std::vector<uint8_t> cullBack;  // per triangle: its material culls back faces
   std::vector<uint32_t> materials;  // per triangle: index into Scene::materials
+  // Per triangle when slices are coloured by vectors, else empty: the
+  // colours above are then unused.
+  std::vector<SliceVector> vectors;
+  shading::TextureVectors vectorTexels;
 
   size_t vertexCount() const { return x0.size(); }
   size_t bytes() const;

@@ -1,33 +1,128 @@
 #include "slicing/image_slices.h"
 
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+
 #include "mvr/error.h"
 
 namespace mvr {
+namespace {
+
+constexpr int kMaxLevel = std::countr_zero(unsigned(shading::TextureVectors::kMaxLength));
+
+// Min and max window depth of every aligned block of 2^l pixels of one
+// scanline. An empty pixel spans everything, so no block holding it is
+// ever close enough to coalesce.
+class DepthMip {
+ public:
+  DepthMip(const float* depth, int width) {
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    lo_.emplace_back(width), hi_.emplace_back(width);
+    for (int x = 0; x < width; ++x) {
+      const bool empty = depth[x] == 0.0f;
+      lo_[0][x] = empty ? -inf : depth[x];
+      hi_[0][x] = empty ? inf : depth[x];
+    }
+    for (int l = 1; l <= kMaxLevel && (width >> l) > 0; ++l) {
+      const int n = width >> l;
+      lo_.emplace_back(n), hi_.emplace_back(n);
+      for (int i = 0; i < n; ++i) {
+        lo_[l][i] = std::min(lo_[l - 1][2 * i], lo_[l - 1][2 * i + 1]);
+        hi_[l][i] = std::max(hi_[l - 1][2 * i], hi_[l - 1][2 * i + 1]);
+      }
+    }
+  }
+  int levels() const { return int(lo_.size()); }
+  // Depth range of block i of level l.
+  float range(int l, int i) const { return hi_[l][i] - lo_[l][i]; }
+
+ private:
+  std::vector<std::vector<float>> lo_, hi_;
+};
+
+class LayerSlicer {
+ public:
+  LayerSlicer(const ShearingCamera& cam, int row, const ImageSliceOptions& options, ImageSlices& out)
+      : cam_(cam), options_(options), out_(out), transform_(cam, row, out.vertices) {}
+
+  void slice(const SourceLayer& layer) {
+    const int w = cam_.width(), h = cam_.height();
+    if (layer.color.width != w || layer.color.height != h || layer.color.type != PixelType::F32 ||
+        layer.depth.size() != size_t(w) * h)
+      fail("sliceSourceLayers", "source layers must be float images of the output size");
+    const float tolerance = options_.coalesce > 0.0f
+                                ? coalesceDepthRange(cam_, layer.eye.x, options_.coalesce)
+                                : -1.0f;  // off: even equal depths stay apart
+    for (int j = 0; j < h; ++j) {
+      const float* depth = layer.depth.data() + size_t(j) * w;
+      const DepthMip mip(depth, w);
+      for (int x = 0; x < w;) {
+        if (depth[x] == 0.0f) {
+          ++x;
+          continue;
+        }
+        // The largest aligned block from x whose depths agree.
+        int l = 0;
+        while (l + 1 < mip.levels() && x % (2 << l) == 0 && x + (2 << l) <= w &&
+               mip.range(l + 1, x >> (l + 1)) <= tolerance)
+          ++l;
+        addRun(layer, j, x, 1 << l);
+        x += 1 << l;
+      }
+    }
+  }
+
+  std::vector<uint32_t> scanlineOf;
+
+ private:
+  // Pixels [x, x + n) of scanline j as one slice: the ends on the line
+  // through the first and last pixel centres (exact for a plane).
+  void addRun(const SourceLayer& layer, int j, int x, int n) {
+    const float* depth = layer.depth.data() + size_t(j) * cam_.width();
+    const float d0 = depth[x], slope = n > 1 ? (depth[x + n - 1] - d0) / float(n - 1) : 0.0f;
+    const float o = options_.overlap;
+    texels_.clear();
+    for (int k = 0; k < n; ++k) texels_.push_back(glm::vec4(glm::vec3(layer.color.pixel(x + k, j)), 1.0f));
+    const auto base = uint32_t(out_.vertices.vertexCount());
+    const glm::vec3 c(texels_[0]);
+    for (float at : {-o, float(n) + o})  // pixel offsets of the two ends from x
+      transform_.add(cam_.unprojectAt(layer.eye.x, layer.eye.y, {x + at, j + 0.5, d0 + (at - 0.5f) * slope}),
+                     c, c, nullptr);
+    out_.vertices.triangles.push_back({base, base + 1, base + 1});
+    out_.vertices.vectors.push_back(
+        {out_.vertices.vectorTexels.addTexels(texels_), n, -o / float(n), 1.0f + o / float(n)});
+    scanlineOf.push_back(uint32_t(j));
+    out_.pixels += size_t(n);
+  }
+
+  const ShearingCamera& cam_;
+  const ImageSliceOptions& options_;
+  ImageSlices& out_;
+  ExtremeTransform transform_;
+  std::vector<glm::vec4> texels_;
+};
+
+}  // namespace
+
+float coalesceDepthRange(const ShearingCamera& cam, double eyeX, float pixels) {
+  const CameraSpec& s = cam.spec();
+  const double reach =
+      std::max(std::abs(eyeX - cam.viewX(0)), std::abs(eyeX - cam.viewX(cam.views() - 1)));
+  const double n = s.nearDistance, f = s.farDistance;
+  const double pixelsPerDepth = reach * s.distance * (cam.width() / cam.planeWidth()) * (f - n) / (n * f);
+  return pixelsPerDepth > 0.0 ? float(pixels / pixelsPerDepth) : std::numeric_limits<float>::infinity();
+}
 
 ImageSlices sliceSourceLayers(const std::vector<SourceLayer>& layers, const ShearingCamera& cam,
-                              int row, float overlap) {
+                              int row, const ImageSliceOptions& options) {
   ImageSlices out;
-  std::vector<uint32_t> scanlineOf;
-  ExtremeTransform transform(cam, row, out.vertices);
-  const int w = cam.width(), h = cam.height();
-  for (const SourceLayer& layer : layers) {
-    if (layer.color.width != w || layer.color.height != h || layer.color.type != PixelType::F32)
-      fail("sliceSourceLayers", "source layers must be float images of the output size");
-    for (int j = 0; j < h; ++j)
-      for (int x = 0; x < w; ++x) {
-        const float depth = layer.depth[size_t(j) * w + x];
-        if (depth == 0.0f) continue;
-        const glm::vec3 c(layer.color.pixel(x, j));
-        const auto base = uint32_t(out.vertices.vertexCount());
-        for (double edge : {double(x) - overlap, x + 1.0 + overlap})
-          transform.add(cam.unprojectAt(layer.eye.x, layer.eye.y, {edge, j + 0.5, depth}), c, c, nullptr);
-        out.vertices.triangles.push_back({base, base + 1, base + 1});
-        scanlineOf.push_back(uint32_t(j));
-      }
-  }
+  LayerSlicer slicer(cam, row, options, out);
+  for (const SourceLayer& layer : layers) slicer.slice(layer);
   out.vertices.cullBack.assign(out.vertices.triangles.size(), 0);
   out.vertices.materials.assign(out.vertices.triangles.size(), 0);
-  out.table = SliceTable::fromSegments(scanlineOf, h);
+  out.table = SliceTable::fromSegments(slicer.scanlineOf, cam.height());
   return out;
 }
 

@@ -1,15 +1,26 @@
 #pragma once
-// Image-based slicing (de Quilletes 2018, over Halle's slice table): every
-// covered pixel of a source layer becomes a slice. Source and target views
+// Image-based slicing (de Quilletes 2018, over Halle's slice table): the
+// covered pixels of a source layer become slices. Source and target views
 // share the image-plane window and the row's camera y, so a pixel of
 // scanline j stays on scanline j in every view: its EPI track is known
 // from its 3D position alone, and the same EPI rasterizers draw it, with
 // the depth test resolving overlaps between pixels and layers.
 //
-// A pixel's slice spans its footprint at its own depth, widened by
+// A slice spans its pixels' footprint at their own depth, widened by
 // `overlap` pixels on each side so that neighbours at slightly different
 // depths do not open one-pixel cracks as the view moves away from the
-// source; the depth test settles the overlap.
+// source; the depth test settles the overlap. Its colours are a 1-D
+// texture vector of its pixels (Halle 6.5.3): a slice's screen parameter
+// names the same surface point in every view, so the run's pixels, taken
+// at their source-view screen positions, are already that vector.
+//
+// Coalescing: a run of 2^l neighbouring pixels (an aligned block of a 1-D
+// min/max depth mip) becomes one slice when its depths are so close that
+// drawing it as one straight slice moves no pixel more than `coalesce`
+// pixels in any view of the track. Window depth is affine in 1/w, and a
+// pixel whose 1/w strays by e from the slice moves by e D |E - S| W / Wp
+// pixels in the view at eye E (source eye S, image plane at distance D,
+// W pixels across the plane width Wp).
 #include <vector>
 
 #include "mvr/camera.h"
@@ -18,12 +29,22 @@
 
 namespace mvr {
 
+struct ImageSliceOptions {
+  float overlap = 0.25f;  // footprint widening per side, pixels
+  float coalesce = 0.0f;  // largest added displacement, pixels; 0: a slice per pixel
+};
+
 struct ImageSlices {
-  ExtremeVertices vertices;  // two per slice; "triangle" k is slice k
+  ExtremeVertices vertices;  // two per slice; "triangle" k is slice k, with its vector
   SliceTable table;
+  size_t pixels = 0;  // covered source pixels the slices carry
 };
 
 ImageSlices sliceSourceLayers(const std::vector<SourceLayer>& layers, const ShearingCamera& camera,
-                              int row, float overlap = 0.25f);
+                              int row, const ImageSliceOptions& options = {});
+
+// The window-depth range a coalesced run may span from a source eye at
+// camera x `eyeX` (infinite when the track has no width).
+float coalesceDepthRange(const ShearingCamera& camera, double eyeX, float pixels);
 
 }  // namespace mvr

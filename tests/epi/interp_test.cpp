@@ -45,7 +45,7 @@ TEST(ImageSlices, APixelOnTheImagePlaneStaysPutAndOneInFrontMoves) {
   auto depthAt = [&](double Z) { return cam.project({0.0, 0.0, Z}, 0).z; };
   layer.depth[1 * 16 + 5] = float(depthAt(0.0));
   layer.depth[1 * 16 + 9] = float(depthAt(2.0));
-  const ImageSlices s = sliceSourceLayers({layer}, cam, 0, 0.0f);
+  const ImageSlices s = sliceSourceLayers({layer}, cam, 0, {.overlap = 0.0f});
   ASSERT_EQ(s.table.sliceCount(), 2u);
   ASSERT_EQ(s.table.scanline(1).size(), 2u);
   auto [a0, a1] = sliceEnds(s.vertices, s.table.scanline(1)[0]);
@@ -57,6 +57,76 @@ TEST(ImageSlices, APixelOnTheImagePlaneStaysPutAndOneInFrontMoves) {
   EXPECT_NEAR(b0.x0 + b0.dx, 9.0f, 1e-4f);
   EXPECT_NEAR(b0.dx, -8.0f, 1e-4f);  // one unit of track per view
   EXPECT_NEAR(b1.x0 - b0.x0, 1.0f, 1e-4f);  // the same width in every view
+}
+
+// One scanline of a 16 x 2 layer seen from the middle of a 2-unit track
+// (image plane at distance 4, 2 units wide: 8 pixels per unit).
+struct RunCase {
+  ShearingCamera cam = [] {
+    CameraSpec spec;
+    spec.distance = 4, spec.planeWidth = 2, spec.nearDistance = 1, spec.farDistance = 8;
+    spec.trackLeft = -1, spec.trackRight = 1;
+    return ShearingCamera(spec, 16, 2, 3);
+  }();
+  SourceLayer layer;
+  RunCase() {
+    layer.color = Image(16, 2, PixelType::F32);
+    layer.depth.assign(32, 0.0f);
+  }
+  float depthAt(double Z) const { return float(cam.project({0.0, 0.0, Z}, 0).z); }
+  void set(int x, double Z, float grey) {
+    layer.depth[x] = depthAt(Z);
+    float* px = reinterpret_cast<float*>(layer.color.row(0)) + 4 * x;
+    px[0] = px[1] = px[2] = grey, px[3] = 1.0f;
+  }
+};
+
+TEST(ImageSlices, CoalescingMergesAlignedRunsOfCloseDepth) {
+  RunCase c;
+  for (int x = 0; x < 7; ++x) c.set(x, 0.0, x / 10.0f);  // on the image plane
+  c.set(8, 0.0, 0.5f);
+  c.set(9, 1.0, 0.5f);  // a unit in front: 8 / 3 pixels of parallax at the track's ends
+  EXPECT_EQ(sliceSourceLayers({c.layer}, c.cam, 0, {.coalesce = 0.0f}).table.sliceCount(), 9u);
+  // Aligned blocks of 4, 2 and 1 pixels, then 8 and 9 apart (their depths
+  // differ by far more than half a pixel of parallax).
+  const ImageSlices s = sliceSourceLayers({c.layer}, c.cam, 0, {.overlap = 0.25f, .coalesce = 0.5f});
+  ASSERT_EQ(s.table.sliceCount(), 5u);
+  EXPECT_EQ(s.pixels, 9u);
+  const std::vector<int> lengths = {4, 2, 1, 1, 1};
+  for (size_t k = 0; k < lengths.size(); ++k) EXPECT_EQ(s.vertices.vectors[k].length, lengths[k]) << k;
+  // The block of four: ends at x = -1/4 and 4 + 1/4, u from -1/16 to 17/16,
+  // its texels the pixels' colours.
+  const SliceVector& v = s.vertices.vectors[0];
+  EXPECT_FLOAT_EQ(v.u0, -0.0625f);
+  EXPECT_FLOAT_EQ(v.u1, 1.0625f);
+  EXPECT_FLOAT_EQ(s.vertices.vectorTexels.texels()[v.base + 3].r, 0.3f);
+  auto [e0, e1] = sliceEnds(s.vertices, s.table.scanline(0)[0]);
+  EXPECT_NEAR(e0.x0 + e0.dx, -0.25f, 1e-4f);  // the middle view is the source
+  EXPECT_NEAR(e1.x0 + e1.dx, 4.25f, 1e-4f);
+  // A unit of depth is 8 / 3 pixels: merging 8 and 9 needs T >= 8/3.
+  const float range = coalesceDepthRange(c.cam, 0.0, 1.0f);
+  EXPECT_NEAR(c.depthAt(1.0) - c.depthAt(0.0), 8.0f / 3.0f * range, 1e-5f);
+  EXPECT_EQ(sliceSourceLayers({c.layer}, c.cam, 0, {.coalesce = 2.7f}).table.sliceCount(), 4u);
+}
+
+TEST(ImageSlices, ARunOnATiltedPlaneKeepsItsPixelsInPlace) {
+  // Eight pixels of a plane tilted in depth: one slice whose ends sit on
+  // the line through the first and last pixel centres, so every pixel's
+  // track is where its own slice would put it.
+  RunCase c;
+  for (int x = 0; x < 8; ++x) c.layer.depth[x] = c.depthAt(0.0) + 0.001f * float(x);
+  const ImageSlices one = sliceSourceLayers({c.layer}, c.cam, 0, {.overlap = 0.0f, .coalesce = 100.0f});
+  const ImageSlices each = sliceSourceLayers({c.layer}, c.cam, 0, {.overlap = 0.0f});
+  ASSERT_EQ(one.table.sliceCount(), 1u);
+  auto [a0, a1] = sliceEnds(one.vertices, one.table.scanline(0)[0]);
+  auto [f0, f1] = sliceEnds(each.vertices, each.table.scanline(0)[0]);
+  auto [l0, l1] = sliceEnds(each.vertices, each.table.scanline(0)[7]);
+  for (float r : {0.0f, 3.0f}) {  // the track's ends
+    // Pixel centres 0.5 and 7.5 are 1/16 and 15/16 of the way along.
+    const float x0 = a0.x0 + (r - 0.5f) * a0.dx, x1 = a1.x0 + (r - 0.5f) * a1.dx;
+    EXPECT_NEAR(x0 + (x1 - x0) / 16.0f, f0.x0 + (r - 0.5f) * f0.dx + 0.5f * (f1.x0 - f0.x0), 2e-3f);
+    EXPECT_NEAR(x0 + (x1 - x0) * 15.0f / 16.0f, l0.x0 + (r - 0.5f) * l0.dx + 0.5f * (l1.x0 - l0.x0), 2e-3f);
+  }
 }
 
 class InterpTest : public test::GlTest {};
@@ -106,6 +176,34 @@ TEST_F(InterpTest, SourceViewIsReproducedAndDualBeatsCenterAtTheEnds) {
   EXPECT_GE(test::compareViews(d, test::renderViews(*cpu, cam)).minPsnr, 35.0);
 }
 
+TEST_F(InterpTest, CoalescingCutsSlicesAndKeepsTheSourceViewAndQuality) {
+  Scene scene = loadScene(test::assetPath("default.json"));
+  ShearingCamera cam(*scene.camera, 120, 90, 5);
+  auto deferred = makeDeferredRenderer(scene, PixelType::U8);
+  const test::CaptureSink reference = test::renderViews(*deferred, cam);
+  InterpOptions options{.acquire = Acquire::Center};
+  RenderStats each, runs;
+  auto plain = makeInterpRenderer(scene, PixelType::U8, options);
+  const test::CaptureSink p = test::renderViews(*plain, cam, each);
+  options.coalesce = 1.0f;
+  auto coalesced = makeInterpRenderer(scene, PixelType::U8, options);
+  const test::CaptureSink c = test::renderViews(*coalesced, cam, runs);
+  EXPECT_EQ(runs.counters["slice_pixels"], each.counters["slice_pixels"]);
+  EXPECT_LT(runs.counters["slices"], 0.5 * each.counters["slices"]);
+  // The source view: every pixel read back at its own texel centre.
+  EXPECT_GE(compareImages(reference.views.at({0, 2}), c.views.at({0, 2})).closeFraction, 0.999);
+  for (int v : {0, 1, 3, 4}) {
+    const double pc = compareImages(reference.views.at({0, v}), c.views.at({0, v})).psnr;
+    EXPECT_GE(pc, compareImages(reference.views.at({0, v}), p.views.at({0, v})).psnr - 1.0) << v;
+  }
+  options.mode = PstMode::Cpu;
+  auto cpu = makeInterpRenderer(scene, PixelType::U8, options);
+  EXPECT_GE(test::compareViews(c, test::renderViews(*cpu, cam)).minPsnr, 35.0);
+  options.mode = PstMode::Exact;
+  auto exact = makeInterpRenderer(scene, PixelType::U8, options);
+  EXPECT_GE(test::compareViews(c, test::renderViews(*exact, cam)).minPsnr, 35.0);
+}
+
 TEST_F(InterpTest, OneViewAndBadOptions) {
   Scene scene = loadScene(test::assetPath("default.json"));
   ShearingCamera one(*scene.camera, 40, 30, 1);
@@ -116,6 +214,7 @@ TEST_F(InterpTest, OneViewAndBadOptions) {
   EXPECT_EQ(stats.counters["source_views"], 1);  // both ends are the one view
   EXPECT_THROW(makeInterpRenderer(scene, PixelType::U8, {Acquire::Dual, 0, PstMode::Quad}), Error);
   EXPECT_THROW(parseAcquire("hierarchical-ish"), Error);
+  EXPECT_THROW(makeInterpRenderer(scene, PixelType::U8, {.coalesce = -1.0f}), Error);
 }
 
 }  // namespace

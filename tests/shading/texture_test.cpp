@@ -94,6 +94,24 @@ TEST(TextureVectors, PowerOfTwoLengthsAndAChainThatAverages) {
   EXPECT_NEAR(v.sample(base, 16, 1.5f / 4, 4.0f).r, v.texels()[16 + 8 + 1].r, 1e-6f);
 }
 
+TEST(TextureVectors, GivenTexelsGetTheSameChainAndCopiesKeepIt) {
+  shading::TextureVectors v, w;
+  const std::vector<glm::vec4> four = {glm::vec4(0.0f), glm::vec4(0.2f), glm::vec4(0.4f), glm::vec4(1.0f)};
+  w.addTexels(std::vector<glm::vec4>{glm::vec4(0.5f)});  // one texel: no chain
+  EXPECT_EQ(w.texels().size(), 1u);
+  const int base = v.addTexels(four);
+  ASSERT_EQ(v.texels().size(), 7u);  // 4 + 2 + 1
+  EXPECT_FLOAT_EQ(v.texels()[4].r, 0.1f);
+  EXPECT_FLOAT_EQ(v.texels()[5].r, 0.7f);
+  EXPECT_FLOAT_EQ(v.texels()[6].r, 0.4f);
+  const int copy = w.append(v, base, 4);
+  EXPECT_EQ(copy, 1);
+  EXPECT_FLOAT_EQ(w.sample(copy, 4, 2.5f / 4, 1.0f).r, 0.4f);  // texel 2's centre
+  EXPECT_FLOAT_EQ(w.sample(copy, 4, 0.5f, 2.0f).r, 0.4f);      // level 1, between its texels
+  EXPECT_THROW(v.addTexels(std::vector<glm::vec4>(3)), Error);
+  EXPECT_THROW(v.addTexels({}), Error);
+}
+
 TEST(TextureVectors, PerspectiveIsCorrectedAtExtraction) {
   // uv runs 0..1 while 1/w runs 1..1/3: screen u = 1/2 is uv = 1/4.
   Scene s = texturedScene("ramp16", 16, 1, [](int x, int) { return glm::vec3(x / 15.0f); });
