@@ -42,7 +42,9 @@ const char* const kBenchHelp =
     "  --size LIST         image sizes, e.g. 160x140,640x480 (default 160x140)\n"
     "  --rows M            rows of views (full parallax; times are per view of M x N)\n"
     "  --backends LIST     default svr,svr-layered,deferred,mvr:quad,mvr:strip,\n"
-    "                      mvr:exact,mvr:cpu\n"
+    "                      mvr:exact,mvr:cpu; mvr:MODE[:direct] textures directly;\n"
+    "                      interp[:ACQUIRE][:L][:cT][:MODE] is the image-based back\n"
+    "                      end with L layers, coalescing T pixels\n"
     "  --repeat R          best of R runs (default 1)\n"
     "  --error-views K     views compared against svr (default 8)\n"
     "  --json FILE         also write the results as JSON\n"
@@ -134,9 +136,12 @@ Run measure(Renderer& renderer, const ShearingCamera& cam, int repeat, const std
 
 void errorAgainst(const Run& ref, const Run& r, BenchRecord& rec) {
   rec.minPsnr = INFINITY;
-  rec.minIdentical = rec.minClose = 1.0;
+  rec.minIdentical = rec.minClose = rec.minSsim = 1.0;
+  rec.meanHoles = 0;
   for (const auto& [view, img] : r.samples) {
     ImageDifference d = compareImages(ref.samples.at(view), img);
+    rec.minSsim = std::min(rec.minSsim, d.ssim);
+    rec.meanHoles += double(d.holes) / double(r.samples.size());
     rec.minPsnr = std::min(rec.minPsnr, d.psnr);
     rec.minIdentical = std::min(rec.minIdentical, d.identicalFraction);
     rec.minClose = std::min(rec.minClose, d.closeFraction);
@@ -146,11 +151,11 @@ void errorAgainst(const Run& ref, const Run& r, BenchRecord& rec) {
 void printRow(const BenchRecord& r) {
   char size[32];
   std::snprintf(size, sizeof size, "%dx%d", r.width, r.height);
-  std::printf("%-16s %-9s %6d %-13s %10.4f %10.4f %8.2f %9.2f %8.2f %10.6f %10.0f\n",
+  std::printf("%-16s %-9s %6d %-13s %10.4f %10.4f %8.2f %9.2f %8.2f %7.4f %10.6f %7.1f %10.0f\n",
               r.scene.c_str(), size, r.views * r.rows, r.backend.c_str(), r.seconds,
               1e3 * r.seconds / (r.views * r.rows),
               r.speedupSvr, r.speedupLayered, std::isinf(r.minPsnr) ? 99.99 : r.minPsnr,
-              r.minIdentical, r.slices);
+              r.minSsim, r.minIdentical, r.meanHoles, r.slices);
   std::fflush(stdout);
 }
 
@@ -270,8 +275,9 @@ int runBench(int argc, char** argv) {
   BenchMachine machine{context->describe(), cpuModel(), std::thread::hardware_concurrency()};
   std::printf("# mvr bench\n# GL: %s\n# CPU: %s, %u threads\n", machine.gl.c_str(), machine.cpu.c_str(),
               machine.threads);
-  std::printf("%-16s %-9s %6s %-13s %10s %10s %8s %9s %8s %10s %10s\n", "scene", "size", "views",
-              "backend", "total_s", "ms/view", "x_svr", "x_layered", "PSNR_dB", "identical", "slices");
+  std::printf("%-16s %-9s %6s %-13s %10s %10s %8s %9s %8s %7s %10s %7s %10s\n", "scene", "size",
+              "views", "backend", "total_s", "ms/view", "x_svr", "x_layered", "PSNR_dB", "SSIM",
+              "identical", "holes", "slices");
   std::vector<BenchRecord> records;
   for (auto& [name, build] : scenes) {
     Scene scene = build();

@@ -97,6 +97,7 @@ void writeBenchJson(const std::string& path, const BenchMachine& machine,
                             {"speedup_vs_layered", num(r.speedupLayered)},
                             {"min_psnr_db", num(r.minPsnr)}, {"min_identical", num(r.minIdentical)},
                             {"min_within_one_step", num(r.minClose)},
+                            {"min_ssim", num(r.minSsim)}, {"mean_holes", r.meanHoles},
                             {"average_polygon_height_px", r.averagePolygonHeight},
                             {"stages_s", r.stages}, {"counters", r.counters}});
   for (const BreakEven& b : breakEvens)

@@ -12,7 +12,8 @@ struct BenchRecord {
   size_t triangles = 0;
   int width = 0, height = 0, views = 0, rows = 1;
   double seconds = 0, speedupSvr = 0, speedupLayered = 0;
-  double minPsnr = 0, minIdentical = 0, minClose = 0;
+  double minPsnr = 0, minIdentical = 0, minClose = 0, minSsim = 0;
+  double meanHoles = 0;  // per sampled view: pixels svr covers and this back end leaves empty
   double slices = 0, averagePolygonHeight = 0;
   std::map<std::string, double> stages, counters;
 };

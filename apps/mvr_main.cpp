@@ -22,7 +22,7 @@ const char* const kUsage =
     "usage: mvr <command> [options]\n"
     "  info                       GL version and renderer per context platform\n"
     "  render [SCENE] [options]   render a view set (mvr render --help)\n"
-    "  compare DIR_A DIR_B        per image PSNR / max error / identical pixels\n"
+    "  compare DIR_A DIR_B        per image PSNR / SSIM / max error / identical / holes\n"
     "  stream [SCENE] --to DEST   EPIs to a pipe, file or socket as they complete\n"
     "  view DIR|SCENE             look at views and EPIs (mvr view --help)\n"
     "  bench [SCENE] [options]    MVR against SVR, svr-layered, deferred (mvr bench --help)\n";
@@ -30,7 +30,9 @@ const char* const kUsage =
 const char* const kCompareHelp =
     "usage: mvr compare DIR_A DIR_B [--json]\n"
     "Pairs view_* and epi_* images by name and prints, per image, PSNR (dB over\n"
-    "RGB), the largest channel error (0..1) and the fraction of identical pixels.\n"
+    "RGB), SSIM (luma, 11x11 Gaussian window), the largest channel error (0..1),\n"
+    "the fraction of identical pixels, and holes and extras: pixels that the\n"
+    "first image covers and the second leaves empty (alpha 0), and the reverse.\n"
     "Exits non-zero when the sets differ in names or image sizes.\n";
 
 const char* const kInfoHelp =
@@ -61,30 +63,38 @@ int runCompare(int argc, char** argv) {
   Args args(argc, argv, 2, {}, {"json"});
   if (args.positional().size() != 2) fail("compare", "needs two folders (see --help)");
   auto diffs = compareSets(args.positional()[0], args.positional()[1]);
-  double worstPsnr = INFINITY, minIdentical = 1.0, maxError = 0.0;
+  double worstPsnr = INFINITY, minIdentical = 1.0, maxError = 0.0, minSsim = 1.0;
+  long holes = 0;
   for (const auto& d : diffs) {
     worstPsnr = std::min(worstPsnr, d.psnr);
     minIdentical = std::min(minIdentical, d.identicalFraction);
     maxError = std::max(maxError, d.maxError);
+    minSsim = std::min(minSsim, d.ssim);
+    holes += d.holes;
   }
   if (args.has("json")) {
     nlohmann::json j;
     j["images"] = nlohmann::json::array();
     for (const auto& d : diffs)
       j["images"].push_back({{"name", d.name}, {"psnr_db", std::isinf(d.psnr) ? -1.0 : d.psnr},
-                             {"max_error", d.maxError},
-                             {"identical_fraction", d.identicalFraction}});
+                             {"ssim", d.ssim}, {"max_error", d.maxError},
+                             {"identical_fraction", d.identicalFraction}, {"holes", d.holes},
+                             {"extras", d.extras}});
     j["min_psnr_db"] = std::isinf(worstPsnr) ? -1.0 : worstPsnr;  // -1: identical
+    j["min_ssim"] = minSsim;
     j["min_identical_fraction"] = minIdentical;
     j["max_error"] = maxError;
+    j["holes"] = holes;
     std::cout << j.dump(2) << "\n";
   } else {
-    std::printf("%-28s %10s %10s %10s\n", "image", "PSNR_dB", "max_err", "identical");
+    std::printf("%-28s %10s %8s %10s %10s %8s %8s\n", "image", "PSNR_dB", "SSIM", "max_err",
+                "identical", "holes", "extras");
     for (const auto& d : diffs)
-      std::printf("%-28s %10.2f %10.4f %10.6f\n", d.name.c_str(), d.psnr, d.maxError,
-                  d.identicalFraction);
-    std::printf("%zu images: min PSNR %.2f dB, max error %.4f, min identical %.6f\n",
-                diffs.size(), worstPsnr, maxError, minIdentical);
+      std::printf("%-28s %10.2f %8.4f %10.4f %10.6f %8ld %8ld\n", d.name.c_str(), d.psnr, d.ssim,
+                  d.maxError, d.identicalFraction, d.holes, d.extras);
+    std::printf("%zu images: min PSNR %.2f dB, min SSIM %.4f, max error %.4f, min identical %.6f, "
+                "%ld holes\n",
+                diffs.size(), worstPsnr, minSsim, maxError, minIdentical, holes);
   }
   return 0;
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <vector>
 
 #include "mvr/error.h"
 
@@ -24,6 +25,8 @@ ImageDifference compareImages(const Image& a, const Image& b, const std::string&
       glm::vec4 pa = a.pixel(x, y), pb = b.pixel(x, y);
       glm::vec4 diff = glm::abs(pa - pb);
       if (diff == glm::vec4(0)) ++identical;
+      if (pa.a > 0.0f && pb.a == 0.0f) ++d.holes;
+      if (pa.a == 0.0f && pb.a > 0.0f) ++d.extras;
       if (glm::all(glm::lessThanEqual(diff, glm::vec4(1.0f / 255.0f + 1e-6f)))) ++close;
       d.maxError = std::max<double>(d.maxError, std::max({diff.r, diff.g, diff.b, diff.a}));
       sumSq += double(diff.r) * diff.r + double(diff.g) * diff.g + double(diff.b) * diff.b;
@@ -35,7 +38,62 @@ ImageDifference compareImages(const Image& a, const Image& b, const std::string&
   d.identicalFraction = identical / n;
   d.closeFraction = close / n;
   d.differingPixels = long(n) - identical;
+  d.ssim = ssim(a, b);
   return d;
+}
+
+namespace {
+
+// A separable Gaussian blur (11 taps, sigma 1.5) with clamped edges.
+std::vector<double> blur(const std::vector<double>& in, int w, int h) {
+  constexpr int r = 5;
+  double weights[2 * r + 1], sum = 0;
+  for (int i = -r; i <= r; ++i) sum += weights[i + r] = std::exp(-i * i / (2 * 1.5 * 1.5));
+  for (double& k : weights) k /= sum;
+  std::vector<double> tmp(in.size()), out(in.size());
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      double acc = 0;
+      for (int i = -r; i <= r; ++i) acc += weights[i + r] * in[size_t(y) * w + std::clamp(x + i, 0, w - 1)];
+      tmp[size_t(y) * w + x] = acc;
+    }
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      double acc = 0;
+      for (int i = -r; i <= r; ++i) acc += weights[i + r] * tmp[size_t(std::clamp(y + i, 0, h - 1)) * w + x];
+      out[size_t(y) * w + x] = acc;
+    }
+  return out;
+}
+
+std::vector<double> luma(const Image& img) {
+  std::vector<double> y(size_t(img.width) * img.height);
+  for (int j = 0; j < img.height; ++j)
+    for (int i = 0; i < img.width; ++i) {
+      const glm::vec4 p = img.pixel(i, j);
+      y[size_t(j) * img.width + i] = 0.299 * p.r + 0.587 * p.g + 0.114 * p.b;
+    }
+  return y;
+}
+
+}  // namespace
+
+double ssim(const Image& a, const Image& b) {
+  if (a.width != b.width || a.height != b.height) fail("ssim", "size mismatch");
+  const int w = a.width, h = a.height;
+  const std::vector<double> x = luma(a), y = luma(b);
+  std::vector<double> xx(x.size()), yy(x.size()), xy(x.size());
+  for (size_t i = 0; i < x.size(); ++i) xx[i] = x[i] * x[i], yy[i] = y[i] * y[i], xy[i] = x[i] * y[i];
+  const std::vector<double> mx = blur(x, w, h), my = blur(y, w, h);
+  const std::vector<double> sxx = blur(xx, w, h), syy = blur(yy, w, h), sxy = blur(xy, w, h);
+  constexpr double c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;
+  double total = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    const double vx = sxx[i] - mx[i] * mx[i], vy = syy[i] - my[i] * my[i], cxy = sxy[i] - mx[i] * my[i];
+    total += (2 * mx[i] * my[i] + c1) * (2 * cxy + c2) /
+             ((mx[i] * mx[i] + my[i] * my[i] + c1) * (vx + vy + c2));
+  }
+  return total / double(x.size());
 }
 
 namespace {

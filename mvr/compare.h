@@ -1,6 +1,14 @@
 #pragma once
-// Image comparison: per image PSNR, largest channel error and the fraction
-// of identical pixels -- the numbers behind every MVR-vs-SVR claim.
+// Image comparison: per image PSNR, SSIM, largest channel error, the
+// fraction of identical pixels and the coverage difference -- the numbers
+// behind every MVR-vs-SVR claim.
+//
+// SSIM (Wang, Bovik, Sheikh and Simoncelli 2004) on luma (Rec. 601
+// weights) with an 11 x 11 Gaussian window of sigma 1.5, C1 = (0.01)^2,
+// C2 = (0.03)^2 for a range of 1, edges clamped, averaged over the image.
+// Coverage comes from alpha (renderers clear to alpha 0): a hole is a pixel
+// the first image covers and the second leaves empty; an extra pixel the
+// reverse.
 #include <string>
 #include <vector>
 
@@ -15,10 +23,16 @@ struct ImageDifference {
   double identicalFraction = 0;  // pixels whose four channels all match
   double closeFraction = 0;      // pixels within one 8-bit step (1/255) in every channel
   long differingPixels = 0;
+  double ssim = 1.0;             // mean structural similarity of luma
+  long holes = 0;                // covered in the first image, empty in the second
+  long extras = 0;               // empty in the first, covered in the second
 };
 
 // Throws mvr::Error when the sizes differ.
 ImageDifference compareImages(const Image& a, const Image& b, const std::string& name = "");
+
+// Mean SSIM of the two images' luma; throws when the sizes differ.
+double ssim(const Image& a, const Image& b);
 
 // Pairs view_* and epi_* images by name. Throws when a folder is missing,
 // has no images, or the two sets have different names or sizes.

@@ -58,6 +58,38 @@ TEST(Compare, OneChangedPixelIsCountedAndMeasured) {
   EXPECT_NEAR(d[1].psnr, 10 * std::log10(144 / 0.04), 1e-3);
 }
 
+Image flat(int w, int h, float grey, float alpha = 1.0f) {
+  Image img(w, h, PixelType::F32);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      float* p = reinterpret_cast<float*>(img.row(y)) + 4 * x;
+      p[0] = p[1] = p[2] = grey, p[3] = alpha;
+    }
+  return img;
+}
+
+TEST(Compare, SsimOfFlatImagesIsTheLuminanceTerm) {
+  // No variance: SSIM = (2 a b + C1) / (a^2 + b^2 + C1).
+  EXPECT_NEAR(ssim(flat(16, 12, 0.5f), flat(16, 12, 0.5f)), 1.0, 1e-12);
+  EXPECT_NEAR(ssim(flat(16, 12, 0.5f), flat(16, 12, 0.25f)), 0.2501 / 0.3126, 1e-9);
+  // Structure lost: a red checkerboard against the grey of its mean luma.
+  Image checker = flat(16, 12, 0.0f);
+  for (int y = 0; y < 12; ++y)
+    for (int x = (y & 1); x < 16; x += 2) reinterpret_cast<float*>(checker.row(y))[4 * x] = 1.0f;
+  EXPECT_LT(ssim(checker, flat(16, 12, 0.299f * 0.5f)), 0.1);
+  EXPECT_THROW(ssim(flat(4, 4, 0), flat(4, 5, 0)), Error);
+}
+
+TEST(Compare, HolesAndExtrasComeFromCoverage) {
+  Image a = flat(4, 3, 0.5f), b = flat(4, 3, 0.5f);
+  reinterpret_cast<float*>(b.row(1))[4 * 2 + 3] = 0.0f;  // b leaves (2, 1) empty
+  reinterpret_cast<float*>(b.row(2))[4 * 0 + 3] = 0.0f;
+  reinterpret_cast<float*>(a.row(0))[4 * 3 + 3] = 0.0f;  // a leaves (3, 0) empty
+  const ImageDifference d = compareImages(a, b);
+  EXPECT_EQ(d.holes, 2);
+  EXPECT_EQ(d.extras, 1);
+}
+
 TEST(Compare, SizeMismatchIsAnError) {
   EXPECT_THROW(compareSets(makeSet("e", 0).string(), makeSet("f", 0, 9).string()), Error);
 }
