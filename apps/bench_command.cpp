@@ -43,8 +43,9 @@ const char* const kBenchHelp =
     "  --rows M            rows of views (full parallax; times are per view of M x N)\n"
     "  --backends LIST     default svr,svr-layered,deferred,mvr:quad,mvr:strip,\n"
     "                      mvr:exact,mvr:cpu; mvr:MODE[:direct] textures directly;\n"
-    "                      interp[:ACQUIRE][:L][:cT][:MODE] is the image-based back\n"
-    "                      end with L layers, coalescing T pixels\n"
+    "                      interp[:ACQUIRE][:L][:cT][:vis][:bB][:MODE] is the\n"
+    "                      image-based back end with L layers, coalescing T pixels,\n"
+    "                      visibility, a budget of B source views\n"
     "  --repeat R          best of R runs (default 1)\n"
     "  --error-views K     views compared against svr (default 8)\n"
     "  --json FILE         also write the results as JSON\n"
@@ -71,8 +72,9 @@ std::string cpuModel() {
 }
 
 // NAME[:PST[:TEXTURE]], e.g. mvr:exact:direct; interp[:ACQUIRE[:OPTION...]]
-// with options LAYERS (a number), cT (coalesce T pixels) and an accuracy
-// mode, e.g. interp:center:6:c0.5:exact.
+// with options LAYERS (a number), cT (coalesce T pixels), vis (visibility),
+// bB (hierarchical budget) and an accuracy mode, e.g.
+// interp:hierarchical:2:c0.5:vis:b5:exact.
 void interpOption(const std::string& token, BackendChoice& c) {
   char* end = nullptr;
   const char* text = token.c_str();
@@ -80,7 +82,13 @@ void interpOption(const std::string& token, BackendChoice& c) {
     c.pst = token;
     return;
   }
-  if (token.size() > 1 && token[0] == 'c') {
+  if (token == "vis") {
+    c.visibility = true;
+    return;
+  }
+  if (token.size() > 1 && token[0] == 'b') {
+    c.budget = int(std::clamp(std::strtol(text + 1, &end, 10), 2L, 1024L));
+  } else if (token.size() > 1 && token[0] == 'c') {
     c.coalesce = std::strtof(text + 1, &end);
   } else {
     const long layers = std::strtol(text, &end, 10);

@@ -31,8 +31,13 @@ const char* const kRenderHelp =
     "bundled default scene is rendered.\n"
     "  --backend mvr|interp|svr|svr-layered|deferred   renderer (default mvr)\n"
     "  --pst quad|strip|exact|cpu   MVR accuracy mode (default strip; interp: quad)\n"
-    "  --acquire center|dual   interp: source views from the middle of the track or\n"
-    "                     from both ends (default dual)\n"
+    "  --acquire center|dual|hierarchical   interp: source views from the middle of\n"
+    "                     the track, from both ends (default), or from both ends\n"
+    "                     and then halfway between two sources wherever they leave\n"
+    "                     holes, recursively\n"
+    "  --budget B         interp hierarchical: source views per row at most (default 9)\n"
+    "  --visibility       interp: drop layer pixels the nearest layer hides from the\n"
+    "                     whole track; stop peeling at a layer with none left\n"
     "  --max-layers L     interp: depth-peeled layers per source view (default 4)\n"
     "  --coalesce T       interp: draw runs of source pixels with close depths as one\n"
     "                     slice when that moves no pixel more than T pixels in any\n"
@@ -60,7 +65,8 @@ std::unique_ptr<Renderer> makeRenderer(const BackendChoice& c, const Scene& scen
   if (c.backend == "interp")
     return makeInterpRenderer(scene, type,
                               {.acquire = parseAcquire(c.acquire), .maxLayers = c.maxLayers,
-                               .mode = parsePstMode(c.pst), .coalesce = c.coalesce});
+                               .mode = parsePstMode(c.pst), .coalesce = c.coalesce,
+                               .visibility = c.visibility, .budget = c.budget});
   if (c.backend == "svr") return makeSvrRenderer(scene, type);
   if (c.backend == "svr-layered") return makeLayeredSvrRenderer(scene, type);
   if (c.backend == "deferred") return makeDeferredRenderer(scene, type);
@@ -137,13 +143,13 @@ const char* const kStreamHelp =
     "  --backend, --pst, --views, --rows, --size, --format, --gl as for render\n";
 
 int runRender(int argc, char** argv, bool streamCommand) {
-  std::set<std::string> flags = {"backend", "pst", "texture", "acquire", "max-layers", "coalesce", "views",
+  std::set<std::string> flags = {"backend", "pst", "texture", "acquire", "max-layers", "coalesce", "budget", "views",
                                  "rows", "size", "out", "format", "order", "gl", "stream", "bits",
                                  "quilt", "predistort", "queue"};
   if (streamCommand)
-    flags = {"backend", "pst", "texture", "acquire", "max-layers", "coalesce", "views", "rows", "size",
+    flags = {"backend", "pst", "texture", "acquire", "max-layers", "coalesce", "budget", "views", "rows", "size",
              "format", "gl", "to", "queue"};
-  Args args(argc, argv, 2, flags, {});
+  Args args(argc, argv, 2, flags, {"visibility"});
   const char* streamFlag = streamCommand ? "to" : "stream";
   const bool streaming = args.has(streamFlag);
   if (streamCommand && !streaming) fail("stream", "needs --to -|FILE|unix:PATH|tcp:HOST:PORT");
@@ -153,7 +159,8 @@ int runRender(int argc, char** argv, bool streamCommand) {
   const std::string backend = args.get("backend", "mvr");
   BackendChoice choice{backend, args.get("pst", defaultPst(backend)),
                        args.get("texture", "vector"), args.get("acquire", "dual"),
-                       args.getInt("max-layers", 4, 1, 64), float(args.getDouble("coalesce", 0.0))};
+                       args.getInt("max-layers", 4, 1, 64), float(args.getDouble("coalesce", 0.0)),
+                       args.has("visibility"), args.getInt("budget", 9, 2, 1024)};
   const int views = args.getInt("views", 16, 1, 65536);
   const int rows = args.getInt("rows", 1, 1, 4096);
   const auto [width, height] = args.getSize("size", {320, 240});
@@ -166,7 +173,7 @@ int runRender(int argc, char** argv, bool streamCommand) {
   if (order != "view" && order != "epi") fail("--order", "expected view or epi, not '" + order + "'");
   if (choice.backend != "mvr" && choice.backend != "interp" && args.has("pst"))
     fail("--pst", "applies to --backend mvr and interp only");
-  for (const char* flag : {"acquire", "max-layers", "coalesce"})
+  for (const char* flag : {"acquire", "max-layers", "coalesce", "budget", "visibility"})
     if (choice.backend != "interp" && args.has(flag))
       fail(std::string("--") + flag, "applies to --backend interp only");
   if (choice.backend != "mvr" && args.has("texture")) fail("--texture", "applies to --backend mvr only");

@@ -19,9 +19,11 @@ struct BackendChoice {
   std::string backend = "mvr";  // mvr | interp | svr | svr-layered | deferred
   std::string pst = "strip";    // quad | strip | exact | cpu (mvr and interp)
   std::string texture = "vector";  // vector | direct (mvr GL modes only)
-  std::string acquire = "dual";    // center | dual (interp only)
+  std::string acquire = "dual";    // center | dual | hierarchical (interp only)
   int maxLayers = 4;               // depth-peeled layers per source view (interp only)
   float coalesce = 0.0f;           // pixels a coalesced run may move a pixel (interp only)
+  bool visibility = false;         // drop layer pixels hidden from the track (interp only)
+  int budget = 9;                  // hierarchical: source views per row at most
 };
 
 // The accuracy mode a back end uses unless told: interp's pixel slices have

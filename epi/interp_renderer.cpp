@@ -1,25 +1,42 @@
 #include "epi/interp_renderer.h"
 
+#include <algorithm>
 #include <cmath>
+#include <deque>
 
 #include "mvr/error.h"
 #include "mvr/source_layers.h"
 #include "slicing/image_slices.h"
+#include "slicing/source_visibility.h"
 
 namespace mvr {
 
 Acquire parseAcquire(const std::string& name) {
   if (name == "center") return Acquire::Center;
   if (name == "dual") return Acquire::Dual;
-  fail("--acquire", "unknown acquisition '" + name + "' (expected center or dual)");
+  if (name == "hierarchical") return Acquire::Hierarchical;
+  fail("--acquire", "unknown acquisition '" + name + "' (expected center, dual or hierarchical)");
 }
 
-const char* acquireName(Acquire acquire) { return acquire == Acquire::Center ? "center" : "dual"; }
+const char* acquireName(Acquire acquire) {
+  switch (acquire) {
+    case Acquire::Center: return "center";
+    case Acquire::Dual: return "dual";
+    case Acquire::Hierarchical: return "hierarchical";
+  }
+  return "?";
+}
 
 namespace {
 
 // Every image slice is coloured by its own vector of source pixels.
 const EpiShading kVectors{.sliceVectors = true};
+
+// The layers of one source view.
+struct Source {
+  double x;  // camera x
+  std::vector<SourceLayer> layers;
+};
 
 class InterpRenderer final : public Renderer {
  public:
@@ -30,21 +47,17 @@ class InterpRenderer final : public Renderer {
     if (options.maxLayers < 1) fail("--max-layers", "must be at least 1");
     if (!(options.coalesce >= 0.0f) || !std::isfinite(options.coalesce))
       fail("--coalesce", "must be a finite number of pixels, at least 0");
+    if (options.budget < 2) fail("--budget", "must be at least 2 source views");
   }
 
   std::string name() const override { return "interp"; }
   FrameOrder order() const override { return FrameOrder::Epi; }
 
   void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
-    const double trackWidth = std::abs(cam.spec().trackRight - cam.spec().trackLeft);
     for (int row = 0; row < cam.rows(); ++row) {
       std::vector<SourceLayer> layers;
-      for (double x : sourceEyes(cam)) {
-        std::vector<SourceLayer> more =
-            sources_->render(cam, {x, cam.rowY(row)}, options_.maxLayers, trackWidth, stats);
-        stats.counters["source_views"] += 1;
-        for (SourceLayer& l : more) layers.push_back(std::move(l));
-      }
+      for (Source& source : acquire(cam, row, stats))
+        for (SourceLayer& l : source.layers) layers.push_back(std::move(l));
       stats.counters["layers"] += double(layers.size());
       ImageSlices slices;
       {
@@ -61,13 +74,65 @@ class InterpRenderer final : public Renderer {
     stats.notes["pst"] = pstModeName(options_.mode);
     stats.counters["max_layers"] = options_.maxLayers;
     stats.counters["coalesce"] = options_.coalesce;
+    stats.counters["visibility"] = options_.visibility;
   }
 
  private:
-  std::vector<double> sourceEyes(const ShearingCamera& cam) const {
-    const double left = cam.viewX(0), right = cam.viewX(cam.views() - 1);
-    if (options_.acquire == Acquire::Center || cam.views() == 1) return {0.5 * (left + right)};
-    return {left, right};
+  std::vector<Source> acquire(const ShearingCamera& cam, int row, RenderStats& stats) {
+    const int n = cam.views();
+    std::vector<Source> sources;
+    auto add = [&](double x) { sources.push_back(render(cam, row, x, stats)); };
+    if (options_.acquire == Acquire::Center || n == 1) {
+      add(0.5 * (cam.viewX(0) + cam.viewX(n - 1)));
+      return sources;
+    }
+    add(cam.viewX(0));
+    add(cam.viewX(n - 1));
+    if (options_.acquire == Acquire::Hierarchical) refine(cam, row, sources, stats);
+    return sources;
+  }
+
+  // Breadth first over the track, so that a spent budget leaves the added
+  // views spread evenly.
+  void refine(const ShearingCamera& cam, int row, std::vector<Source>& sources, RenderStats& stats) {
+    const double tolerance = options_.holeFraction * cam.width() * cam.height();
+    std::deque<std::pair<int, int>> todo{{0, cam.views() - 1}};  // view indices of two sources
+    while (!todo.empty() && int(sources.size()) < options_.budget) {
+      const auto [a, b] = todo.front();
+      todo.pop_front();
+      if (b - a < 2) continue;
+      const int m = (a + b) / 2;
+      std::vector<const SourceLayer*> near;
+      for (const Source& s : sources)
+        if (s.x == cam.viewX(a) || s.x == cam.viewX(b))
+          for (const SourceLayer& l : s.layers) near.push_back(&l);
+      long holes = 0;
+      {
+        ScopedStage s(stats.times, "visibility");
+        holes = countHoles(near, cam, cam.viewX(m), options_.overlap);
+      }
+      stats.counters["hole_checks"] += 1;
+      if (double(holes) <= tolerance) continue;
+      sources.push_back(render(cam, row, cam.viewX(m), stats));
+      todo.emplace_back(a, m);
+      todo.emplace_back(m, b);
+    }
+  }
+
+  Source render(const ShearingCamera& cam, int row, double x, RenderStats& stats) {
+    const double trackWidth = std::abs(cam.spec().trackRight - cam.spec().trackLeft);
+    stats.counters["source_views"] += 1;
+    LayerFilter visible;
+    if (options_.visibility)
+      visible = [&](const std::vector<SourceLayer>& nearer, SourceLayer& layer) {
+        if (nearer.empty()) return true;
+        ScopedStage s(stats.times, "visibility");
+        const auto before = std::count_if(layer.depth.begin(), layer.depth.end(), [](float d) { return d > 0.0f; });
+        const long kept = hideInvisible(nearer.front(), layer, cam, options_.overlap);
+        stats.counters["hidden_pixels"] += double(before - kept);
+        return kept > 0;
+      };
+    return {x, sources_->render(cam, {x, cam.rowY(row)}, options_.maxLayers, trackWidth, stats, visible)};
   }
 
   InterpOptions options_;

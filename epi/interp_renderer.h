@@ -13,18 +13,29 @@
 namespace mvr {
 
 // Where the source views come from:
-//   center  the middle of the track, depth peeled
-//   dual    both ends of the track, each depth peeled
-enum class Acquire { Center, Dual };
+//   center        the middle of the track, depth peeled
+//   dual          both ends of the track, each depth peeled
+//   hierarchical  both ends, then the view halfway between two sources
+//                 wherever those two leave disocclusion holes there,
+//                 recursively, until none does or the budget is spent
+enum class Acquire { Center, Dual, Hierarchical };
 Acquire parseAcquire(const std::string& name);  // throws on unknown
 const char* acquireName(Acquire acquire);
 
 struct InterpOptions {
   Acquire acquire = Acquire::Dual;
   int maxLayers = 4;        // depth-peeled layers per source view
-  PstMode mode = PstMode::Quad;  // a pixel slice has one colour: quad is exact
+  PstMode mode = PstMode::Quad;  // exact for image slices in every mode
   float overlap = 0.25f;    // footprint widening per side, pixels
   float coalesce = 0.0f;    // pixels a coalesced run may move a pixel; 0: off
+  // Drop layer pixels the nearest layer hides from the whole track, and
+  // stop peeling at a layer with none left (a heuristic: a deeper layer
+  // could still show where this one is hidden).
+  bool visibility = false;
+  int budget = 9;           // hierarchical: source views per row at most
+  // hierarchical: holes a view between two sources may show, as a
+  // fraction of the image's pixels, before a source is added there.
+  double holeFraction = 1e-3;
 };
 
 // Needs a current GL context.

@@ -248,7 +248,8 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
   explicit SourceLayerRendererImpl(const Scene& scene) : pipeline_(scene) {}
 
   std::vector<SourceLayer> render(const ShearingCamera& cam, const glm::dvec2& eye, int maxLayers,
-                                  double trackWidth, RenderStats& stats) override {
+                                  double trackWidth, RenderStats& stats,
+                                  const LayerFilter& filter) override {
     const int w = cam.width(), h = cam.height();
     RenderTarget target(w, h, PixelType::F32);
     GBuffer gbuffers[2] = {GBuffer(w, h), GBuffer(w, h)};
@@ -271,11 +272,15 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
         gl::GetQueryObjectuiv(query, GL_QUERY_RESULT, &samples);
       }
       if (samples == 0) break;  // an empty layer: nothing lies further back
-      ScopedStage s(stats.times, "acquire");
-      pipeline_.lighting(viewProj, glm::dvec3(eye, spec.distance), gbuffer, target);
-      SourceLayer layer{eye, k, target.read(), std::vector<float>(size_t(w) * h), long(samples)};
-      gl::GetTextureSubImage(gbuffer.depthTexture(), 0, 0, 0, 0, w, h, 1, GL_DEPTH_COMPONENT,
-                             GL_FLOAT, GLsizei(layer.depth.size() * sizeof(float)), layer.depth.data());
+      SourceLayer layer{eye, k, Image(), std::vector<float>(size_t(w) * h), long(samples)};
+      {
+        ScopedStage s(stats.times, "acquire");
+        pipeline_.lighting(viewProj, glm::dvec3(eye, spec.distance), gbuffer, target);
+        layer.color = target.read();
+        gl::GetTextureSubImage(gbuffer.depthTexture(), 0, 0, 0, 0, w, h, 1, GL_DEPTH_COMPONENT, GL_FLOAT,
+                               GLsizei(layer.depth.size() * sizeof(float)), layer.depth.data());
+      }
+      if (filter && !filter(layers, layer)) break;
       layers.push_back(std::move(layer));
     }
     gl::DeleteQueries(1, &query);

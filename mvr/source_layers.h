@@ -2,6 +2,7 @@
 // Source views for the image-based back end (de Quilletes 2018): the
 // deferred pipeline rendered from chosen eyes on the camera plane, depth
 // peeled into layers, read back with their depth.
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -22,14 +23,19 @@ struct SourceLayer {
   long fragments = 0;         // samples that passed into this layer
 };
 
+// Sees each layer as it is read back, with the nearer ones, and may drop
+// pixels from it (depth 0); false drops the layer and ends the peeling.
+using LayerFilter = std::function<bool(const std::vector<SourceLayer>& nearer, SourceLayer& layer)>;
+
 class SourceLayerRenderer {
  public:
   virtual ~SourceLayerRenderer() = default;
   // Up to maxLayers layers seen from eye through cam's image-plane window,
-  // stopping at the first empty one. trackWidth: the width E of the track
-  // the layers must serve, for the peeling offset.
+  // stopping at the first empty one or where `filter` says. trackWidth: the
+  // width E of the track the layers must serve, for the peeling offset.
   virtual std::vector<SourceLayer> render(const ShearingCamera& cam, const glm::dvec2& eye,
-                                          int maxLayers, double trackWidth, RenderStats& stats) = 0;
+                                          int maxLayers, double trackWidth, RenderStats& stats,
+                                          const LayerFilter& filter = {}) = 0;
 };
 
 // Needs a current GL context.

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "mvr/error.h"
+#include "slicing/source_visibility.h"
 
 namespace mvr {
 namespace {
@@ -107,11 +108,8 @@ class LayerSlicer {
 }  // namespace
 
 float coalesceDepthRange(const ShearingCamera& cam, double eyeX, float pixels) {
-  const CameraSpec& s = cam.spec();
-  const double reach =
-      std::max(std::abs(eyeX - cam.viewX(0)), std::abs(eyeX - cam.viewX(cam.views() - 1)));
-  const double n = s.nearDistance, f = s.farDistance;
-  const double pixelsPerDepth = reach * s.distance * (cam.width() / cam.planeWidth()) * (f - n) / (n * f);
+  const TrackParallax parallax(cam);
+  const double pixelsPerDepth = parallax.reach(eyeX) * parallax.pixelsPerDepth();
   return pixelsPerDepth > 0.0 ? float(pixels / pixelsPerDepth) : std::numeric_limits<float>::infinity();
 }
 

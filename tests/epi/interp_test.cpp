@@ -1,7 +1,7 @@
 // The image-based back end: unprojection by hand, segment slices in the
 // slice table, identity at a source view, depth peeling, and quality
 // against deferred, the pipeline that renders its source views.
-// Tolerances (default scene, 120x90, 5 views):
+// Tolerances (default scene, 120x90, 5 or 9 views):
 //  identity     the centre view of `center` equals deferred's exactly
 //  dual         >= 24 dB against deferred in every view (silhouettes
 //               dilate by up to half a pixel plus the overlap); better than
@@ -204,6 +204,49 @@ TEST_F(InterpTest, CoalescingCutsSlicesAndKeepsTheSourceViewAndQuality) {
   EXPECT_GE(test::compareViews(c, test::renderViews(*exact, cam)).minPsnr, 35.0);
 }
 
+long totalHoles(const test::CaptureSink& reference, const test::CaptureSink& b) {
+  long holes = 0;
+  for (const auto& [key, img] : reference.views) holes += compareImages(img, b.views.at(key)).holes;
+  return holes;
+}
+
+TEST_F(InterpTest, HierarchicalAddsSourcesWhereTheEndsLeaveHoles) {
+  Scene scene = loadScene(test::assetPath("default.json"));
+  ShearingCamera cam(*scene.camera, 120, 90, 9);
+  auto deferred = makeDeferredRenderer(scene, PixelType::U8);
+  const test::CaptureSink reference = test::renderViews(*deferred, cam);
+  // One layer per source: the ends alone cannot see behind the cup's rim.
+  InterpOptions options{.acquire = Acquire::Dual, .maxLayers = 1};
+  const test::CaptureSink dual = test::renderViews(*makeInterpRenderer(scene, PixelType::U8, options), cam);
+  options.acquire = Acquire::Hierarchical;
+  RenderStats stats;
+  const test::CaptureSink h = test::renderViews(*makeInterpRenderer(scene, PixelType::U8, options), cam, stats);
+  EXPECT_GT(stats.counters["source_views"], 2);
+  EXPECT_LE(stats.counters["source_views"], options.budget);
+  EXPECT_GE(stats.counters["hole_checks"], 1);
+  EXPECT_LT(totalHoles(reference, h), totalHoles(reference, dual));
+  // A budget of two is dual.
+  options.budget = 2;
+  const test::CaptureSink two = test::renderViews(*makeInterpRenderer(scene, PixelType::U8, options), cam);
+  EXPECT_EQ(test::compareViews(dual, two).minIdentical, 1.0);
+}
+
+TEST_F(InterpTest, VisibilityDropsHiddenPixelsWithoutOpeningHoles) {
+  Scene scene = loadScene(test::assetPath("default.json"));
+  ShearingCamera cam(*scene.camera, 120, 90, 5);
+  auto deferred = makeDeferredRenderer(scene, PixelType::U8);
+  const test::CaptureSink reference = test::renderViews(*deferred, cam);
+  InterpOptions options{.acquire = Acquire::Center};
+  RenderStats all, visible;
+  const test::CaptureSink a = test::renderViews(*makeInterpRenderer(scene, PixelType::U8, options), cam, all);
+  options.visibility = true;
+  const test::CaptureSink v = test::renderViews(*makeInterpRenderer(scene, PixelType::U8, options), cam, visible);
+  EXPECT_GT(visible.counters["hidden_pixels"], 0);
+  EXPECT_LT(visible.counters["slices"], all.counters["slices"]);
+  EXPECT_LE(totalHoles(reference, v), totalHoles(reference, a));
+  EXPECT_GE(test::compareViews(a, v).minPsnr, 40.0);
+}
+
 TEST_F(InterpTest, OneViewAndBadOptions) {
   Scene scene = loadScene(test::assetPath("default.json"));
   ShearingCamera one(*scene.camera, 40, 30, 1);
@@ -215,6 +258,7 @@ TEST_F(InterpTest, OneViewAndBadOptions) {
   EXPECT_THROW(makeInterpRenderer(scene, PixelType::U8, {Acquire::Dual, 0, PstMode::Quad}), Error);
   EXPECT_THROW(parseAcquire("hierarchical-ish"), Error);
   EXPECT_THROW(makeInterpRenderer(scene, PixelType::U8, {.coalesce = -1.0f}), Error);
+  EXPECT_THROW(makeInterpRenderer(scene, PixelType::U8, {.budget = 1}), Error);
 }
 
 }  // namespace
