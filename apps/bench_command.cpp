@@ -42,10 +42,11 @@ const char* const kBenchHelp =
     "  --size LIST         image sizes, e.g. 160x140,640x480 (default 160x140)\n"
     "  --rows M            rows of views (full parallax; times are per view of M x N)\n"
     "  --backends LIST     default svr,svr-layered,deferred,mvr:quad,mvr:strip,\n"
-    "                      mvr:exact,mvr:cpu; mvr:MODE[:direct] textures directly;\n"
-    "                      interp[:ACQUIRE][:L][:cT][:vis][:bB][:MODE] is the\n"
+    "                      mvr:exact,mvr:cpu,interp:center:c1,interp:hierarchical:2:c1;\n"
+    "                      mvr:MODE[:direct] textures directly;\n"
+    "                      interp[:ACQUIRE][:L][:cT][:vis][:bB][:sK][:MODE] is the\n"
     "                      image-based back end with L layers, coalescing T pixels,\n"
-    "                      visibility, a budget of B source views\n"
+    "                      visibility, a budget of B source views, K highlight splits\n"
     "  --repeat R          best of R runs (default 1)\n"
     "  --error-views K     views compared against svr (default 8)\n"
     "  --json FILE         also write the results as JSON\n"
@@ -54,7 +55,9 @@ const char* const kBenchHelp =
 
 namespace {
 
-const char* const kDefaultBackends = "svr,svr-layered,deferred,mvr:quad,mvr:strip,mvr:exact,mvr:cpu";
+const char* const kDefaultBackends =
+    "svr,svr-layered,deferred,mvr:quad,mvr:strip,mvr:exact,mvr:cpu,interp:center:c1,"
+    "interp:hierarchical:2:c1";
 
 std::vector<std::string> splitList(const std::string& s) {
   std::vector<std::string> out;
@@ -73,7 +76,7 @@ std::string cpuModel() {
 
 // NAME[:PST[:TEXTURE]], e.g. mvr:exact:direct; interp[:ACQUIRE[:OPTION...]]
 // with options LAYERS (a number), cT (coalesce T pixels), vis (visibility),
-// bB (hierarchical budget) and an accuracy mode, e.g.
+// bB (hierarchical budget), sK (highlight splits) and an accuracy mode, e.g.
 // interp:hierarchical:2:c0.5:vis:b5:exact.
 void interpOption(const std::string& token, BackendChoice& c) {
   char* end = nullptr;
@@ -86,7 +89,9 @@ void interpOption(const std::string& token, BackendChoice& c) {
     c.visibility = true;
     return;
   }
-  if (token.size() > 1 && token[0] == 'b') {
+  if (token.size() > 1 && token[0] == 's') {
+    c.splits = int(std::clamp(std::strtol(text + 1, &end, 10), 0L, 64L));
+  } else if (token.size() > 1 && token[0] == 'b') {
     c.budget = int(std::clamp(std::strtol(text + 1, &end, 10), 2L, 1024L));
   } else if (token.size() > 1 && token[0] == 'c') {
     c.coalesce = std::strtof(text + 1, &end);

@@ -36,6 +36,8 @@ const char* const kRenderHelp =
     "                     and then halfway between two sources wherever they leave\n"
     "                     holes, recursively\n"
     "  --budget B         interp hierarchical: source views per row at most (default 9)\n"
+    "  --splits K         interp: highlights per view, split at K views across each\n"
+    "                     specular pixel's highlight (default 0: as the source saw it)\n"
     "  --visibility       interp: drop layer pixels the nearest layer hides from the\n"
     "                     whole track; stop peeling at a layer with none left\n"
     "  --max-layers L     interp: depth-peeled layers per source view (default 4)\n"
@@ -66,7 +68,7 @@ std::unique_ptr<Renderer> makeRenderer(const BackendChoice& c, const Scene& scen
     return makeInterpRenderer(scene, type,
                               {.acquire = parseAcquire(c.acquire), .maxLayers = c.maxLayers,
                                .mode = parsePstMode(c.pst), .coalesce = c.coalesce,
-                               .visibility = c.visibility, .budget = c.budget});
+                               .visibility = c.visibility, .budget = c.budget, .splits = c.splits});
   if (c.backend == "svr") return makeSvrRenderer(scene, type);
   if (c.backend == "svr-layered") return makeLayeredSvrRenderer(scene, type);
   if (c.backend == "deferred") return makeDeferredRenderer(scene, type);
@@ -143,11 +145,11 @@ const char* const kStreamHelp =
     "  --backend, --pst, --views, --rows, --size, --format, --gl as for render\n";
 
 int runRender(int argc, char** argv, bool streamCommand) {
-  std::set<std::string> flags = {"backend", "pst", "texture", "acquire", "max-layers", "coalesce", "budget", "views",
+  std::set<std::string> flags = {"backend", "pst", "texture", "acquire", "max-layers", "coalesce", "budget", "splits", "views",
                                  "rows", "size", "out", "format", "order", "gl", "stream", "bits",
                                  "quilt", "predistort", "queue"};
   if (streamCommand)
-    flags = {"backend", "pst", "texture", "acquire", "max-layers", "coalesce", "budget", "views", "rows", "size",
+    flags = {"backend", "pst", "texture", "acquire", "max-layers", "coalesce", "budget", "splits", "views", "rows", "size",
              "format", "gl", "to", "queue"};
   Args args(argc, argv, 2, flags, {"visibility"});
   const char* streamFlag = streamCommand ? "to" : "stream";
@@ -160,7 +162,8 @@ int runRender(int argc, char** argv, bool streamCommand) {
   BackendChoice choice{backend, args.get("pst", defaultPst(backend)),
                        args.get("texture", "vector"), args.get("acquire", "dual"),
                        args.getInt("max-layers", 4, 1, 64), float(args.getDouble("coalesce", 0.0)),
-                       args.has("visibility"), args.getInt("budget", 9, 2, 1024)};
+                       args.has("visibility"), args.getInt("budget", 9, 2, 1024),
+                       args.getInt("splits", 0, 0, 64)};
   const int views = args.getInt("views", 16, 1, 65536);
   const int rows = args.getInt("rows", 1, 1, 4096);
   const auto [width, height] = args.getSize("size", {320, 240});
@@ -173,7 +176,7 @@ int runRender(int argc, char** argv, bool streamCommand) {
   if (order != "view" && order != "epi") fail("--order", "expected view or epi, not '" + order + "'");
   if (choice.backend != "mvr" && choice.backend != "interp" && args.has("pst"))
     fail("--pst", "applies to --backend mvr and interp only");
-  for (const char* flag : {"acquire", "max-layers", "coalesce", "budget", "visibility"})
+  for (const char* flag : {"acquire", "max-layers", "coalesce", "budget", "splits", "visibility"})
     if (choice.backend != "interp" && args.has(flag))
       fail(std::string("--") + flag, "applies to --backend interp only");
   if (choice.backend != "mvr" && args.has("texture")) fail("--texture", "applies to --backend mvr only");

@@ -24,6 +24,7 @@ struct BackendChoice {
   float coalesce = 0.0f;           // pixels a coalesced run may move a pixel (interp only)
   bool visibility = false;         // drop layer pixels hidden from the track (interp only)
   int budget = 9;                  // hierarchical: source views per row at most
+  int splits = 0;                  // split views per highlight (interp only)
 };
 
 // The accuracy mode a back end uses unless told: interp's pixel slices have

@@ -119,6 +119,16 @@ void main() {
   float perPixel = abs(dFdx(u)) * k;
 #endif
   oColor = k == 0.0 ? vec4(1.0) : sampleTextureVector(uVectors, base, k, u, perPixel);
+#ifdef HIGHLIGHTS
+  // Split track: the highlight at two knots (rgb, row), linear between.
+#ifdef EXACT
+  vec4 a = vA0[1], b = vA0[2];
+#else
+  vec4 a = vA[1], b = vA[2];
+#endif
+  float t = b.w > a.w ? clamp((vView + 0.5 - a.w) / (b.w - a.w), 0.0, 1.0) : 0.0;
+  oColor.rgb += mix(a.rgb, b.rgb, t);
+#endif
 }
 )";
 
@@ -151,6 +161,7 @@ int passAttributeCount(shading::Pass pass, const EpiShading& shading) {
   switch (pass) {
     case shading::Pass::Diffuse: return 3;
     case shading::Pass::Texture:
+      if (shading.sliceHighlights) return 12;  // + highlight and row at two knots
       return shading.textureMode == TextureMode::Vector || shading.sliceVectors ? 4 : 2;
     case shading::Pass::ViewDependent: return plan.reflect >= 0 ? 15 : 6;
   }
@@ -171,6 +182,7 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading)
   std::string header = gl::glslHeader({"NV " + std::to_string(chunks())});
   if (exact) header += "#define EXACT\n";
   if (pass == shading::Pass::ViewDependent && shading.plan.reflect >= 0) header += "#define REFLECT\n";
+  if (pass == shading::Pass::Texture && shading.sliceHighlights) header += "#define HIGHLIGHTS\n";
   std::string fragment = header + (exact ? kExactFragment : kSliverFragment) + kAttributeHelpers;
   if (pass == shading::Pass::Diffuse) {
     fragment += kDiffuseMain;

@@ -34,6 +34,9 @@ struct EpiShading {
   // Image-based slices: every slice is coloured by its own texture vector
   // (ExtremeVertices::vectors) in one pass, with no scene and no lighting.
   bool sliceVectors = false;
+  // With sliceVectors: add each slice's split-track highlight
+  // (SliceVector's knots), linear in the view between knots.
+  bool sliceHighlights = false;
 };
 
 class EpiRasterizer {

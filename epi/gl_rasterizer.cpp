@@ -144,14 +144,27 @@ class GlRasterizer final : public EpiRasterizer {
       const Pst pst = makePst(e0, e1, n, v.cullBack[s.triangle]);
       const uint32_t material = v.materials.empty() ? 0 : v.materials[s.triangle];
       const SliceVector vector = pass.linear() ? addVector(v, s.triangle, pst, material) : SliceVector{};
-      for (int p = 0; p < pst.pieceCount; ++p)
-        emitPiece(pass, pst, pst.pieces[p], float(material), vector, yBase);
+      for (int p = 0; p < pst.pieceCount; ++p) {
+        if (vector.knotCount < 2) {
+          emitPiece(pass, pst, pst.pieces[p], float(material), vector, nullptr, yBase);
+          continue;
+        }
+        // A split track: one piece per pair of knots.
+        const HighlightKnot* knots = v.knots.data() + vector.firstKnot;
+        for (int k = 0; k + 1 < vector.knotCount; ++k) {
+          PstPiece part = pst.pieces[p];
+          part.rTop = std::max(part.rTop, knots[k].r);
+          part.rBottom = std::min(part.rBottom, knots[k + 1].r);
+          if (part.rTop < part.rBottom) emitPiece(pass, pst, part, float(material), vector, knots + k, yBase);
+        }
+      }
     }
   }
 
-  // vector: the slice's texture vector in this batch (linear passes).
+  // vector: the slice's texture vector in this batch (linear passes);
+  // knots: the two highlight knots around this piece, or null.
   void emitPiece(const EpiPass& pass, const Pst& pst, const PstPiece& piece, float material,
-                 const SliceVector& vector, float yBase) {
+                 const SliceVector& vector, const HighlightKnot* knots, float yBase) {
     const int slivers = mode_ == PstMode::Strip ? sliverCount(pst, piece) : 1;
     const float rows[2] = {piece.rTop, piece.rBottom};
     const float iw0 = pst.e0.invW, iw1 = pst.e1.invW;
@@ -163,6 +176,12 @@ class GlRasterizer final : public EpiRasterizer {
       a0[1] = a1[1] = float(vector.base);
       a0[2] = a1[2] = float(vector.length);
       a0[3] = a1[3] = 0.0f;
+      for (int k = 0; k < 2 && count > 4; ++k) {
+        const HighlightKnot knot = knots ? knots[k] : HighlightKnot{0.0f, glm::vec3(0.0f)};
+        const float at[4] = {knot.specular.r, knot.specular.g, knot.specular.b, knot.r};
+        std::copy_n(at, 4, a0 + 4 + 4 * k);
+        std::copy_n(at, 4, a1 + 4 + 4 * k);
+      }
     } else {
       pass.gather(pst.e0, piece.front, a0);
       pass.gather(pst.e1, piece.front, a1);
@@ -195,6 +214,7 @@ class GlRasterizer final : public EpiRasterizer {
             const float t = a0[0] + (a1[0] - a0[0]) * u, width = pst.width(r);
             const float linear[4] = {t * width, width, a0[1], a0[2]};
             std::copy_n(linear, 4, out + 8);
+            std::copy(a0 + 4, a0 + count, out + 12);  // highlight knots: the same at every vertex
             continue;
           }
           // Attributes divided back at the ruling.

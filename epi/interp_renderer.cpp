@@ -6,6 +6,7 @@
 
 #include "mvr/error.h"
 #include "mvr/source_layers.h"
+#include "shading/shading_plan.h"
 #include "slicing/image_slices.h"
 #include "slicing/source_visibility.h"
 
@@ -29,8 +30,10 @@ const char* acquireName(Acquire acquire) {
 
 namespace {
 
-// Every image slice is coloured by its own vector of source pixels.
-const EpiShading kVectors{.sliceVectors = true};
+// Split tracks only where some material has a highlight to split.
+bool splitsHighlights(const Scene& scene, const InterpOptions& options) {
+  return options.splits > 0 && shading::planShading(scene).specular;
+}
 
 // The layers of one source view.
 struct Source {
@@ -41,13 +44,17 @@ struct Source {
 class InterpRenderer final : public Renderer {
  public:
   InterpRenderer(const Scene& scene, PixelType type, const InterpOptions& options)
-      : options_(options), sources_(makeSourceLayerRenderer(scene)),
-        rasterizer_(options.mode == PstMode::Cpu ? makeSpanRasterizer(type, 2, kVectors)
-                                                 : makeGlRasterizer(options.mode, type, kVectors)) {
+      : options_(options), scene_(scene), highlights_(splitsHighlights(scene, options)),
+        sources_(makeSourceLayerRenderer(scene, highlights_)) {
+    // Every image slice is coloured by its own vector of source pixels.
+    const EpiShading shading{.sliceVectors = true, .sliceHighlights = highlights_};
+    rasterizer_ = options.mode == PstMode::Cpu ? makeSpanRasterizer(type, 2, shading)
+                                               : makeGlRasterizer(options.mode, type, shading);
     if (options.maxLayers < 1) fail("--max-layers", "must be at least 1");
     if (!(options.coalesce >= 0.0f) || !std::isfinite(options.coalesce))
       fail("--coalesce", "must be a finite number of pixels, at least 0");
     if (options.budget < 2) fail("--budget", "must be at least 2 source views");
+    if (options.splits < 0) fail("--splits", "must be at least 0");
   }
 
   std::string name() const override { return "interp"; }
@@ -62,10 +69,12 @@ class InterpRenderer final : public Renderer {
       ImageSlices slices;
       {
         ScopedStage s(stats.times, "slicing");
-        slices = sliceSourceLayers(layers, cam, row, {options_.overlap, options_.coalesce});
+        slices = sliceSourceLayers(layers, cam, row,
+                                   {options_.overlap, options_.coalesce, &scene_, highlights_ ? options_.splits : 0});
       }
       stats.counters["slices"] += double(slices.table.sliceCount());
       stats.counters["slice_pixels"] += double(slices.pixels);
+      if (highlights_) stats.counters["highlight_knots"] += double(slices.vertices.knots.size());
       stats.counters["slice_table_bytes"] =
           std::max(stats.counters["slice_table_bytes"], double(slices.table.bytes()));
       rasterizer_->rasterize(slices.vertices, slices.table, cam, row, sink, stats);
@@ -75,6 +84,7 @@ class InterpRenderer final : public Renderer {
     stats.counters["max_layers"] = options_.maxLayers;
     stats.counters["coalesce"] = options_.coalesce;
     stats.counters["visibility"] = options_.visibility;
+    stats.counters["splits"] = highlights_ ? options_.splits : 0;
   }
 
  private:
@@ -136,6 +146,8 @@ class InterpRenderer final : public Renderer {
   }
 
   InterpOptions options_;
+  const Scene& scene_;
+  bool highlights_;
   std::unique_ptr<SourceLayerRenderer> sources_;
   std::unique_ptr<EpiRasterizer> rasterizer_;
 };

@@ -33,6 +33,11 @@ struct InterpOptions {
   // could still show where this one is hidden).
   bool visibility = false;
   int budget = 9;           // hierarchical: source views per row at most
+  // Specular highlights: 0 bakes them into the source pixels as their
+  // source eye saw them; K > 0 splits each specular pixel's track at K
+  // views across the highlight (slicing/highlight_splits.h). A scene
+  // without specular materials ignores it.
+  int splits = 0;
   // hierarchical: holes a view between two sources may show, as a
   // fraction of the image's pixels, before a source is added there.
   double holeFraction = 1e-3;

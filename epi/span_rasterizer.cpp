@@ -68,7 +68,8 @@ class SpanRasterizer final : public EpiRasterizer {
       const uint32_t material = v.materials.empty() ? 0 : v.materials[s.triangle];
       const SliceVector* vector = shading_.sliceVectors ? &v.vectors.at(s.triangle) : nullptr;
       for (int p = 0; p < pst.pieceCount; ++p)
-        fillPiece(pst, pst.pieces[p], material, vector ? Colors{&v.vectorTexels, vector} : Colors{}, epi, depth);
+        fillPiece(pst, pst.pieces[p], material,
+                  vector ? Colors{&v.vectorTexels, vector, v.knots.data()} : Colors{}, epi, depth);
     }
     return epi;
   }
@@ -77,7 +78,18 @@ class SpanRasterizer final : public EpiRasterizer {
   struct Colors {
     const shading::TextureVectors* texels = nullptr;
     const SliceVector* vector = nullptr;
+    const HighlightKnot* knots = nullptr;
   };
+
+  // A split track's highlight at row coordinate r: linear between knots.
+  static glm::vec3 highlight(const HighlightKnot* knots, int count, float r) {
+    if (count < 2) return glm::vec3(0.0f);
+    int k = 0;
+    while (k + 2 < count && knots[k + 1].r <= r) ++k;
+    const float span = knots[k + 1].r - knots[k].r;
+    const float t = span > 0.0f ? std::clamp((r - knots[k].r) / span, 0.0f, 1.0f) : 0.0f;
+    return glm::mix(knots[k].specular, knots[k + 1].specular, t);
+  }
 
   void fillPiece(const Pst& pst, const PstPiece& piece, uint32_t material, Colors colors,
                  Image& epi, std::vector<float>& depth) const {
@@ -101,7 +113,8 @@ class SpanRasterizer final : public EpiRasterizer {
         if (colors.vector) {
           const SliceVector& sv = *colors.vector;
           const float t = sv.u0 + (sv.u1 - sv.u0) * u, perPixel = sv.length * std::abs((sv.u1 - sv.u0) / width);
-          store(epi, x, i, glm::vec3(colors.texels->sample(sv.base, sv.length, t, perPixel)));
+          const glm::vec3 c(colors.texels->sample(sv.base, sv.length, t, perPixel));
+          store(epi, x, i, c + highlight(colors.knots + sv.firstKnot, sv.knotCount, r));
         } else {
           store(epi, x, i, shade(pst, piece.front, material, u, 1.0f / width, float(i)));
         }

@@ -90,7 +90,7 @@ void main() {
   vec4 normal = texelFetch(uNormal, px, 0);
   vec3 n = normalize(normal.xyz), p = world.xyz / world.w;
   vec3 c = diffuseLight(albedo.rgb, p, n);
-#ifdef VIEW_DEPENDENT
+#if defined(VIEW_DEPENDENT) && !defined(SEPARATE_HIGHLIGHTS)
   c += specularLight(int(normal.w + 0.5), p, n, uEye);
 #endif
 #ifdef REFLECT
@@ -127,6 +127,7 @@ class GBuffer {
     gl::ClearNamedFramebufferfi(fbo_.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
   }
   GLuint depthTexture() const { return depth_.id(); }
+  GLuint normalTexture() const { return normal_.id(); }
   void bindForReading() const {
     gl::BindTextureUnit(0, albedo_.id());
     gl::BindTextureUnit(1, normal_.id());
@@ -142,14 +143,16 @@ class GBuffer {
 // image-based back end's source views.
 class DeferredPipeline {
  public:
-  explicit DeferredPipeline(const Scene& scene)
+  // separateHighlights: the lighting pass leaves out specular highlights.
+  explicit DeferredPipeline(const Scene& scene, bool separateHighlights = false)
       : buffers_(scene, shading::vertexAlbedo(scene), shading::vertexCullFlags(scene)),
         plan_(shading::planShading(scene)),
         geometry_(geometryProgram(false)),
         lighting_(gl::linkProgram(
             "deferred-lighting",
             {{GL_VERTEX_SHADER, gl::glslHeader() + gl::kFullScreenTriangleVertex},
-             {GL_FRAGMENT_SHADER, header() + shading::glslLighting() + shading::glslSpecular() +
+             {GL_FRAGMENT_SHADER, header() + (separateHighlights ? "#define SEPARATE_HIGHLIGHTS\n" : "") +
+                                      shading::glslLighting() + shading::glslSpecular() +
                                       shading::glslEnvironment() + kLightingFragment}})),
         emptyVao_(gl::VertexArray::create()),
         materials_(scene, shading::TextureSet::load(scene), shading::EnvironmentSet::load(scene)) {
@@ -245,7 +248,8 @@ class DeferredRenderer final : public Renderer {
 
 class SourceLayerRendererImpl final : public SourceLayerRenderer {
  public:
-  explicit SourceLayerRendererImpl(const Scene& scene) : pipeline_(scene) {}
+  SourceLayerRendererImpl(const Scene& scene, bool separateHighlights)
+      : pipeline_(scene, separateHighlights), normals_(separateHighlights) {}
 
   std::vector<SourceLayer> render(const ShearingCamera& cam, const glm::dvec2& eye, int maxLayers,
                                   double trackWidth, RenderStats& stats,
@@ -279,6 +283,11 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
         layer.color = target.read();
         gl::GetTextureSubImage(gbuffer.depthTexture(), 0, 0, 0, 0, w, h, 1, GL_DEPTH_COMPONENT, GL_FLOAT,
                                GLsizei(layer.depth.size() * sizeof(float)), layer.depth.data());
+        if (normals_) {
+          layer.normals.resize(size_t(w) * h);
+          gl::GetTextureSubImage(gbuffer.normalTexture(), 0, 0, 0, 0, w, h, 1, GL_RGBA, GL_FLOAT,
+                                 GLsizei(layer.normals.size() * sizeof(glm::vec4)), layer.normals.data());
+        }
       }
       if (filter && !filter(layers, layer)) break;
       layers.push_back(std::move(layer));
@@ -290,6 +299,7 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
 
  private:
   DeferredPipeline pipeline_;
+  bool normals_;
 };
 
 }  // namespace
@@ -298,8 +308,9 @@ std::unique_ptr<Renderer> makeDeferredRenderer(const Scene& scene, PixelType typ
   return std::make_unique<DeferredRenderer>(scene, type);
 }
 
-std::unique_ptr<SourceLayerRenderer> makeSourceLayerRenderer(const Scene& scene) {
-  return std::make_unique<SourceLayerRendererImpl>(scene);
+std::unique_ptr<SourceLayerRenderer> makeSourceLayerRenderer(const Scene& scene,
+                                                             bool separateHighlights) {
+  return std::make_unique<SourceLayerRendererImpl>(scene, separateHighlights);
 }
 
 }  // namespace mvr

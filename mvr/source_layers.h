@@ -21,6 +21,9 @@ struct SourceLayer {
   Image color;                // F32, rows top first (window row 0 on top)
   std::vector<float> depth;   // window depth, reversed Z: 0 where empty
   long fragments = 0;         // samples that passed into this layer
+  // With separate highlights: per pixel the world normal of the side seen
+  // (xyz) and the material index (w); empty otherwise.
+  std::vector<glm::vec4> normals;
 };
 
 // Sees each layer as it is read back, with the nearer ones, and may drop
@@ -38,7 +41,10 @@ class SourceLayerRenderer {
                                           const LayerFilter& filter = {}) = 0;
 };
 
-// Needs a current GL context.
-std::unique_ptr<SourceLayerRenderer> makeSourceLayerRenderer(const Scene& scene);
+// Needs a current GL context. separateHighlights: the colours leave out
+// specular highlights, and normals and materials are read back so that
+// the caller can add highlights per view.
+std::unique_ptr<SourceLayerRenderer> makeSourceLayerRenderer(const Scene& scene,
+                                                             bool separateHighlights = false);
 
 }  // namespace mvr

@@ -46,8 +46,8 @@ std::string ShadingPlan::glslDefines() const {
   for (Pass p : passes()) {
     if (p == Pass::Texture) s += "#define TEXTURE\n";
     if (p == Pass::ViewDependent) s += "#define VIEW_DEPENDENT\n";
-  if (reflection) s += "#define REFLECT\n";
   }
+  if (reflection) s += "#define REFLECT\n";
   return s;
 }
 

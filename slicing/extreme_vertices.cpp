@@ -82,7 +82,8 @@ void moveToRow(ExtremeVertices& v, int row) {
 size_t ExtremeVertices::bytes() const {
   return x0.size() * (7 * sizeof(float) + 2 * sizeof(glm::vec3)) +
          extrasOverW.size() * sizeof(float) + triangles.size() * (sizeof(glm::uvec3) + 5) +
-         vectors.size() * sizeof(SliceVector) + vectorTexels.texels().size() * sizeof(glm::vec4);
+         vectors.size() * sizeof(SliceVector) + vectorTexels.texels().size() * sizeof(glm::vec4) +
+         knots.size() * sizeof(HighlightKnot);
 }
 
 ExtremeVertices transformToExtremes(const Scene& scene, const shading::VertexColors& colors,

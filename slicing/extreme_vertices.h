@@ -25,6 +25,16 @@ namespace mvr {
 struct SliceVector {
   int base = 0, length = 0;  // first texel and level-0 length in vectorTexels
   float u0 = 0.0f, u1 = 1.0f;
+  // Split track (image slices of specular surfaces): knots
+  // [firstKnot, firstKnot + knotCount) of ExtremeVertices::knots.
+  int firstKnot = 0, knotCount = 0;
+};
+
+// A specular highlight added to a slice's colour, exact at EPI row
+// coordinate r and linear in r between a slice's knots.
+struct HighlightKnot {
+  float r;
+  glm::vec3 specular;
 };
 
 struct ExtremeVertices {
@@ -47,6 +57,7 @@ struct ExtremeVertices {
   // colours above are then unused.
   std::vector<SliceVector> vectors;
   shading::TextureVectors vectorTexels;
+  std::vector<HighlightKnot> knots;
 
   size_t vertexCount() const { return x0.size(); }
   size_t bytes() const;

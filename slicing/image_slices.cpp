@@ -4,8 +4,10 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "mvr/error.h"
+#include "slicing/highlight_splits.h"
 #include "slicing/source_visibility.h"
 
 namespace mvr {
@@ -14,15 +16,16 @@ namespace {
 constexpr int kMaxLevel = std::countr_zero(unsigned(shading::TextureVectors::kMaxLength));
 
 // Min and max window depth of every aligned block of 2^l pixels of one
-// scanline. An empty pixel spans everything, so no block holding it is
-// ever close enough to coalesce.
+// scanline. An empty pixel (or one kept alone) spans everything, so no
+// block holding it is ever close enough to coalesce.
 class DepthMip {
  public:
-  DepthMip(const float* depth, int width) {
+  // alone (may be null): pixels that must stay slices of their own.
+  DepthMip(const float* depth, const uint8_t* alone, int width) {
     constexpr float inf = std::numeric_limits<float>::infinity();
     lo_.emplace_back(width), hi_.emplace_back(width);
     for (int x = 0; x < width; ++x) {
-      const bool empty = depth[x] == 0.0f;
+      const bool empty = depth[x] == 0.0f || (alone && alone[x]);
       lo_[0][x] = empty ? -inf : depth[x];
       hi_[0][x] = empty ? inf : depth[x];
     }
@@ -46,7 +49,9 @@ class DepthMip {
 class LayerSlicer {
  public:
   LayerSlicer(const ShearingCamera& cam, int row, const ImageSliceOptions& options, ImageSlices& out)
-      : cam_(cam), options_(options), out_(out), transform_(cam, row, out.vertices) {}
+      : cam_(cam), options_(options), out_(out), transform_(cam, row, out.vertices) {
+    if (options.scene && options.splits > 0) highlights_.emplace(*options.scene, cam, row, options.splits);
+  }
 
   void slice(const SourceLayer& layer) {
     const int w = cam_.width(), h = cam_.height();
@@ -56,9 +61,13 @@ class LayerSlicer {
     const float tolerance = options_.coalesce > 0.0f
                                 ? coalesceDepthRange(cam_, layer.eye.x, options_.coalesce)
                                 : -1.0f;  // off: even equal depths stay apart
+    const bool split = highlights_ && layer.normals.size() == layer.depth.size();
+    std::vector<uint8_t> alone(split ? w : 0);
     for (int j = 0; j < h; ++j) {
       const float* depth = layer.depth.data() + size_t(j) * w;
-      const DepthMip mip(depth, w);
+      for (int x = 0; split && x < w; ++x)
+        alone[x] = highlights_->specular(materialOf(layer.normals[size_t(j) * w + x]));
+      const DepthMip mip(depth, split ? alone.data() : nullptr, w);
       for (int x = 0; x < w;) {
         if (depth[x] == 0.0f) {
           ++x;
@@ -92,16 +101,28 @@ class LayerSlicer {
       transform_.add(cam_.unprojectAt(layer.eye.x, layer.eye.y, {x + at, j + 0.5, d0 + (at - 0.5f) * slope}),
                      c, c, nullptr);
     out_.vertices.triangles.push_back({base, base + 1, base + 1});
-    out_.vertices.vectors.push_back(
-        {out_.vertices.vectorTexels.addTexels(texels_), n, -o / float(n), 1.0f + o / float(n)});
+    SliceVector vector{out_.vertices.vectorTexels.addTexels(texels_), n, -o / float(n),
+                       1.0f + o / float(n)};
+    if (n == 1 && highlights_ && !layer.normals.empty()) {
+      const glm::vec4 normal = layer.normals[size_t(j) * cam_.width() + x];
+      const glm::vec3 p(cam_.unprojectAt(layer.eye.x, layer.eye.y, {x + 0.5, j + 0.5, d0}));
+      vector.firstKnot = int(out_.vertices.knots.size());
+      if (glm::length(glm::vec3(normal)) > 0.0f)
+        vector.knotCount = highlights_->add(p, glm::normalize(glm::vec3(normal)), materialOf(normal),
+                                            out_.vertices.knots);
+    }
+    out_.vertices.vectors.push_back(vector);
     scanlineOf.push_back(uint32_t(j));
     out_.pixels += size_t(n);
   }
+
+  static uint32_t materialOf(const glm::vec4& normal) { return uint32_t(std::max(0.0f, normal.w) + 0.5f); }
 
   const ShearingCamera& cam_;
   const ImageSliceOptions& options_;
   ImageSlices& out_;
   ExtremeTransform transform_;
+  std::optional<HighlightSplitter> highlights_;
   std::vector<glm::vec4> texels_;
 };
 

@@ -20,7 +20,8 @@
 // pixels in any view of the track. Window depth is affine in 1/w, and a
 // pixel whose 1/w strays by e from the slice moves by e D |E - S| W / Wp
 // pixels in the view at eye E (source eye S, image plane at distance D,
-// W pixels across the plane width Wp).
+// W pixels across the plane width Wp). Specular pixels with split tracks
+// never coalesce: their highlights differ.
 #include <vector>
 
 #include "mvr/camera.h"
@@ -32,6 +33,11 @@ namespace mvr {
 struct ImageSliceOptions {
   float overlap = 0.25f;  // footprint widening per side, pixels
   float coalesce = 0.0f;  // largest added displacement, pixels; 0: a slice per pixel
+  // Split tracks for highlights (slicing/highlight_splits.h): with a scene
+  // and layers that carry normals, every pixel of a specular material is
+  // its own slice with knots from `splits` split views per light.
+  const Scene* scene = nullptr;
+  int splits = 0;
 };
 
 struct ImageSlices {

@@ -108,6 +108,8 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
                            "render --backend interp --coalesce wide --out " + d.string(),
                            "render --backend svr --coalesce 1 --out " + d.string(),
                            "render --backend interp --budget 1 --out " + d.string(),
+                           "render --backend interp --splits -2 --out " + d.string(),
+                           "render --backend mvr --splits 2 --out " + d.string(),
                            "render --backend deferred --visibility --out " + d.string(),
                            "render --views 0 --out " + d.string(),
                            "render --size 10 --out " + d.string(),

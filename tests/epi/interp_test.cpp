@@ -8,6 +8,8 @@
 //               center at the ends of the track (content center never saw)
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "epi/interp_renderer.h"
 #include "mvr/error.h"
 #include "mvr/scene_io.h"
@@ -247,6 +249,55 @@ TEST_F(InterpTest, VisibilityDropsHiddenPixelsWithoutOpeningHoles) {
   EXPECT_GE(test::compareViews(a, v).minPsnr, 40.0);
 }
 
+// A specular plane on the image plane under a point light: nothing moves
+// between views but the highlight, so every difference from deferred is
+// the highlight's.
+Scene specularPlane() {
+  const std::string path = ::testing::TempDir() + "/mvr_specular_plane.json";
+  std::ofstream(path) << R"({"meshes": [{"file": ")" << test::assetPath("plane.obj") << R"(",
+    "material": {"diffuse": [0.3, 0.35, 0.4], "specular": [0.8, 0.8, 0.8], "shininess": 30,
+                 "specular_model": "phong"}}],
+    "lights": [{"type": "point", "position": [0.2, 0.1, 1.2], "color": [1, 1, 1]}],
+    "ambient": [0.1, 0.1, 0.1],
+    "camera": {"distance": 3.0, "image_plane": 0.8, "track": [-1, 1], "near": 2.0, "far": 4.0}})";
+  return loadScene(path);
+}
+
+TEST_F(InterpTest, SplitTracksMoveHighlightsWithTheView) {
+  Scene scene = specularPlane();
+  ShearingCamera cam(*scene.camera, 96, 72, 9);
+  const test::CaptureSink reference = test::renderViews(*makeDeferredRenderer(scene, PixelType::U8), cam);
+  InterpOptions options{.acquire = Acquire::Center};
+  auto worst = [&](const test::CaptureSink& c) {
+    double maxError = 0;
+    for (const auto& [key, img] : reference.views)
+      maxError = std::max(maxError, compareImages(img, c.views.at(key)).maxError);
+    return maxError;
+  };
+  const double baked = worst(test::renderViews(*makeInterpRenderer(scene, PixelType::U8, options), cam));
+  // K pairs of splits: the highlight is off by about 1/(K + 1) of its
+  // peak (0.8) at most.
+  options.splits = 3;
+  RenderStats stats;
+  const test::CaptureSink split = test::renderViews(*makeInterpRenderer(scene, PixelType::U8, options), cam, stats);
+  EXPECT_GT(stats.counters["highlight_knots"], 2 * stats.counters["slices"]);
+  EXPECT_GT(baked, 0.5);  // the baked highlight stays where the centre saw it
+  EXPECT_LT(worst(split), 0.2);
+  options.mode = PstMode::Cpu;
+  EXPECT_GE(test::compareViews(split, test::renderViews(*makeInterpRenderer(scene, PixelType::U8, options), cam))
+                .minPsnr, 40.0);
+  // A diffuse scene has no highlight to split: the same images as K = 0.
+  Scene diffuse = loadScene(test::assetPath("default.json"));
+  ShearingCamera small(*diffuse.camera, 60, 45, 3);
+  RenderStats none;
+  const test::CaptureSink d3 = test::renderViews(
+      *makeInterpRenderer(diffuse, PixelType::U8, {.acquire = Acquire::Center, .splits = 3}), small, none);
+  const test::CaptureSink d0 =
+      test::renderViews(*makeInterpRenderer(diffuse, PixelType::U8, {.acquire = Acquire::Center}), small);
+  EXPECT_EQ(test::compareViews(d0, d3).minIdentical, 1.0);
+  EXPECT_EQ(none.counters.count("highlight_knots"), 0u);
+}
+
 TEST_F(InterpTest, OneViewAndBadOptions) {
   Scene scene = loadScene(test::assetPath("default.json"));
   ShearingCamera one(*scene.camera, 40, 30, 1);
@@ -259,6 +310,7 @@ TEST_F(InterpTest, OneViewAndBadOptions) {
   EXPECT_THROW(parseAcquire("hierarchical-ish"), Error);
   EXPECT_THROW(makeInterpRenderer(scene, PixelType::U8, {.coalesce = -1.0f}), Error);
   EXPECT_THROW(makeInterpRenderer(scene, PixelType::U8, {.budget = 1}), Error);
+  EXPECT_THROW(makeInterpRenderer(scene, PixelType::U8, {.splits = -1}), Error);
 }
 
 }  // namespace

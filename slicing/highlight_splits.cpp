@@ -1,0 +1,73 @@
+#include "slicing/highlight_splits.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "shading/view_dependent.h"
+
+namespace mvr {
+
+std::optional<double> closestTrackX(const glm::dvec3& p, const glm::dvec3& dir, double trackY,
+                                    double trackZ, double* rayDistance) {
+  // Lines p + t dir and (s, trackY, trackZ): minimise |p + t dir - q(s)|.
+  const glm::dvec3 w0 = p - glm::dvec3(0.0, trackY, trackZ);
+  const double b = dir.x, denom = 1.0 - b * b;
+  if (denom < 1e-9) return std::nullopt;
+  const double t = (b * w0.x - glm::dot(dir, w0)) / denom;
+  if (t <= 0.0) return std::nullopt;
+  if (rayDistance) *rayDistance = t;
+  return w0.x + b * t;  // s = (e.w0 - b (d.w0)) / denom, rewritten with t
+}
+
+HighlightSplitter::HighlightSplitter(const Scene& scene, const ShearingCamera& cam, int row, int splits)
+    : scene_(scene), splits_(splits), views_(cam.views()), eye0_(cam.eye(0, row)),
+      eyeStep_(cam.views() > 1 ? glm::vec3(cam.eye(1, row) - cam.eye(0, row)) : glm::vec3(0.0f)) {}
+
+bool HighlightSplitter::specular(uint32_t material) const {
+  return material < scene_.materials.size() && scene_.materials[material].specular != glm::vec3(0.0f);
+}
+
+float HighlightSplitter::rowOf(double x) const {
+  return float(0.5 + (x - eye0_.x) / eyeStep_.x);
+}
+
+int HighlightSplitter::add(const glm::vec3& p, const glm::vec3& n, uint32_t material,
+                           std::vector<HighlightKnot>& out) const {
+  if (!specular(material)) return 0;
+  const Material& m = scene_.materials[material];
+  std::vector<float> rows = {0.0f, float(views_)};
+  if (views_ > 1 && splits_ > 0) {
+    // The view direction's angle off the mirror ray where the highlight
+    // has fallen to fraction f: cos^s = f (Blinn-Phong's half vector turns
+    // half as fast as the view).
+    const float turn = m.specularModel == SpecularModel::BlinnPhong ? 2.0f : 1.0f;
+    auto angleAt = [&](float f) {
+      return std::min(1.4f, turn * std::acos(std::pow(f, 1.0f / std::max(m.shininess, 1e-3f))));
+    };
+    for (const Light& light : scene_.lights) {
+      const glm::vec3 l = light.type == Light::Type::Directional ? -light.vector
+                                                                 : glm::normalize(light.vector - p);
+      if (glm::dot(n, l) <= 0.0f) continue;
+      double distance = 0.0;
+      const auto peak = closestTrackX(p, glm::reflect(-l, n), eye0_.y, eye0_.z, &distance);
+      if (!peak) continue;
+      std::vector<double> xs = {*peak};
+      for (int k = 1; k <= splits_; ++k) {  // equal steps of intensity down the lobe
+        const double off = distance * std::tan(angleAt(1.0f - float(k) / float(splits_ + 1)));
+        xs.push_back(*peak - off);
+        xs.push_back(*peak + off);
+      }
+      for (double x : xs) {
+        const float r = rowOf(x);
+        if (r > 0.0f && r < float(views_)) rows.push_back(r);
+      }
+    }
+    std::sort(rows.begin(), rows.end());
+    rows.erase(std::unique(rows.begin(), rows.end(), [](float a, float b) { return b - a < 1e-3f; }),
+               rows.end());
+  }
+  for (float r : rows) out.push_back({r, shading::specularLight(scene_, m, p, n, eyeAt(r))});
+  return int(rows.size());
+}
+
+}  // namespace mvr
