@@ -30,6 +30,16 @@ const char* acquireName(Acquire acquire) {
 
 namespace {
 
+// Before any GL work.
+const InterpOptions& validated(const InterpOptions& options) {
+  if (options.maxLayers < 1) fail("--max-layers", "must be at least 1");
+  if (!(options.coalesce >= 0.0f) || !std::isfinite(options.coalesce))
+    fail("--coalesce", "must be a finite number of pixels, at least 0");
+  if (options.budget < 2) fail("--budget", "must be at least 2 source views");
+  if (options.splits < 0) fail("--splits", "must be at least 0");
+  return options;
+}
+
 // Split tracks only where some material has a highlight to split.
 bool splitsHighlights(const Scene& scene, const InterpOptions& options) {
   return options.splits > 0 && shading::planShading(scene).specular;
@@ -44,17 +54,12 @@ struct Source {
 class InterpRenderer final : public Renderer {
  public:
   InterpRenderer(const Scene& scene, PixelType type, const InterpOptions& options)
-      : options_(options), scene_(scene), highlights_(splitsHighlights(scene, options)),
+      : options_(validated(options)), scene_(scene), highlights_(splitsHighlights(scene, options)),
         sources_(makeSourceLayerRenderer(scene, highlights_)) {
     // Every image slice is coloured by its own vector of source pixels.
     const EpiShading shading{.sliceVectors = true, .sliceHighlights = highlights_};
     rasterizer_ = options.mode == PstMode::Cpu ? makeSpanRasterizer(type, 2, shading)
                                                : makeGlRasterizer(options.mode, type, shading);
-    if (options.maxLayers < 1) fail("--max-layers", "must be at least 1");
-    if (!(options.coalesce >= 0.0f) || !std::isfinite(options.coalesce))
-      fail("--coalesce", "must be a finite number of pixels, at least 0");
-    if (options.budget < 2) fail("--budget", "must be at least 2 source views");
-    if (options.splits < 0) fail("--splits", "must be at least 0");
   }
 
   std::string name() const override { return "interp"; }

@@ -1,6 +1,8 @@
 // Deferred shading baseline (as in de Quilletes 2018): per view a G-buffer
 // of albedo, normal and depth, then a full-screen pass lights every pixel.
 // Lighting is per pixel here, so its images differ slightly from Gouraud.
+#include <optional>
+
 #include "mvr/baselines.h"
 #include "mvr/source_layers.h"
 #include "mvr/error.h"
@@ -161,6 +163,7 @@ class DeferredPipeline {
 
   // Before the passes of a sequence of views of this size.
   void begin(int width, int height) {
+    gl::Viewport(0, 0, width, height);  // targets may outlive other renderers' passes
     setDepthConvention();
     gl::FrontFace(GL_CW);
     gl::setUniform(lighting_, "uSize", glm::vec2(width, height));
@@ -255,8 +258,9 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
                                   double trackWidth, RenderStats& stats,
                                   const LayerFilter& filter) override {
     const int w = cam.width(), h = cam.height();
-    RenderTarget target(w, h, PixelType::F32);
-    GBuffer gbuffers[2] = {GBuffer(w, h), GBuffer(w, h)};
+    Targets& t = targets(w, h);
+    const RenderTarget& target = t.color;
+    const GBuffer* gbuffers = t.gbuffers;
     pipeline_.begin(w, h);
     const glm::dmat4 viewProj = cam.viewProjectionAt(eye.x, eye.y);
     const CameraSpec& spec = cam.spec();
@@ -298,8 +302,20 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
   }
 
  private:
+  // Kept across calls (every source eye of every row has the same size).
+  struct Targets {
+    Targets(int w, int h) : color(w, h, PixelType::F32), gbuffers{GBuffer(w, h), GBuffer(w, h)} {}
+    RenderTarget color;
+    GBuffer gbuffers[2];  // ping-pong: the layer in front is read while the next is written
+  };
+  Targets& targets(int w, int h) {
+    if (!targets_ || targets_->color.width() != w || targets_->color.height() != h) targets_.emplace(w, h);
+    return *targets_;
+  }
+
   DeferredPipeline pipeline_;
   bool normals_;
+  std::optional<Targets> targets_;
 };
 
 }  // namespace
