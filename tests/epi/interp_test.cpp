@@ -131,7 +131,19 @@ TEST(ImageSlices, ARunOnATiltedPlaneKeepsItsPixelsInPlace) {
   }
 }
 
-class InterpTest : public test::GlTest {};
+class InterpTest : public test::GlTest {
+ protected:
+  // The default scene at 120x90 and its views from deferred, the pipeline
+  // that renders interp's source views.
+  struct Reference {
+    explicit Reference(int viewCount)
+        : scene(loadScene(test::assetPath("default.json"))), cam(*scene.camera, 120, 90, viewCount),
+          views(test::renderViews(*makeDeferredRenderer(scene, PixelType::U8), cam)) {}
+    Scene scene;
+    ShearingCamera cam;
+    test::CaptureSink views;
+  };
+};
 
 TEST_F(InterpTest, DepthPeelingFindsTheLayersBehindAndStops) {
   Scene scene = loadScene(test::assetPath("default.json"));
@@ -155,10 +167,10 @@ TEST_F(InterpTest, DepthPeelingFindsTheLayersBehindAndStops) {
 }
 
 TEST_F(InterpTest, SourceViewIsReproducedAndDualBeatsCenterAtTheEnds) {
-  Scene scene = loadScene(test::assetPath("default.json"));
-  ShearingCamera cam(*scene.camera, 120, 90, 5);
-  auto deferred = makeDeferredRenderer(scene, PixelType::U8);
-  const test::CaptureSink reference = test::renderViews(*deferred, cam);
+  const Reference ref(5);
+  const Scene& scene = ref.scene;
+  const ShearingCamera& cam = ref.cam;
+  const test::CaptureSink& reference = ref.views;
   auto center = makeInterpRenderer(scene, PixelType::U8, {Acquire::Center, 4, PstMode::Quad});
   auto dual = makeInterpRenderer(scene, PixelType::U8, {Acquire::Dual, 4, PstMode::Quad});
   RenderStats stats;
@@ -179,10 +191,10 @@ TEST_F(InterpTest, SourceViewIsReproducedAndDualBeatsCenterAtTheEnds) {
 }
 
 TEST_F(InterpTest, CoalescingCutsSlicesAndKeepsTheSourceViewAndQuality) {
-  Scene scene = loadScene(test::assetPath("default.json"));
-  ShearingCamera cam(*scene.camera, 120, 90, 5);
-  auto deferred = makeDeferredRenderer(scene, PixelType::U8);
-  const test::CaptureSink reference = test::renderViews(*deferred, cam);
+  const Reference ref(5);
+  const Scene& scene = ref.scene;
+  const ShearingCamera& cam = ref.cam;
+  const test::CaptureSink& reference = ref.views;
   InterpOptions options{.acquire = Acquire::Center};
   RenderStats each, runs;
   auto plain = makeInterpRenderer(scene, PixelType::U8, options);
@@ -213,10 +225,10 @@ long totalHoles(const test::CaptureSink& reference, const test::CaptureSink& b) 
 }
 
 TEST_F(InterpTest, HierarchicalAddsSourcesWhereTheEndsLeaveHoles) {
-  Scene scene = loadScene(test::assetPath("default.json"));
-  ShearingCamera cam(*scene.camera, 120, 90, 9);
-  auto deferred = makeDeferredRenderer(scene, PixelType::U8);
-  const test::CaptureSink reference = test::renderViews(*deferred, cam);
+  const Reference ref(9);
+  const Scene& scene = ref.scene;
+  const ShearingCamera& cam = ref.cam;
+  const test::CaptureSink& reference = ref.views;
   // One layer per source: the ends alone cannot see behind the cup's rim.
   InterpOptions options{.acquire = Acquire::Dual, .maxLayers = 1};
   const test::CaptureSink dual = test::renderViews(*makeInterpRenderer(scene, PixelType::U8, options), cam);
@@ -234,10 +246,10 @@ TEST_F(InterpTest, HierarchicalAddsSourcesWhereTheEndsLeaveHoles) {
 }
 
 TEST_F(InterpTest, VisibilityDropsHiddenPixelsWithoutOpeningHoles) {
-  Scene scene = loadScene(test::assetPath("default.json"));
-  ShearingCamera cam(*scene.camera, 120, 90, 5);
-  auto deferred = makeDeferredRenderer(scene, PixelType::U8);
-  const test::CaptureSink reference = test::renderViews(*deferred, cam);
+  const Reference ref(5);
+  const Scene& scene = ref.scene;
+  const ShearingCamera& cam = ref.cam;
+  const test::CaptureSink& reference = ref.views;
   InterpOptions options{.acquire = Acquire::Center};
   RenderStats all, visible;
   const test::CaptureSink a = test::renderViews(*makeInterpRenderer(scene, PixelType::U8, options), cam, all);
