@@ -164,7 +164,7 @@ void errorAgainst(const Run& ref, const Run& r, BenchRecord& rec) {
 void printRow(const BenchRecord& r) {
   char size[32];
   std::snprintf(size, sizeof size, "%dx%d", r.width, r.height);
-  std::printf("%-16s %-9s %6d %-13s %10.4f %10.4f %8.2f %9.2f %8.2f %7.4f %10.6f %7.1f %10.0f\n",
+  std::printf("%-16s %-9s %6d %-24s %10.4f %10.4f %8.2f %9.2f %8.2f %7.4f %10.6f %7.1f %10.0f\n",
               r.scene.c_str(), size, r.views * r.rows, r.backend.c_str(), r.seconds,
               1e3 * r.seconds / (r.views * r.rows),
               r.speedupSvr, r.speedupLayered, std::isinf(r.minPsnr) ? 99.99 : r.minPsnr,
@@ -288,7 +288,7 @@ int runBench(int argc, char** argv) {
   BenchMachine machine{context->describe(), cpuModel(), std::thread::hardware_concurrency()};
   std::printf("# mvr bench\n# GL: %s\n# CPU: %s, %u threads\n", machine.gl.c_str(), machine.cpu.c_str(),
               machine.threads);
-  std::printf("%-16s %-9s %6s %-13s %10s %10s %8s %9s %8s %7s %10s %7s %10s\n", "scene", "size",
+  std::printf("%-16s %-9s %6s %-24s %10s %10s %8s %9s %8s %7s %10s %7s %10s\n", "scene", "size",
               "views", "backend", "total_s", "ms/view", "x_svr", "x_layered", "PSNR_dB", "SSIM",
               "identical", "holes", "slices");
   std::vector<BenchRecord> records;

@@ -72,12 +72,12 @@ void printBreakEvens(const std::vector<BreakEven>& breakEvens) {
   std::printf("# break-even against svr: first measured view count where faster, fitted\n"
               "# crossing of t = a + c N, and Halle's rule-of-thumb prediction (average\n"
               "# polygon height in pixels: MVR should win once N exceeds it)\n");
-  std::printf("%-16s %-9s %-13s %12s %10s %14s\n", "scene", "size", "backend", "first_faster",
+  std::printf("%-16s %-9s %-24s %12s %10s %14s\n", "scene", "size", "backend", "first_faster",
               "fitted_N", "avg_poly_px");
   for (const BreakEven& b : breakEvens) {
     char first[16];
     std::snprintf(first, sizeof first, b.firstFaster < 0 ? "never" : "%d", b.firstFaster);
-    std::printf("%-16s %-9s %-13s %12s %10.1f %14.2f\n", b.scene.c_str(),
+    std::printf("%-16s %-9s %-24s %12s %10.1f %14.2f\n", b.scene.c_str(),
                 sizeName(b.width, b.height).c_str(), b.backend.c_str(), first, b.fitted,
                 b.averagePolygonHeight);
   }
