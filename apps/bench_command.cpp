@@ -51,6 +51,7 @@ const char* const kBenchHelp =
     "  --error-views K     views compared against svr (default 8)\n"
     "  --json FILE         also write the results as JSON\n"
     "  --plots DIR         write gnuplot scripts and PNG plots (needs gnuplot)\n"
+    "  --replot FILE       only plot an earlier run's --json FILE into --plots DIR\n"
     "  --gl egl|osmesa     GL platform\n";
 
 namespace {
@@ -255,9 +256,15 @@ Scene benchTeacup(int triangles) {
 int runBench(int argc, char** argv) {
   Args args(argc, argv, 2,
             {"teacup", "slender", "views", "size", "rows", "backends", "repeat", "error-views",
-             "json", "plots", "gl"},
+             "json", "plots", "gl", "replot"},
             {"sweep"});
   setProgressEnabled(false);
+  if (args.has("replot")) {  // plots from an earlier run's JSON: no GL, no rendering
+    if (!args.has("plots")) fail("--replot", "needs --plots DIR");
+    const std::vector<BenchRecord> records = readBenchJson(args.get("replot", ""));
+    writeBenchPlots(args.get("plots", ""), records, findBreakEvens(records));
+    return 0;
+  }
   const bool sweep = args.has("sweep");
   Config cfg;
   cfg.views = parseViews(args.get("views", sweep ? "1,2,5,10,20,50,100,200,500,1000" : "100"));

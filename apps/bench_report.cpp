@@ -110,6 +110,104 @@ void writeBenchJson(const std::string& path, const BenchMachine& machine,
   if (!out) fail(path, "cannot write benchmark JSON");
 }
 
+std::vector<BenchRecord> readBenchJson(const std::string& path) {
+  using nlohmann::json;
+  std::ifstream in(path);
+  if (!in) fail(path, "cannot read benchmark JSON");
+  const json j = json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("results") || !j["results"].is_array())
+    fail(path, "not a benchmark JSON (mvr bench --json)");
+  auto num = [](const json& r, const char* key, double fallback) {
+    return r.contains(key) && r[key].is_number() ? r[key].get<double>() : fallback;
+  };
+  std::vector<BenchRecord> records;
+  for (const json& r : j["results"]) {
+    if (!r.is_object() || !r.contains("scene") || !r.contains("backend") || !r["scene"].is_string() ||
+        !r["backend"].is_string())
+      fail(path, "a result without scene and backend");
+    BenchRecord b;
+    b.scene = r["scene"].get<std::string>();
+    b.backend = r["backend"].get<std::string>();
+    b.triangles = size_t(num(r, "triangles", 0));
+    b.width = int(num(r, "width", 0)), b.height = int(num(r, "height", 0));
+    b.views = int(num(r, "views", 0)), b.rows = int(num(r, "rows", 1));
+    b.seconds = num(r, "seconds", NAN);
+    b.speedupSvr = num(r, "speedup_vs_svr", NAN), b.speedupLayered = num(r, "speedup_vs_layered", NAN);
+    b.minPsnr = num(r, "min_psnr_db", INFINITY);  // null: identical
+    b.minIdentical = num(r, "min_identical", NAN), b.minClose = num(r, "min_within_one_step", NAN);
+    b.minSsim = num(r, "min_ssim", NAN), b.meanHoles = num(r, "mean_holes", 0);
+    b.averagePolygonHeight = num(r, "average_polygon_height_px", 0);
+    if (b.views < 1 || b.width < 1 || b.height < 1 || !(b.seconds > 0))
+      fail(path, "result " + b.scene + " " + b.backend + " lacks views, size or seconds");
+    records.push_back(std::move(b));
+  }
+  if (records.empty()) fail(path, "no results");
+  return records;
+}
+
+namespace {
+
+// Every back end's time per view on the scene with the most triangles at
+// this size, break-even points marked.
+void plotBackends(const std::filesystem::path& dir, int w, int h, const std::vector<BenchRecord>& records,
+                  const std::vector<BreakEven>& breakEvens) {
+  const BenchRecord* finest = nullptr;
+  for (const BenchRecord& r : records)
+    if (r.width == w && r.height == h && (!finest || r.triangles > finest->triangles)) finest = &r;
+  if (!finest) return;
+  const std::string tag = sizeName(w, h), scene = finest->scene;
+  std::ofstream gp(dir / ("backends_" + tag + ".gp"));
+  gp << "set terminal pngcairo size 900,600\nset output '" << (dir / ("backends_" + tag + ".png")).string()
+     << "'\nset logscale xy\nset xlabel 'views'\nset ylabel 'ms per view'\nset key outside right\n"
+     << "set title 'time per view, " << scene << ", " << tag << " (points: break-even with svr)'\nplot ";
+  const auto groups = groupRecords(records);
+  const Group& group = groups.at({scene, w, h});
+  int colour = 1;
+  for (const auto& [backend, rs] : group) {
+    std::string file = backend;
+    std::replace(file.begin(), file.end(), ':', '_');
+    const std::string data = (dir / (scene + "_" + tag + "_" + file + ".dat")).string();
+    std::ofstream d(data);
+    for (const BenchRecord* r : rs) d << r->views << " " << 1e3 * r->seconds / r->views << "\n";
+    gp << (colour > 1 ? ", " : "") << "'" << data << "' using 1:2 with linespoints lc " << colour
+       << (backend == "svr" ? " dt 2 lw 2" : " dt 1") << " title '" << backend << "'";
+    for (const BreakEven& b : breakEvens)
+      if (b.scene == scene && b.width == w && b.height == h && b.backend == backend && std::isfinite(b.fitted))
+        gp << ", '+' using (" << b.fitted << "):(" << b.svrMsPerView << ") with points pt 7 ps 1.5 lc "
+           << colour << " notitle";
+    ++colour;
+  }
+  gp << "\n";
+}
+
+// PSNR against svr over time per view at the largest view count.
+void plotPsnr(const std::filesystem::path& dir, int w, int h, const std::vector<BenchRecord>& records) {
+  const std::string tag = sizeName(w, h);
+  std::ofstream gp(dir / ("psnr_vs_time_" + tag + ".gp"));
+  gp << "set terminal pngcairo size 900,600\nset output '" << (dir / ("psnr_vs_time_" + tag + ".png")).string()
+     << "'\nset logscale x\nset xlabel 'ms per view'\nset ylabel 'min PSNR against svr (dB)'\n"
+     << "set title 'PSNR against time, " << tag << ", largest view count'\nset key outside right\nplot ";
+  bool first = true;
+  int colour = 1;
+  for (const auto& [key, group] : groupRecords(records)) {
+    if (std::get<1>(key) != w || std::get<2>(key) != h) continue;
+    const std::string data = (dir / (std::get<0>(key) + "_" + tag + "_psnr.dat")).string();
+    std::ofstream d(data);
+    for (const auto& [backend, rs] : group) {
+      const BenchRecord* r = rs.back();
+      if (backend == "svr" || !std::isfinite(r->minPsnr)) continue;
+      d << 1e3 * r->seconds / r->views << " " << r->minPsnr << " " << backend << "\n";
+    }
+    gp << (first ? "" : ", ") << "'" << data << "' using 1:2:3 with labels point pt 7 lc " << colour
+       << " offset 1,0.5 title '" << std::get<0>(key) << "'";
+    first = false;
+    ++colour;
+  }
+  gp << "\n";
+}
+
+}  // namespace
+
 void writeBenchPlots(const std::string& dir, const std::vector<BenchRecord>& records,
                      const std::vector<BreakEven>& breakEvens) {
   namespace fs = std::filesystem;
@@ -171,6 +269,8 @@ void writeBenchPlots(const std::string& dir, const std::vector<BenchRecord>& rec
       first = false;
     }
     ge << "\n";
+    plotBackends(dir, w, h, records, breakEvens);
+    plotPsnr(dir, w, h, records);
   }
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
     std::fprintf(stderr, "mvr bench: gnuplot not found; plot scripts are in %s\n", dir.c_str());

@@ -38,7 +38,13 @@ std::vector<BreakEven> findBreakEvens(const std::vector<BenchRecord>& records);
 void printBreakEvens(const std::vector<BreakEven>& breakEvens);
 void writeBenchJson(const std::string& path, const BenchMachine& machine,
                     const std::vector<BenchRecord>& records, const std::vector<BreakEven>& breakEvens);
-// Data, gnuplot scripts and (when gnuplot is installed) PNGs in dir.
+// The records of a JSON file writeBenchJson wrote (to plot them again);
+// throws mvr::Error naming the file when it is not one.
+std::vector<BenchRecord> readBenchJson(const std::string& path);
+// Data, gnuplot scripts and (when gnuplot is installed) PNGs in dir: per
+// size, time per view against views (svr and mvr strip for every scene;
+// every back end for the finest scene) and error against time at the
+// largest view count (identical-pixel fraction; PSNR).
 void writeBenchPlots(const std::string& dir, const std::vector<BenchRecord>& records,
                      const std::vector<BreakEven>& breakEvens);
 

@@ -152,6 +152,30 @@ TEST(Cli, MvrWritesEpisAndStats) {
     EXPECT_TRUE(m["timings_s"].contains(stage)) << stage;
 }
 
+TEST(Cli, BenchPlotsAgainFromItsJson) {
+  const fs::path d = outDir("replot");
+  fs::create_directories(d);
+  const fs::path json = d / "bench.json";
+  ASSERT_EQ(run("bench --views 1,4 --size 40x30 --backends svr,mvr:quad,interp:center:c1 --json " +
+                json.string()).status, 0);
+  const Result r = run("bench --replot " + json.string() + " --plots " + (d / "plots").string());
+  EXPECT_EQ(r.status, 0) << r.err;
+  for (const char* plot : {"time_per_view_40x30.gp", "backends_40x30.gp", "psnr_vs_time_40x30.gp"})
+    EXPECT_TRUE(fs::exists(d / "plots" / plot)) << plot;
+  std::ifstream backends(d / "plots" / "backends_40x30.gp");
+  const std::string script((std::istreambuf_iterator<char>(backends)), {});
+  EXPECT_NE(script.find("interp:center:c1"), std::string::npos);
+  // Not a benchmark's JSON, no such file, no --plots: one line each.
+  std::ofstream(d / "other.json") << R"({"views": 3})";
+  for (const std::string& args : {"bench --replot " + (d / "other.json").string() + " --plots " + d.string(),
+                                  "bench --replot /nonexistent/bench.json --plots " + d.string(),
+                                  "bench --replot " + json.string()}) {
+    const Result bad = run(args);
+    EXPECT_NE(bad.status, 0) << args;
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << args << ": " << bad.err;
+  }
+}
+
 TEST(Cli, HelpForEverySubcommand) {
   for (std::string c : {"info", "render", "compare", "bench"}) EXPECT_EQ(run(c + " --help").status, 0) << c;
 }
