@@ -44,9 +44,10 @@ const char* const kBenchHelp =
     "  --backends LIST     default svr,svr-layered,deferred,mvr:quad,mvr:strip,\n"
     "                      mvr:exact,mvr:cpu,interp:center:c1,interp:hierarchical:2:c1;\n"
     "                      mvr:MODE[:direct] textures directly;\n"
-    "                      interp[:ACQUIRE][:L][:cT][:vis][:bB][:sK][:MODE] is the\n"
-    "                      image-based back end with L layers, coalescing T pixels,\n"
-    "                      visibility, a budget of B source views, K highlight splits\n"
+    "                      interp[:ACQUIRE][:L][:cT][:vis][:bB][:sK][:oP][:MODE] is\n"
+    "                      the image-based back end with L layers, coalescing T\n"
+    "                      pixels, visibility, a budget of B source views, K\n"
+    "                      highlight splits, overlap P pixels\n"
     "  --repeat R          best of R runs (default 1)\n"
     "  --error-views K     views compared against svr (default 8)\n"
     "  --json FILE         also write the results as JSON\n"
@@ -77,7 +78,8 @@ std::string cpuModel() {
 
 // NAME[:PST[:TEXTURE]], e.g. mvr:exact:direct; interp[:ACQUIRE[:OPTION...]]
 // with options LAYERS (a number), cT (coalesce T pixels), vis (visibility),
-// bB (hierarchical budget), sK (highlight splits) and an accuracy mode, e.g.
+// bB (hierarchical budget), sK (highlight splits), oP (overlap P pixels)
+// and an accuracy mode, e.g.
 // interp:hierarchical:2:c0.5:vis:b5:exact.
 void interpOption(const std::string& token, BackendChoice& c) {
   char* end = nullptr;
@@ -96,6 +98,8 @@ void interpOption(const std::string& token, BackendChoice& c) {
     c.budget = int(std::clamp(std::strtol(text + 1, &end, 10), 2L, 1024L));
   } else if (token.size() > 1 && token[0] == 'c') {
     c.coalesce = std::strtof(text + 1, &end);
+  } else if (token.size() > 1 && token[0] == 'o') {
+    c.overlap = std::strtof(text + 1, &end);
   } else {
     const long layers = std::strtol(text, &end, 10);
     c.maxLayers = int(std::clamp(layers, 1L, 64L));

@@ -38,6 +38,8 @@ const char* const kRenderHelp =
     "  --budget B         interp hierarchical: source views per row at most (default 9)\n"
     "  --splits K         interp: highlights per view, split at K views across each\n"
     "                     specular pixel's highlight (default 0: as the source saw it)\n"
+    "  --overlap P        interp: widen each slice by P pixels per side against cracks\n"
+    "                     (default 0.25; more closes more holes, dilates outlines)\n"
     "  --visibility       interp: drop layer pixels the nearest layer hides from the\n"
     "                     whole track; stop peeling at a layer with none left\n"
     "  --max-layers L     interp: depth-peeled layers per source view (default 4)\n"
@@ -67,7 +69,7 @@ std::unique_ptr<Renderer> makeRenderer(const BackendChoice& c, const Scene& scen
   if (c.backend == "interp")
     return makeInterpRenderer(scene, type,
                               {.acquire = parseAcquire(c.acquire), .maxLayers = c.maxLayers,
-                               .mode = parsePstMode(c.pst), .coalesce = c.coalesce,
+                               .mode = parsePstMode(c.pst), .overlap = c.overlap, .coalesce = c.coalesce,
                                .visibility = c.visibility, .budget = c.budget, .splits = c.splits});
   if (c.backend == "svr") return makeSvrRenderer(scene, type);
   if (c.backend == "svr-layered") return makeLayeredSvrRenderer(scene, type);
@@ -145,12 +147,13 @@ const char* const kStreamHelp =
     "  --backend, --pst, --views, --rows, --size, --format, --gl as for render\n";
 
 int runRender(int argc, char** argv, bool streamCommand) {
-  std::set<std::string> flags = {"backend", "pst", "texture", "acquire", "max-layers", "coalesce", "budget", "splits", "views",
-                                 "rows", "size", "out", "format", "order", "gl", "stream", "bits",
-                                 "quilt", "predistort", "queue"};
-  if (streamCommand)
-    flags = {"backend", "pst", "texture", "acquire", "max-layers", "coalesce", "budget", "splits", "views", "rows", "size",
-             "format", "gl", "to", "queue"};
+  // The render options both commands share; then each command's own.
+  std::set<std::string> flags = {"backend", "pst", "texture", "acquire", "max-layers", "coalesce",
+                                 "budget", "splits", "overlap", "views", "rows", "size", "format",
+                                 "gl", "queue"};
+  const auto own = streamCommand ? std::set<std::string>{"to"}
+                                 : std::set<std::string>{"out", "order", "stream", "bits", "quilt", "predistort"};
+  flags.insert(own.begin(), own.end());
   Args args(argc, argv, 2, flags, {"visibility"});
   const char* streamFlag = streamCommand ? "to" : "stream";
   const bool streaming = args.has(streamFlag);
@@ -163,7 +166,7 @@ int runRender(int argc, char** argv, bool streamCommand) {
                        args.get("texture", "vector"), args.get("acquire", "dual"),
                        args.getInt("max-layers", 4, 1, 64), float(args.getDouble("coalesce", 0.0)),
                        args.has("visibility"), args.getInt("budget", 9, 2, 1024),
-                       args.getInt("splits", 0, 0, 64)};
+                       args.getInt("splits", 0, 0, 64), float(args.getDouble("overlap", 0.25))};
   const int views = args.getInt("views", 16, 1, 65536);
   const int rows = args.getInt("rows", 1, 1, 4096);
   const auto [width, height] = args.getSize("size", {320, 240});
@@ -176,7 +179,7 @@ int runRender(int argc, char** argv, bool streamCommand) {
   if (order != "view" && order != "epi") fail("--order", "expected view or epi, not '" + order + "'");
   if (choice.backend != "mvr" && choice.backend != "interp" && args.has("pst"))
     fail("--pst", "applies to --backend mvr and interp only");
-  for (const char* flag : {"acquire", "max-layers", "coalesce", "budget", "splits", "visibility"})
+  for (const char* flag : {"acquire", "max-layers", "coalesce", "budget", "splits", "overlap", "visibility"})
     if (choice.backend != "interp" && args.has(flag))
       fail(std::string("--") + flag, "applies to --backend interp only");
   if (choice.backend != "mvr" && args.has("texture")) fail("--texture", "applies to --backend mvr only");

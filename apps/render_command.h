@@ -25,6 +25,7 @@ struct BackendChoice {
   bool visibility = false;         // drop layer pixels hidden from the track (interp only)
   int budget = 9;                  // hierarchical: source views per row at most
   int splits = 0;                  // split views per highlight (interp only)
+  float overlap = 0.25f;           // slice widening per side, pixels (interp only)
 };
 
 // The accuracy mode a back end uses unless told: interp's pixel slices have

@@ -37,6 +37,7 @@ const InterpOptions& validated(const InterpOptions& options) {
     fail("--coalesce", "must be a finite number of pixels, at least 0");
   if (options.budget < 2) fail("--budget", "must be at least 2 source views");
   if (options.splits < 0) fail("--splits", "must be at least 0");
+  if (!(options.overlap >= 0.0f && options.overlap <= 4.0f)) fail("--overlap", "must be 0 to 4 pixels");
   return options;
 }
 

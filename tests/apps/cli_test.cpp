@@ -109,6 +109,7 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
                            "render --backend svr --coalesce 1 --out " + d.string(),
                            "render --backend interp --budget 1 --out " + d.string(),
                            "render --backend interp --splits -2 --out " + d.string(),
+                           "render --backend interp --overlap -1 --out " + d.string(),
                            "render --backend mvr --splits 2 --out " + d.string(),
                            "render --backend deferred --visibility --out " + d.string(),
                            "render --views 0 --out " + d.string(),
