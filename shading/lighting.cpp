@@ -22,14 +22,16 @@ std::vector<float> vertexCullFlags(const Scene& scene) {
   return flags;
 }
 
+glm::vec3 towardsLight(const Light& light, const glm::vec3& p) {
+  return light.type == Light::Type::Directional ? -light.vector : glm::normalize(light.vector - p);
+}
+
 // Keep in step with the GLSL below.
 glm::vec3 diffuse(const Scene& scene, const glm::vec3& albedo, const glm::vec3& p,
                   const glm::vec3& n) {
   glm::vec3 sum = scene.ambient;
   for (const Light& light : scene.lights) {
-    glm::vec3 l = light.type == Light::Type::Directional ? -light.vector
-                                                         : glm::normalize(light.vector - p);
-    sum += light.color * glm::max(glm::dot(n, l), 0.0f);
+    sum += light.color * glm::max(glm::dot(n, towardsLight(light, p)), 0.0f);
   }
   return glm::clamp(albedo * sum, 0.0f, 1.0f);
 }

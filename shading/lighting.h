@@ -20,6 +20,9 @@ std::vector<glm::vec3> vertexAlbedo(const Scene& scene);
 // Per vertex: 1 where the vertex's material culls back faces, else 0.
 std::vector<float> vertexCullFlags(const Scene& scene);
 
+// Unit vector from p towards the light.
+glm::vec3 towardsLight(const Light& light, const glm::vec3& p);
+
 glm::vec3 diffuse(const Scene& scene, const glm::vec3& albedo, const glm::vec3& position,
                   const glm::vec3& normal);
 

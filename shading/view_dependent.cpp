@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "shading/lighting.h"
+
 namespace mvr::shading {
 namespace {
 
@@ -22,8 +24,7 @@ glm::vec3 specularLight(const Scene& scene, const Material& m, const glm::vec3& 
   const glm::vec3 n = nIn / len, v = (eye - p) / dist;
   glm::vec3 sum(0.0f);
   for (const Light& light : scene.lights) {
-    const glm::vec3 l = light.type == Light::Type::Directional ? -light.vector
-                                                               : glm::normalize(light.vector - p);
+    const glm::vec3 l = towardsLight(light, p);
     if (glm::dot(n, l) <= 0.0f) continue;
     const float s = m.specularModel == SpecularModel::Phong
                         ? glm::dot(glm::reflect(-l, n), v)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shading/lighting.h"
 #include "shading/view_dependent.h"
 
 namespace mvr {
@@ -20,23 +21,19 @@ std::optional<double> closestTrackX(const glm::dvec3& p, const glm::dvec3& dir, 
 }
 
 HighlightSplitter::HighlightSplitter(const Scene& scene, const ShearingCamera& cam, int row, int splits)
-    : scene_(scene), splits_(splits), views_(cam.views()), eye0_(cam.eye(0, row)),
-      eyeStep_(cam.views() > 1 ? glm::vec3(cam.eye(1, row) - cam.eye(0, row)) : glm::vec3(0.0f)) {}
+    : scene_(scene), cam_(cam), row_(row), splits_(splits) {}
 
 bool HighlightSplitter::specular(uint32_t material) const {
   return material < scene_.materials.size() && scene_.materials[material].specular != glm::vec3(0.0f);
-}
-
-float HighlightSplitter::rowOf(double x) const {
-  return float(0.5 + (x - eye0_.x) / eyeStep_.x);
 }
 
 int HighlightSplitter::add(const glm::vec3& p, const glm::vec3& n, uint32_t material,
                            std::vector<HighlightKnot>& out) const {
   if (!specular(material)) return 0;
   const Material& m = scene_.materials[material];
-  std::vector<float> rows = {0.0f, float(views_)};
-  if (views_ > 1 && splits_ > 0) {
+  const int views = cam_.views();
+  std::vector<float> rows = {0.0f, float(views)};
+  if (views > 1 && splits_ > 0) {
     // The view direction's angle off the mirror ray where the highlight
     // has fallen to fraction f: cos^s = f (Blinn-Phong's half vector turns
     // half as fast as the view).
@@ -44,12 +41,12 @@ int HighlightSplitter::add(const glm::vec3& p, const glm::vec3& n, uint32_t mate
     auto angleAt = [&](float f) {
       return std::min(1.4f, turn * std::acos(std::pow(f, 1.0f / std::max(m.shininess, 1e-3f))));
     };
+    const glm::dvec3 track = cam_.eye(0.0, row_);  // the track line: y and z of every eye
     for (const Light& light : scene_.lights) {
-      const glm::vec3 l = light.type == Light::Type::Directional ? -light.vector
-                                                                 : glm::normalize(light.vector - p);
+      const glm::vec3 l = shading::towardsLight(light, p);
       if (glm::dot(n, l) <= 0.0f) continue;
       double distance = 0.0;
-      const auto peak = closestTrackX(p, glm::reflect(-l, n), eye0_.y, eye0_.z, &distance);
+      const auto peak = closestTrackX(p, glm::reflect(-l, n), track.y, track.z, &distance);
       if (!peak) continue;
       std::vector<double> xs = {*peak};
       for (int k = 1; k <= splits_; ++k) {  // equal steps of intensity down the lobe
@@ -59,7 +56,7 @@ int HighlightSplitter::add(const glm::vec3& p, const glm::vec3& n, uint32_t mate
       }
       for (double x : xs) {
         const float r = rowOf(x);
-        if (r > 0.0f && r < float(views_)) rows.push_back(r);
+        if (r > 0.0f && r < float(views)) rows.push_back(r);
       }
     }
     std::sort(rows.begin(), rows.end());

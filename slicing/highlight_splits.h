@@ -36,12 +36,13 @@ class HighlightSplitter {
           std::vector<HighlightKnot>& out) const;
 
  private:
-  glm::vec3 eyeAt(float r) const { return eye0_ + (r - 0.5f) * eyeStep_; }
-  float rowOf(double x) const;
+  // The eye at EPI row coordinate r (view i at r = i + 0.5), and back.
+  glm::vec3 eyeAt(float r) const { return glm::vec3(cam_.eye(r - 0.5, row_)); }
+  float rowOf(double x) const { return float(0.5 + (x - cam_.viewX(0)) / cam_.viewSpacing()); }
 
   const Scene& scene_;
-  int splits_, views_;
-  glm::vec3 eye0_, eyeStep_;
+  const ShearingCamera& cam_;
+  int row_, splits_;
 };
 
 }  // namespace mvr

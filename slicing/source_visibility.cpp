@@ -5,19 +5,21 @@
 
 namespace mvr {
 
-TrackParallax::TrackParallax(const ShearingCamera& cam)
-    : D_(cam.spec().distance), n_(cam.spec().nearDistance), f_(cam.spec().farDistance),
-      pixelsPerUnit_(cam.width() / cam.planeWidth()),
-      pixelsPerDepth_(D_ * pixelsPerUnit_ * (f_ - n_) / (n_ * f_)),
-      left_(cam.viewX(0)), right_(cam.viewX(cam.views() - 1)) {}
+TrackParallax::TrackParallax(const ShearingCamera& cam) : cam_(cam) {
+  const CameraSpec& s = cam.spec();
+  const double n = s.nearDistance, f = s.farDistance;
+  pixelsPerDepth_ = s.distance * (cam.width() / cam.planeWidth()) * (f - n) / (n * f);
+}
 
 double TrackParallax::shift(float depth, double from, double to) const {
-  const double invW = (double(depth) * (f_ - n_) + n_) / (n_ * f_);
-  return (to - from) * (1.0 - D_ * invW) * pixelsPerUnit_;
+  const CameraSpec& s = cam_.spec();
+  const double n = s.nearDistance, f = s.farDistance;
+  const double w = n * f / (double(depth) * (f - n) + n);  // distance from the camera plane
+  return (to - from) * cam_.disparityPerUnitTrack(s.distance - w);
 }
 
 double TrackParallax::reach(double x) const {
-  return std::max(std::abs(x - left_), std::abs(x - right_));
+  return std::max(std::abs(x - cam_.viewX(0)), std::abs(x - cam_.viewX(cam_.views() - 1)));
 }
 
 namespace {

@@ -29,7 +29,8 @@ class TrackParallax {
   double reach(double x) const;
 
  private:
-  double D_, n_, f_, pixelsPerUnit_, pixelsPerDepth_, left_, right_;
+  const ShearingCamera& cam_;
+  double pixelsPerDepth_;
 };
 
 // Drops (sets to depth 0) the pixels of `back`, a deeper layer seen from
