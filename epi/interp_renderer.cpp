@@ -42,8 +42,8 @@ const InterpOptions& validated(const InterpOptions& options) {
 }
 
 // Split tracks only where some material has a highlight to split.
-bool splitsHighlights(const Scene& scene, const InterpOptions& options) {
-  return options.splits > 0 && shading::planShading(scene).specular;
+int splitsFor(const Scene& scene, const InterpOptions& options) {
+  return shading::planShading(scene).specular ? options.splits : 0;
 }
 
 // The layers of one source view.
@@ -55,10 +55,10 @@ struct Source {
 class InterpRenderer final : public Renderer {
  public:
   InterpRenderer(const Scene& scene, PixelType type, const InterpOptions& options)
-      : options_(validated(options)), scene_(scene), highlights_(splitsHighlights(scene, options)),
-        sources_(makeSourceLayerRenderer(scene, highlights_)) {
+      : options_(validated(options)), scene_(scene), splits_(splitsFor(scene, options)),
+        sources_(makeSourceLayerRenderer(scene, splits_ > 0)) {
     // Every image slice is coloured by its own vector of source pixels.
-    const EpiShading shading{.sliceVectors = true, .sliceHighlights = highlights_};
+    const EpiShading shading{.sliceVectors = true, .sliceHighlights = splits_ > 0};
     rasterizer_ = options.mode == PstMode::Cpu ? makeSpanRasterizer(type, 2, shading)
                                                : makeGlRasterizer(options.mode, type, shading);
   }
@@ -76,11 +76,11 @@ class InterpRenderer final : public Renderer {
       {
         ScopedStage s(stats.times, "slicing");
         slices = sliceSourceLayers(layers, cam, row,
-                                   {options_.overlap, options_.coalesce, &scene_, highlights_ ? options_.splits : 0});
+                                   {options_.overlap, options_.coalesce, &scene_, splits_});
       }
       stats.counters["slices"] += double(slices.table.sliceCount());
       stats.counters["slice_pixels"] += double(slices.pixels);
-      if (highlights_) stats.counters["highlight_knots"] += double(slices.vertices.knots.size());
+      if (splits_ > 0) stats.counters["highlight_knots"] += double(slices.vertices.knots.size());
       stats.counters["slice_table_bytes"] =
           std::max(stats.counters["slice_table_bytes"], double(slices.table.bytes()));
       rasterizer_->rasterize(slices.vertices, slices.table, cam, row, sink, stats);
@@ -90,7 +90,7 @@ class InterpRenderer final : public Renderer {
     stats.counters["max_layers"] = options_.maxLayers;
     stats.counters["coalesce"] = options_.coalesce;
     stats.counters["visibility"] = options_.visibility;
-    stats.counters["splits"] = highlights_ ? options_.splits : 0;
+    stats.counters["splits"] = splits_;
   }
 
  private:
@@ -153,7 +153,7 @@ class InterpRenderer final : public Renderer {
 
   InterpOptions options_;
   const Scene& scene_;
-  bool highlights_;
+  int splits_;  // options_.splits where the scene has highlights, else 0
   std::unique_ptr<SourceLayerRenderer> sources_;
   std::unique_ptr<EpiRasterizer> rasterizer_;
 };
