@@ -107,7 +107,7 @@ void main() {
 class GBuffer {
  public:
   GBuffer(int w, int h)
-      : albedo_(GL_TEXTURE_2D), normal_(GL_TEXTURE_2D), depth_(GL_TEXTURE_2D),
+      : width_(w), height_(h), albedo_(GL_TEXTURE_2D), normal_(GL_TEXTURE_2D), depth_(GL_TEXTURE_2D),
         fbo_(gl::Framebuffer::create()) {
     gl::TextureStorage2D(albedo_.id(), 1, GL_RGBA8, w, h);
     gl::TextureStorage2D(normal_.id(), 1, GL_RGBA16F, w, h);
@@ -119,10 +119,10 @@ class GBuffer {
     gl::NamedFramebufferDrawBuffers(fbo_.id(), 2, buffers);
     if (gl::CheckNamedFramebufferStatus(fbo_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       fail("GL", "G-buffer is incomplete");
-    gl::Viewport(0, 0, w, h);
   }
   void bindForWriting() const {
     gl::BindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+    gl::Viewport(0, 0, width_, height_);  // as RenderTarget::bind
     const float zero[4] = {0, 0, 0, 0};
     gl::ClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zero);
     gl::ClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 1, zero);
@@ -137,6 +137,7 @@ class GBuffer {
   }
 
  private:
+  int width_, height_;
   gl::Texture albedo_, normal_, depth_;
   gl::Framebuffer fbo_;
 };
@@ -163,7 +164,6 @@ class DeferredPipeline {
 
   // Before the passes of a sequence of views of this size.
   void begin(int width, int height) {
-    gl::Viewport(0, 0, width, height);  // targets may outlive other renderers' passes
     setDepthConvention();
     gl::FrontFace(GL_CW);
     gl::setUniform(lighting_, "uSize", glm::vec2(width, height));
