@@ -20,11 +20,11 @@
 #include "apps/sample_sink.h"
 #include "apps/teacup.h"
 #include "apps/test_scenes.h"
-#include "mvr/compare.h"
 #include "mvr/error.h"
-#include "mvr/gl_context.h"
+#include "mvr/gl/gl_context.h"
+#include "mvr/io/compare.h"
+#include "mvr/io/scene_io.h"
 #include "mvr/progress.h"
-#include "mvr/scene_io.h"
 
 namespace mvr::app {
 

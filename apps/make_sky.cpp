@@ -7,6 +7,7 @@
 #include "apps/args.h"
 #include "apps/sky.h"
 #include "mvr/error.h"
+#include "mvr/io/image_file.h"
 
 int main(int argc, char** argv) {
   try {

@@ -9,7 +9,7 @@
 #include "apps/args.h"
 #include "apps/teacup.h"
 #include "mvr/error.h"
-#include "mvr/mesh_io.h"
+#include "mvr/io/mesh_io.h"
 
 int main(int argc, char** argv) {
   try {

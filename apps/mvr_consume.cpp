@@ -12,8 +12,8 @@
 #include "epi/epi_stream.h"
 #include "epi/volume.h"
 #include "mvr/error.h"
-#include "mvr/fd_stream.h"
-#include "mvr/image_set.h"
+#include "mvr/io/fd_stream.h"
+#include "mvr/io/image_set.h"
 #include "mvr/timer.h"
 
 namespace {

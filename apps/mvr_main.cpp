@@ -9,11 +9,11 @@
 
 #include "apps/args.h"
 #include "apps/bench_command.h"
-#include "apps/viewer.h"
 #include "apps/render_command.h"
-#include "mvr/compare.h"
+#include "apps/viewer.h"
 #include "mvr/error.h"
-#include "mvr/gl_context.h"
+#include "mvr/gl/gl_context.h"
+#include "mvr/io/compare.h"
 
 namespace mvr::app {
 namespace {

@@ -11,17 +11,17 @@
 
 #include "apps/args.h"
 #include "epi/epi_stream.h"
-#include "epi/stream_queue.h"
 #include "epi/interp_renderer.h"
 #include "epi/mvr_renderer.h"
+#include "epi/stream_queue.h"
 #include "epi/volume.h"
-#include "mvr/baselines.h"
+#include "mvr/baselines/baselines.h"
 #include "mvr/error.h"
-#include "mvr/fd_stream.h"
 #include "mvr/frame_sinks.h"
-#include "mvr/gl_context.h"
-#include "mvr/image_set.h"
-#include "mvr/scene_io.h"
+#include "mvr/gl/gl_context.h"
+#include "mvr/io/fd_stream.h"
+#include "mvr/io/image_set.h"
+#include "mvr/io/scene_io.h"
 
 namespace mvr::app {
 

@@ -1,6 +1,7 @@
 #include "apps/viewer.h"
 
-#include "mvr/gl_api.h"  // before GLFW
+#include "mvr/io/image_file.h"
+#include "mvr/gl/gl_api.h"  // before GLFW
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -17,11 +18,11 @@
 #include "apps/render_command.h"
 #include "epi/volume.h"
 #include "mvr/error.h"
-#include "mvr/gl_program.h"
-#include "mvr/glfw_window.h"
-#include "mvr/image_set.h"
+#include "mvr/gl/gl_program.h"
+#include "mvr/gl/glfw_window.h"
+#include "mvr/io/image_set.h"
+#include "mvr/io/scene_io.h"
 #include "mvr/progress.h"
-#include "mvr/scene_io.h"
 
 namespace mvr::app {
 

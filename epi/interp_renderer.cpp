@@ -4,8 +4,8 @@
 #include <cmath>
 #include <deque>
 
+#include "mvr/baselines/source_layers.h"
 #include "mvr/error.h"
-#include "mvr/source_layers.h"
 #include "shading/shading_plan.h"
 #include "slicing/image_slices.h"
 #include "slicing/source_visibility.h"

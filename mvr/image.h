@@ -1,5 +1,5 @@
 #pragma once
-// RGBA images, 8-bit or float, rows top first; file IO through OpenImageIO.
+// RGBA images, 8-bit or float, rows top first (file IO: mvr/io/image_file.h).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -25,12 +25,6 @@ struct Image {
   // Channel value scaled to [0, 1].
   glm::vec4 pixel(int x, int y) const;
 };
-
-// Writes png or tiff (8 or 16 bits per channel; float images are
-// quantised) or exr (32-bit float; bits is ignored). Writes to a temporary
-// name and renames, so a failed write leaves nothing behind.
-void writeImage(const Image& image, const std::string& path, int bits = 8);
-Image readImage(const std::string& path);  // 4 channels, U8 or F32
 
 // The rectangle (x, y, w, h) of src resampled bilinearly (edges clamped) to
 // width x height and quantised to RGBA8. bottomUp: output row 0 is the

@@ -22,7 +22,7 @@
 
 #include <glm/glm.hpp>
 
-#include "mvr/gl_handles.h"
+#include "mvr/gl/gl_handles.h"
 #include "mvr/scene.h"
 
 namespace mvr::shading {

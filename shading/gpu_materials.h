@@ -3,7 +3,7 @@
 // storage block that glslSpecular() declares (binding 1), carrying each
 // material's texture layer and reflection map, the textures as one
 // mipmapped 2D array, and the reflection maps (EnvironmentSet's units).
-#include "mvr/gl_handles.h"
+#include "mvr/gl/gl_handles.h"
 #include "mvr/scene.h"
 #include "shading/environment_set.h"
 #include "shading/texture_set.h"

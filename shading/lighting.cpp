@@ -3,7 +3,7 @@
 #include <string>
 
 #include "mvr/error.h"
-#include "mvr/gl_program.h"
+#include "mvr/gl/gl_program.h"
 
 namespace mvr::shading {
 

@@ -24,8 +24,8 @@
 // never coalesce: their highlights differ.
 #include <vector>
 
+#include "mvr/baselines/source_layers.h"
 #include "mvr/camera.h"
-#include "mvr/source_layers.h"
 #include "slicing/slice_table.h"
 
 namespace mvr {

@@ -2,7 +2,7 @@
 // assembles equal the image set `mvr render` writes.
 #include <gtest/gtest.h>
 
-#include "mvr/compare.h"
+#include "mvr/io/compare.h"
 #include "tests/support/cli.h"
 
 namespace mvr {

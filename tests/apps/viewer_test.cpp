@@ -4,8 +4,9 @@
 
 #include <cstring>
 
-#include "mvr/compare.h"
 #include "mvr/image.h"
+#include "mvr/io/compare.h"
+#include "mvr/io/image_file.h"
 #include "tests/support/cli.h"
 
 namespace mvr {

@@ -5,7 +5,7 @@
 
 #include "epi/epi_stream.h"
 #include "mvr/error.h"
-#include "mvr/scene_io.h"
+#include "mvr/io/scene_io.h"
 #include "tests/support/render_helpers.h"
 
 namespace mvr {

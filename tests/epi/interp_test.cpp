@@ -11,9 +11,9 @@
 #include <fstream>
 
 #include "epi/interp_renderer.h"
+#include "mvr/baselines/source_layers.h"
 #include "mvr/error.h"
-#include "mvr/scene_io.h"
-#include "mvr/source_layers.h"
+#include "mvr/io/scene_io.h"
 #include "slicing/image_slices.h"
 #include "tests/support/render_helpers.h"
 

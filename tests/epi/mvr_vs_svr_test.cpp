@@ -11,7 +11,7 @@
 
 #include <cstring>
 
-#include "mvr/scene_io.h"
+#include "mvr/io/scene_io.h"
 #include "tests/support/render_helpers.h"
 
 namespace mvr {

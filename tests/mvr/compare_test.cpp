@@ -3,9 +3,9 @@
 #include <cmath>
 #include <filesystem>
 
-#include "mvr/compare.h"
 #include "mvr/error.h"
-#include "mvr/image_set.h"
+#include "mvr/io/compare.h"
+#include "mvr/io/image_set.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "mvr/error.h"
-#include "mvr/gl_program.h"
+#include "mvr/gl/gl_program.h"
 #include "tests/support/gl_fixture.h"
 
 namespace mvr {

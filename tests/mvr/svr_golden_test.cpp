@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "mvr/baselines.h"
-#include "mvr/scene_io.h"
+#include "mvr/baselines/baselines.h"
+#include "mvr/io/scene_io.h"
 #include "tests/support/capture_sink.h"
 #include "tests/support/gl_fixture.h"
 

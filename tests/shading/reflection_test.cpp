@@ -15,7 +15,8 @@
 
 #include "apps/sky.h"
 #include "mvr/error.h"
-#include "mvr/scene_io.h"
+#include "mvr/io/image_file.h"
+#include "mvr/io/scene_io.h"
 #include "shading/environment_set.h"
 #include "shading/shading_plan.h"
 #include "tests/support/render_helpers.h"

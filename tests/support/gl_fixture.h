@@ -5,7 +5,7 @@
 
 #include <memory>
 
-#include "mvr/gl_context.h"
+#include "mvr/gl/gl_context.h"
 #include "mvr/progress.h"
 
 namespace mvr::test {

@@ -7,8 +7,9 @@
 
 #include "epi/mvr_renderer.h"
 #include "epi/volume.h"
-#include "mvr/baselines.h"
-#include "mvr/compare.h"
+#include "mvr/baselines/baselines.h"
+#include "mvr/io/compare.h"
+#include "mvr/io/image_file.h"
 #include "tests/support/capture_sink.h"
 #include "tests/support/gl_fixture.h"
 

@@ -2,7 +2,7 @@
 // Move-only owners of GL object names: one GL object, one small type.
 #include <utility>
 
-#include "mvr/gl_api.h"
+#include "mvr/gl/gl_api.h"
 
 namespace mvr::gl {
 

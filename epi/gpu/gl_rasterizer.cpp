@@ -16,13 +16,13 @@
 #include <cmath>
 #include <optional>
 
-#include "epi/epi_pass.h"
 #include "epi/epi_rasterizer.h"
+#include "epi/gpu/epi_pass.h"
 #include "epi/pst.h"
 #include "mvr/error.h"
-#include "mvr/gl_program.h"
+#include "mvr/gl/gl_program.h"
+#include "mvr/gl/render_target.h"
 #include "mvr/progress.h"
-#include "mvr/render_target.h"
 #include "shading/gpu_materials.h"
 #include "shading/texture_vector.h"
 

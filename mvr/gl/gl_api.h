@@ -10,7 +10,7 @@
 namespace mvr::gl {
 
 #define MVR_GL_FN(name, type) inline type name = nullptr;
-#include "gl_functions.inc"
+#include "mvr/gl/gl_functions.inc"
 #undef MVR_GL_FN
 
 using ProcAddressFn = void* (*)(const char* name);

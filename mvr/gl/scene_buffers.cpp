@@ -1,4 +1,4 @@
-#include "mvr/scene_buffers.h"
+#include "mvr/gl/scene_buffers.h"
 
 namespace mvr {
 

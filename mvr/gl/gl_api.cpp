@@ -1,4 +1,4 @@
-#include "mvr/gl_api.h"
+#include "mvr/gl/gl_api.h"
 
 #include "mvr/error.h"
 
@@ -8,7 +8,7 @@ void loadFunctions(ProcAddressFn getProcAddress) {
 #define MVR_GL_FN(name, type)                                                 \
   name = reinterpret_cast<type>(getProcAddress("gl" #name));                  \
   if (!name) fail("GL", "context lacks gl" #name " (GL 4.5 core required)");
-#include "gl_functions.inc"
+#include "mvr/gl/gl_functions.inc"
 #undef MVR_GL_FN
 }
 

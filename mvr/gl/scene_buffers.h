@@ -2,7 +2,7 @@
 // The scene's vertex data on the GPU, as the view renderers draw it:
 // position, normal, albedo, cull flag, material index and texture
 // coordinates per vertex; triangles as indices.
-#include "mvr/gl_handles.h"
+#include "mvr/gl/gl_handles.h"
 #include "mvr/scene.h"
 
 namespace mvr {

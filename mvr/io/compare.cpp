@@ -1,4 +1,4 @@
-#include "mvr/compare.h"
+#include "mvr/io/compare.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "mvr/error.h"
+#include "mvr/io/image_file.h"
 
 namespace mvr {
 namespace fs = std::filesystem;

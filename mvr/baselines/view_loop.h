@@ -1,8 +1,8 @@
 #pragma once
 // The view-major loop the baselines share: draw a view, read it back, hand
 // it to the sink, report progress.
+#include "mvr/gl/render_target.h"
 #include "mvr/progress.h"
-#include "mvr/render_target.h"
 #include "mvr/renderer.h"
 
 namespace mvr {

@@ -1,4 +1,4 @@
-#include "mvr/gl_program.h"
+#include "mvr/gl/gl_program.h"
 
 #include <vector>
 

@@ -1,11 +1,11 @@
 // GLFW windows: the interactive viewer's context, or a hidden window.
-#include "mvr/gl_api.h"  // before GLFW: glcorearb.h must come first
+#include "mvr/gl/gl_api.h"  // before GLFW: glcorearb.h must come first
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
 #include "mvr/error.h"
-#include "mvr/glfw_window.h"
+#include "mvr/gl/glfw_window.h"
 
 namespace mvr {
 

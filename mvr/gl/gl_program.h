@@ -6,7 +6,7 @@
 
 #include <glm/glm.hpp>
 
-#include "mvr/gl_handles.h"
+#include "mvr/gl/gl_handles.h"
 
 namespace mvr::gl {
 

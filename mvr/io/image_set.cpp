@@ -1,4 +1,4 @@
-#include "mvr/image_set.h"
+#include "mvr/io/image_set.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mvr/error.h"
+#include "mvr/io/image_file.h"
 
 namespace mvr {
 namespace fs = std::filesystem;

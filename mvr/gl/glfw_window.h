@@ -4,7 +4,7 @@
 #include <memory>
 #include <string>
 
-#include "mvr/gl_context.h"
+#include "mvr/gl/gl_context.h"
 
 struct GLFWwindow;
 

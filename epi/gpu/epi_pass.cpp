@@ -1,10 +1,10 @@
-#include "epi/epi_pass.h"
+#include "epi/gpu/epi_pass.h"
 
 #include <algorithm>
 #include <string>
 
 #include "mvr/error.h"
-#include "mvr/gl_program.h"
+#include "mvr/gl/gl_program.h"
 #include "shading/lighting.h"
 #include "shading/texture_vector.h"
 #include "shading/view_dependent.h"

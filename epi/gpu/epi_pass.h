@@ -13,7 +13,7 @@
 // `view` is the EPI row coordinate minus one half (view i at view = i), for
 // the eye of the view-dependent pass; `side` is +1 front, -1 back.
 #include "epi/epi_rasterizer.h"
-#include "mvr/gl_handles.h"
+#include "mvr/gl/gl_handles.h"
 
 namespace mvr {
 

@@ -1,4 +1,4 @@
-#include "mvr/scene_io.h"
+#include "mvr/io/scene_io.h"
 
 #include <cmath>
 #include <filesystem>
@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mvr/error.h"
-#include "mvr/mesh_io.h"
+#include "mvr/io/mesh_io.h"
 
 #ifndef MVR_ASSET_DIR
 #define MVR_ASSET_DIR "assets"

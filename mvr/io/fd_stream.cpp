@@ -1,4 +1,4 @@
-#include "mvr/fd_stream.h"
+#include "mvr/io/fd_stream.h"
 
 #include <fcntl.h>
 #include <netdb.h>

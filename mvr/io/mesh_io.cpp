@@ -1,4 +1,4 @@
-#include "mvr/mesh_io.h"
+#include "mvr/io/mesh_io.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>

@@ -1,4 +1,4 @@
-#include "mvr/render_target.h"
+#include "mvr/gl/render_target.h"
 
 #include "mvr/error.h"
 

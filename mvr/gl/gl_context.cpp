@@ -1,7 +1,7 @@
-#include "mvr/gl_context.h"
+#include "mvr/gl/gl_context.h"
 
 #include "mvr/error.h"
-#include "mvr/gl_api.h"
+#include "mvr/gl/gl_api.h"
 
 namespace mvr {
 

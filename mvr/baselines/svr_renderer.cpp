@@ -2,13 +2,13 @@
 // the vertex shader for every view, as a conventional renderer does.
 #include <algorithm>
 
-#include "mvr/baselines.h"
+#include "mvr/baselines/baselines.h"
+#include "mvr/baselines/view_loop.h"
 #include "mvr/error.h"
-#include "mvr/gl_program.h"
+#include "mvr/gl/gl_program.h"
+#include "mvr/gl/render_target.h"
+#include "mvr/gl/scene_buffers.h"
 #include "mvr/progress.h"
-#include "mvr/render_target.h"
-#include "mvr/scene_buffers.h"
-#include "mvr/view_loop.h"
 #include "shading/gpu_materials.h"
 #include "shading/lighting.h"
 #include "shading/shading_plan.h"

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "mvr/error.h"
-#include "mvr/gl_api.h"
-#include "mvr/gl_context.h"
+#include "mvr/gl/gl_api.h"
+#include "mvr/gl/gl_context.h"
 
 namespace mvr {
 namespace {

@@ -1,7 +1,7 @@
 #pragma once
 // An offscreen colour + depth target (optionally layered) and the GL state
 // every renderer shares: reversed zero-to-one depth in a float buffer.
-#include "mvr/gl_handles.h"
+#include "mvr/gl/gl_handles.h"
 #include "mvr/image.h"
 
 namespace mvr {

@@ -1,0 +1,183 @@
+#include "mvr/baselines/deferred_pipeline.h"
+
+#include "mvr/error.h"
+#include "shading/lighting.h"
+#include "shading/view_dependent.h"
+
+namespace mvr {
+namespace {
+
+const char* const kGeometryVertex = R"(
+uniform mat4 uViewProj;
+out vec3 vNormal;
+out vec3 vAlbedo;
+flat out float vCull;
+flat out float vMaterial;
+out vec2 vUv;
+void main() {
+  gl_Position = uViewProj * vec4(aPosition, 1.0);
+  vNormal = aNormal;
+  vAlbedo = aAlbedo;
+  vCull = aCull;
+  vMaterial = aMaterial;
+  vUv = aUv;
+}
+)";
+
+const char* const kGeometryFragment = R"(
+in vec3 vNormal;
+in vec3 vAlbedo;
+flat in float vCull;
+flat in float vMaterial;
+in vec2 vUv;
+layout(location = 0) out vec4 oAlbedo;  // a = 1 marks covered pixels
+layout(location = 1) out vec4 oNormal;  // w: material index
+#ifdef TEXTURE
+layout(binding = 3) uniform sampler2DArray uTextures;
+#endif
+#ifdef PEEL
+layout(binding = 6) uniform sampler2D uPreviousDepth;
+uniform vec4 uPeel;  // near, far, pixel footprint per unit distance, track width E
+float distanceOf(float depth) { return uPeel.x * uPeel.y / (depth * (uPeel.y - uPeel.x) + uPeel.x); }
+#endif
+void main() {
+  if (!gl_FrontFacing && vCull > 0.5) discard;
+#ifdef PEEL
+  // Depth peeling with de Quilletes' extended offset d s / (E - s): a
+  // surface closer behind the last layer than that never moves a pixel
+  // away from it anywhere on a track of width E, so it is not a new layer.
+  float previous = texelFetch(uPreviousDepth, ivec2(gl_FragCoord.xy), 0).r;
+  if (previous == 0.0) discard;  // nothing in front here: nothing behind
+  float d = distanceOf(previous), s = uPeel.z * d;
+  if (uPeel.w <= s || distanceOf(gl_FragCoord.z) <= d + d * s / (uPeel.w - s)) discard;
+#endif
+  vec3 albedo = vAlbedo;
+#ifdef TEXTURE
+  float layer = uMaterials[int(vMaterial)].params.y;
+  vec4 texel = texture(uTextures, vec3(vUv, layer));
+  if (layer >= 0.0) albedo *= texel.rgb;
+#endif
+  oAlbedo = vec4(albedo, 1.0);
+  oNormal = vec4(gl_FrontFacing ? vNormal : -vNormal, vMaterial);
+}
+)";
+
+const char* const kLightingFragment = R"(
+layout(binding = 0) uniform sampler2D uAlbedo;
+layout(binding = 1) uniform sampler2D uNormal;
+layout(binding = 2) uniform sampler2D uDepth;
+uniform mat4 uInverseViewProj;
+uniform vec2 uSize;
+uniform vec3 uEye;
+layout(location = 0) out vec4 oColor;
+void main() {
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  vec4 albedo = texelFetch(uAlbedo, px, 0);
+  if (albedo.a == 0.0) discard;
+  float depth = texelFetch(uDepth, px, 0).r;  // zero-to-one clip depth
+  vec4 ndc = vec4(gl_FragCoord.xy / uSize * 2.0 - 1.0, depth, 1.0);
+  vec4 world = uInverseViewProj * ndc;
+  vec4 normal = texelFetch(uNormal, px, 0);
+  vec3 n = normalize(normal.xyz), p = world.xyz / world.w;
+  vec3 c = diffuseLight(albedo.rgb, p, n);
+#if defined(VIEW_DEPENDENT) && !defined(SEPARATE_HIGHLIGHTS)
+  c += specularLight(int(normal.w + 0.5), p, n, uEye);
+#endif
+#ifdef REFLECT
+  // Per pixel from the G-buffer's normal, unlike the interpolated
+  // per-vertex reflection vectors of svr and mvr (Halle eq. 5.2).
+  c += environmentLight(int(normal.w + 0.5), reflect(p - uEye, n));
+#endif
+  oColor = vec4(c, 1.0);
+}
+)";
+
+}  // namespace
+
+GBuffer::GBuffer(int w, int h)
+    : width_(w), height_(h), albedo_(GL_TEXTURE_2D), normal_(GL_TEXTURE_2D), depth_(GL_TEXTURE_2D),
+      fbo_(gl::Framebuffer::create()) {
+  gl::TextureStorage2D(albedo_.id(), 1, GL_RGBA8, w, h);
+  gl::TextureStorage2D(normal_.id(), 1, GL_RGBA16F, w, h);
+  gl::TextureStorage2D(depth_.id(), 1, GL_DEPTH_COMPONENT32F, w, h);
+  gl::NamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, albedo_.id(), 0);
+  gl::NamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT1, normal_.id(), 0);
+  gl::NamedFramebufferTexture(fbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
+  const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  gl::NamedFramebufferDrawBuffers(fbo_.id(), 2, buffers);
+  if (gl::CheckNamedFramebufferStatus(fbo_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    fail("GL", "G-buffer is incomplete");
+}
+
+void GBuffer::bindForWriting() const {
+  gl::BindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+  gl::Viewport(0, 0, width_, height_);
+  const float zero[4] = {0, 0, 0, 0};
+  gl::ClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zero);
+  gl::ClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 1, zero);
+  gl::ClearNamedFramebufferfi(fbo_.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
+}
+
+DeferredPipeline::DeferredPipeline(const Scene& scene, bool separateHighlights)
+    : buffers_(scene, shading::vertexAlbedo(scene), shading::vertexCullFlags(scene)),
+      plan_(shading::planShading(scene)),
+      geometry_(geometryProgram(false)),
+      lighting_(gl::linkProgram(
+          "deferred-lighting",
+          {{GL_VERTEX_SHADER, gl::glslHeader() + gl::kFullScreenTriangleVertex},
+           {GL_FRAGMENT_SHADER, header() + (separateHighlights ? "#define SEPARATE_HIGHLIGHTS\n" : "") +
+                                    shading::glslLighting() + shading::glslSpecular() +
+                                    shading::glslEnvironment() + kLightingFragment}})),
+      emptyVao_(gl::VertexArray::create()),
+      materials_(scene, shading::TextureSet::load(scene), shading::EnvironmentSet::load(scene)) {
+  shading::setLightUniforms(lighting_, scene);
+}
+
+void DeferredPipeline::begin(int width, int height) {
+  setDepthConvention();
+  gl::FrontFace(GL_CW);
+  gl::setUniform(lighting_, "uSize", glm::vec2(width, height));
+  materials_.bind(3);  // units 0-2 read the G-buffer
+}
+
+void DeferredPipeline::geometry(const glm::dmat4& viewProj, const GBuffer& gbuffer,
+                                const GBuffer* previous, const glm::vec4& peel) {
+  gbuffer.bindForWriting();
+  gl::Enable(GL_DEPTH_TEST);
+  const gl::Program* program = &geometry_;
+  if (previous) {
+    if (!peeling_.id()) peeling_ = geometryProgram(true);
+    program = &peeling_;
+    gl::BindTextureUnit(6, previous->depthTexture());
+    gl::setUniform(peeling_, "uPeel", peel);
+  }
+  gl::UseProgram(program->id());
+  gl::setUniform(*program, "uViewProj", glm::mat4(viewProj));
+  buffers_.bind();
+  buffers_.draw();
+}
+
+void DeferredPipeline::lighting(const glm::dmat4& viewProj, const glm::dvec3& eye,
+                                const GBuffer& gbuffer, const RenderTarget& target) {
+  target.bind();
+  target.clear();
+  gl::Disable(GL_DEPTH_TEST);
+  gl::UseProgram(lighting_.id());
+  gl::setUniform(lighting_, "uInverseViewProj", glm::mat4(glm::inverse(viewProj)));
+  gl::setUniform(lighting_, "uEye", glm::vec3(eye));
+  gbuffer.bindForReading();
+  gl::BindVertexArray(emptyVao_.id());
+  gl::DrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+std::string DeferredPipeline::header() const { return gl::glslHeader() + plan_.glslDefines(); }
+
+gl::Program DeferredPipeline::geometryProgram(bool peel) const {
+  return gl::linkProgram(
+      peel ? "deferred-geometry-peel" : "deferred-geometry",
+      {{GL_VERTEX_SHADER, gl::glslHeader() + kSceneVertexInputs + kGeometryVertex},
+       {GL_FRAGMENT_SHADER, header() + (peel ? "#define PEEL\n" : "") + shading::glslLighting() +
+                                shading::glslSpecular() + kGeometryFragment}});
+}
+
+}  // namespace mvr

@@ -1,0 +1,66 @@
+#pragma once
+// Deferred shading (as in de Quilletes 2018): per view a G-buffer of albedo,
+// normal and depth, then a full-screen pass lights every pixel. The
+// deferred baseline and the image-based back end's source layers share it.
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "mvr/gl/gl_program.h"
+#include "mvr/gl/render_target.h"
+#include "mvr/gl/scene_buffers.h"
+#include "mvr/scene.h"
+#include "shading/gpu_materials.h"
+#include "shading/shading_plan.h"
+
+namespace mvr {
+
+// A G-buffer: albedo (a = 1 marks covered pixels), normal (w: material
+// index) and depth.
+class GBuffer {
+ public:
+  GBuffer(int width, int height);
+  void bindForWriting() const;  // sets the viewport, as RenderTarget::bind
+  GLuint depthTexture() const { return depth_.id(); }
+  GLuint normalTexture() const { return normal_.id(); }
+  void bindForReading() const {
+    gl::BindTextureUnit(0, albedo_.id());
+    gl::BindTextureUnit(1, normal_.id());
+    gl::BindTextureUnit(2, depth_.id());
+  }
+
+ private:
+  int width_, height_;
+  gl::Texture albedo_, normal_, depth_;
+  gl::Framebuffer fbo_;
+};
+
+// The two passes of deferred shading, shared by the baseline and the
+// image-based back end's source views.
+class DeferredPipeline {
+ public:
+  // separateHighlights: the lighting pass leaves out specular highlights.
+  explicit DeferredPipeline(const Scene& scene, bool separateHighlights = false);
+
+  // Before the passes of a sequence of views of this size.
+  void begin(int width, int height);
+  // previous: the G-buffer of the layer in front (depth peeling), or null.
+  void geometry(const glm::dmat4& viewProj, const GBuffer& gbuffer, const GBuffer* previous,
+                const glm::vec4& peel = glm::vec4(0.0f));
+  void lighting(const glm::dmat4& viewProj, const glm::dvec3& eye, const GBuffer& gbuffer,
+                const RenderTarget& target);
+
+ private:
+  // The plan's passes as defines: the geometry pass textures, the lighting
+  // pass adds highlights.
+  std::string header() const;
+  gl::Program geometryProgram(bool peel) const;
+
+  SceneBuffers buffers_;
+  shading::ShadingPlan plan_;
+  gl::Program geometry_, peeling_, lighting_;
+  gl::VertexArray emptyVao_;
+  shading::GpuMaterials materials_;
+};
+
+}  // namespace mvr
