@@ -6,8 +6,6 @@
 #include <cstdio>
 #include <istream>
 
-#include <nlohmann/json.hpp>
-
 #include "apps/args.h"
 #include "epi/epi_stream.h"
 #include "epi/volume.h"
@@ -33,7 +31,13 @@ int consume(int argc, char** argv) {
   const mvr::EpiStreamHeader& h = reader.header();
   const mvr::PixelType type = h.bytesPerChannel == 1 ? mvr::PixelType::U8 : mvr::PixelType::F32;
   const std::string format = args.get("format", type == mvr::PixelType::U8 ? "png" : "exr");
-  mvr::ImageSetWriter writer(args.get("out", ""), format, int(h.views), int(h.rows), int(h.height));
+  mvr::Manifest layout;
+  layout.views = int(h.views);
+  layout.rows = int(h.rows);
+  layout.width = int(h.width);
+  layout.height = int(h.height);
+  layout.format = format;
+  mvr::ImageSetWriter writer(args.get("out", ""), layout);
   mvr::EpisToViews views(writer, int(h.width), int(h.height), int(h.views), type);
   size_t frames = 0;
   while (auto f = reader.next()) {
@@ -45,10 +49,9 @@ int consume(int argc, char** argv) {
   if (frames != size_t(h.height) * h.rows)
     mvr::fail("stream", "ended after " + std::to_string(frames) + " of " +
                             std::to_string(size_t(h.height) * h.rows) + " EPIs");
-  writer.commit({{"source", "stream " + args.get("from", "-")}, {"views", h.views}, {"rows", h.rows},
-                 {"width", h.width}, {"height", h.height}, {"format", format},
-                 {"naming", h.rows == 1 ? "view_%04d" : "view_r%03d_c%04d"},
-                 {"timings_s", {{"total", watch.seconds()}}}});
+  writer.manifest().info = {{"source", "stream " + args.get("from", "-")},
+                            {"timings_s", {{"total", watch.seconds()}}}};
+  writer.commit();
   std::fprintf(stderr, "mvr-consume: %zu EPIs -> %u views in %s\n", frames, h.views * h.rows,
                args.get("out", "").c_str());
   return 0;

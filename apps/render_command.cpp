@@ -80,17 +80,6 @@ std::unique_ptr<Renderer> makeRenderer(const BackendChoice& c, const Scene& scen
 
 namespace {
 
-nlohmann::json cameraJson(const ShearingCamera& cam) {
-  const CameraSpec& s = cam.spec();
-  return {{"distance", s.distance},
-          {"image_plane", {cam.planeWidth(), cam.planeHeight()}},
-          {"track", {s.trackLeft, s.trackRight}},
-          {"rows_track", {s.rowTop, s.rowBottom}},
-          {"near", s.nearDistance},
-          {"far", s.farDistance},
-          {"view_spacing", cam.viewSpacing()}};
-}
-
 bool isPlainFile(const std::string& endpoint) {
   return endpoint != "-" && endpoint.rfind("unix:", 0) != 0 && endpoint.rfind("tcp:", 0) != 0;
 }
@@ -194,7 +183,15 @@ int runRender(int argc, char** argv, bool streamCommand) {
   if (streaming)
     return streamTo(*renderer, camera, args.get(streamFlag, "-"), type, args.getInt("queue", 8, 1, 4096));
 
-  ImageSetWriter writer(out, format, views, rows, height, bits);
+  Manifest layout;
+  layout.views = views;
+  layout.rows = rows;
+  layout.width = width;
+  layout.height = height;
+  layout.format = format;
+  layout.order = order;
+  layout.bits = bits;
+  ImageSetWriter writer(out, layout);
   // Sink chain: [predistort] -> [reorder] -> writer (+ quilt).
   std::vector<float> lut;
   if (args.has("predistort")) lut = loadPredistortionTable(args.get("predistort", ""), width);
@@ -222,33 +219,24 @@ int runRender(int argc, char** argv, bool streamCommand) {
   sink->finish();
   if (quilt) writer.putExtra(quilt->fileName(format), quilt->quilt());
 
-  nlohmann::json m;
+  Manifest& manifest = writer.manifest();
+  nlohmann::json& m = manifest.info;
   m["scene"] = scene.source;
   m["triangles"] = scene.triangleCount();
   m["backend"] = renderer->name();
   if (choice.backend == "mvr" || choice.backend == "interp") m["pst"] = choice.pst;
-  m["views"] = views;
-  m["rows"] = rows;
-  m["width"] = width;
-  m["height"] = height;
-  m["format"] = format;
-  m["order"] = order;
-  if (order == "view") m["naming"] = rows == 1 ? "view_%04d" : "view_r%03d_c%04d";
-  else m["naming"] = rows == 1 ? "epi_%04d (rows: views)" : "epi_r%03d_%04d (rows: views)";
   m["gl"] = {{"platform", glPlatformName(context->platform())},
              {"version", context->version()},
              {"renderer", context->renderer()}};
-  m["camera"] = cameraJson(camera);
+  manifest.setCamera(camera);
   m["timings_s"] = stats.times.seconds;
   m["timings_s"]["total"] = total.seconds();
   m["counters"] = stats.counters;
   m["notes"] = stats.notes;
-  m["files"] = writer.filesWritten();
-  m["bits"] = format == "exr" ? 32 : bits;
   m["pixel_origin"] = "top-left; view i at camera x = track[0] + i * view_spacing";
   if (quilt) m["quilt"] = quilt->fileName(format);
   if (!lut.empty()) m["predistortion"] = args.get("predistort", "");
-  writer.commit(m);
+  writer.commit();
   std::fprintf(stderr, "mvr: %s rendered %d view(s) of %dx%d to %s in %.3f s\n",
                renderer->name().c_str(), views * rows, width, height, out.c_str(),
                total.seconds());

@@ -1,6 +1,5 @@
 #include "apps/viewer.h"
 
-#include "mvr/io/image_file.h"
 #include "mvr/gl/gl_api.h"  // before GLFW
 
 #define GLFW_INCLUDE_NONE
@@ -20,7 +19,8 @@
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
 #include "mvr/gl/glfw_window.h"
-#include "mvr/io/image_set.h"
+#include "mvr/io/image_file.h"
+#include "mvr/io/manifest.h"
 #include "mvr/io/scene_io.h"
 #include "mvr/progress.h"
 
@@ -47,24 +47,15 @@ struct ViewSet {
 };
 
 ViewSet loadSet(const std::string& dir) {
-  const fs::path manifest = fs::path(dir) / "manifest.json";
-  if (!fs::exists(manifest)) fail(dir, "no manifest.json (not a finished image set)");
-  nlohmann::json m;
-  try {
-    m = nlohmann::json::parse(std::ifstream(manifest));
-  } catch (const nlohmann::json::exception& e) {
-    fail(manifest.string(), std::string("bad JSON: ") + e.what());
-  }
+  const Manifest manifest = Manifest::read(dir);
+  if (manifest.order != "view") fail(dir, "holds EPIs; render with --order view to view it");
   ViewSet set;
-  set.views = m.value("views", 0);
-  set.rows = m.value("rows", 1);
-  const std::string format = m.value("format", "png");
-  if (m.value("order", "view") != "view") fail(dir, "holds EPIs; render with --order view to view it");
-  if (set.views < 1 || set.rows < 1) fail(manifest.string(), "no views");
+  set.views = manifest.views;
+  set.rows = manifest.rows;
   set.images.resize(set.rows);
   for (int r = 0; r < set.rows; ++r)
     for (int v = 0; v < set.views; ++v) {
-      Image img = readImage((fs::path(dir) / ImageSetWriter::viewName(r, v, set.views, set.rows, format)).string());
+      Image img = readImage((fs::path(dir) / manifest.viewName(r, v)).string());
       if (set.width == 0) set.width = img.width, set.height = img.height;
       if (img.width != set.width || img.height != set.height) fail(dir, "views differ in size");
       set.images[r].push_back(std::move(img));

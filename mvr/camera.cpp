@@ -20,11 +20,13 @@ bool finite(double v) { return std::isfinite(v); }
 
 ShearingCamera::ShearingCamera(const CameraSpec& s, int width, int height, int views, int rows)
     : spec_(s), width_(width), height_(height), views_(views), rows_(rows) {
-  require(width >= 1 && height >= 1 && width <= 16384 && height <= 16384,
-          "image size " + std::to_string(width) + "x" + std::to_string(height) +
-              " outside 1..16384");
-  require(views >= 1 && views <= 65536, "view count must be 1..65536");
-  require(rows >= 1 && rows <= 4096, "row count must be 1..4096");
+  const std::string side = "1.." + std::to_string(Limits::kMaxSide);
+  require(width >= 1 && height >= 1 && width <= Limits::kMaxSide && height <= Limits::kMaxSide,
+          "image size " + std::to_string(width) + "x" + std::to_string(height) + " outside " + side);
+  require(views >= 1 && views <= Limits::kMaxViews,
+          "view count must be 1.." + std::to_string(Limits::kMaxViews));
+  require(rows >= 1 && rows <= Limits::kMaxRows,
+          "row count must be 1.." + std::to_string(Limits::kMaxRows));
   for (double v : {s.distance, s.planeWidth, s.planeHeight, s.trackLeft, s.trackRight, s.rowTop,
                    s.rowBottom, s.nearDistance, s.farDistance})
     require(finite(v), "non-finite value");

@@ -15,6 +15,14 @@ namespace mvr {
 
 struct Bounds;
 
+// The one bounds table for a set's extent: the camera enforces it, and the
+// command line's options and the stream's reader check against it.
+struct Limits {
+  static constexpr int kMaxViews = 65536;  // views per row
+  static constexpr int kMaxRows = 4096;    // rows of views (full parallax)
+  static constexpr int kMaxSide = 16384;   // image width and height, pixels
+};
+
 struct CameraSpec {
   double distance = 4.0;     // D: camera plane to image plane
   double planeWidth = 2.0;   // image-plane rectangle, world units

@@ -6,32 +6,34 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
+#include "mvr/io/manifest.h"
 #include "mvr/renderer.h"
 
 namespace mvr {
 
 class ImageSetWriter final : public FrameSink {
  public:
-  // format: png, exr or tiff; bits: 8 or 16 for png and tiff. Creates dir
-  // if needed.
-  ImageSetWriter(std::string dir, std::string format, int views, int rows, int height, int bits = 8);
+  // The manifest's layout names the files (format png, exr or tiff; bits 8
+  // or 16 for png and tiff). Creates dir if needed.
+  ImageSetWriter(std::string dir, Manifest manifest);
   ~ImageSetWriter() override;
 
   void putView(int row, int view, const Image& image) override;
   void putEpi(int row, int scanline, const Image& epi) override;
   // An extra image in the set (a quilt), removed like the rest on failure.
   void putExtra(const std::string& name, const Image& image);
-  void commit(const nlohmann::json& manifest);
+  // What commit() writes; fill its info before.
+  Manifest& manifest() { return manifest_; }
+  // Writes the manifest, last: from now on the set is complete.
+  void commit();
 
   size_t filesWritten() const { return written_.size(); }
-  static std::string viewName(int row, int view, int views, int rows, const std::string& ext);
-  static std::string epiName(int row, int scanline, int height, int rows, const std::string& ext);
 
  private:
-  std::string dir_, format_;
-  int views_, rows_, height_, bits_;
+  void put(const std::string& name, const Image& image);
+
+  std::string dir_;
+  Manifest manifest_;
   std::vector<std::string> written_;
   bool committed_ = false;
 };

@@ -27,13 +27,23 @@ Image gradient(int w, int h, int bump) {
   return img;
 }
 
+// The layout of a set of `views` views of w x 6 pixels.
+Manifest layout(int views, int w = 8) {
+  Manifest m;
+  m.views = views;
+  m.width = w;
+  m.height = 6;
+  return m;
+}
+
 fs::path makeSet(const std::string& name, int bump, int w = 8) {
   fs::path dir = fs::temp_directory_path() / ("mvr_compare_" + name);
   fs::remove_all(dir);
-  ImageSetWriter writer(dir.string(), "png", 2, 1, 6);
+  ImageSetWriter writer(dir.string(), layout(2, w));
   writer.putView(0, 0, gradient(w, 6, 0));
   writer.putView(0, 1, gradient(w, 6, bump));
-  writer.commit(nlohmann::json{{"test", true}});
+  writer.manifest().info["test"] = true;
+  writer.commit();
   return dir;
 }
 
@@ -102,7 +112,7 @@ TEST(ImageSetWriter, UncommittedSetIsRemoved) {
   fs::path dir = fs::temp_directory_path() / "mvr_uncommitted";
   fs::remove_all(dir);
   {
-    ImageSetWriter writer(dir.string(), "png", 2, 1, 6);
+    ImageSetWriter writer(dir.string(), layout(2));
     writer.putView(0, 0, gradient(8, 6, 0));
     EXPECT_TRUE(fs::exists(dir / "view_0000.png"));
   }
@@ -111,10 +121,15 @@ TEST(ImageSetWriter, UncommittedSetIsRemoved) {
 }
 
 TEST(ImageSetWriter, NamesGrowDigitsWithTheViewCount) {
-  EXPECT_EQ(ImageSetWriter::viewName(0, 7, 100, 1, "png"), "view_0007.png");
-  EXPECT_EQ(ImageSetWriter::viewName(0, 7, 20000, 1, "png"), "view_00007.png");
-  EXPECT_EQ(ImageSetWriter::viewName(2, 7, 100, 3, "exr"), "view_r002_c0007.exr");
-  EXPECT_EQ(ImageSetWriter::epiName(0, 12, 480, 1, "png"), "epi_0012.png");
+  auto names = [](int views, int rows, int height, const std::string& format) {
+    Manifest m;
+    m.views = views, m.rows = rows, m.height = height, m.format = format;
+    return m;
+  };
+  EXPECT_EQ(names(100, 1, 6, "png").viewName(0, 7), "view_0007.png");
+  EXPECT_EQ(names(20000, 1, 6, "png").viewName(0, 7), "view_00007.png");
+  EXPECT_EQ(names(100, 3, 6, "exr").viewName(2, 7), "view_r002_c0007.exr");
+  EXPECT_EQ(names(1, 1, 480, "png").epiName(0, 12), "epi_0012.png");
 }
 
 }  // namespace

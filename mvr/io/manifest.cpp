@@ -1,0 +1,133 @@
+#include "mvr/io/manifest.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "mvr/error.h"
+
+namespace mvr {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Digits for indices 0..count-1: at least `least`, more when count needs.
+int digitsFor(int count, int least) {
+  int digits = 1;
+  for (int n = count - 1; n >= 10; n /= 10) ++digits;
+  return std::max(least, digits);
+}
+
+std::string printInts(const std::string& pattern, int a, int b = 0) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, pattern.c_str(), a, b);
+  return buf;
+}
+
+std::string field(int digits) { return "%0" + std::to_string(digits) + "d"; }
+
+}  // namespace
+
+std::string Manifest::viewPattern() const {
+  const std::string view = field(digitsFor(views, 4));
+  return rows == 1 ? "view_" + view : "view_r" + field(digitsFor(rows, 3)) + "_c" + view;
+}
+
+std::string Manifest::epiPattern() const {
+  const std::string scanline = field(digitsFor(height, 4));
+  return rows == 1 ? "epi_" + scanline : "epi_r" + field(digitsFor(rows, 3)) + "_" + scanline;
+}
+
+std::string Manifest::viewName(int row, int view) const {
+  const std::string name = rows == 1 ? printInts(viewPattern(), view) : printInts(viewPattern(), row, view);
+  return name + "." + format;
+}
+
+std::string Manifest::epiName(int row, int scanline) const {
+  const std::string name =
+      rows == 1 ? printInts(epiPattern(), scanline) : printInts(epiPattern(), row, scanline);
+  return name + "." + format;
+}
+
+void Manifest::setCamera(const ShearingCamera& cam) {
+  const CameraSpec& s = cam.spec();
+  info["camera"] = {{"distance", s.distance},
+                    {"image_plane", {cam.planeWidth(), cam.planeHeight()}},
+                    {"track", {s.trackLeft, s.trackRight}},
+                    {"rows_track", {s.rowTop, s.rowBottom}},
+                    {"near", s.nearDistance},
+                    {"far", s.farDistance},
+                    {"view_spacing", cam.viewSpacing()}};
+}
+
+nlohmann::json Manifest::toJson() const {
+  nlohmann::json j = info;
+  j["views"] = views;
+  j["rows"] = rows;
+  j["width"] = width;
+  j["height"] = height;
+  j["format"] = format;
+  j["order"] = order;
+  j["bits"] = bits;
+  j["naming"] = order == "view" ? viewPattern() : epiPattern() + " (rows: views)";
+  return j;
+}
+
+Manifest Manifest::fromJson(const nlohmann::json& j, const std::string& where) {
+  if (!j.is_object()) fail(where, "not a JSON object");
+  Manifest m;
+  auto number = [&](const char* key, int fallback, int lo, int hi) {
+    const nlohmann::json v = j.value(key, nlohmann::json(fallback));
+    if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi)
+      fail(where, std::string("'") + key + "' must be an integer " + std::to_string(lo) + ".." +
+                      std::to_string(hi));
+    return v.get<int>();
+  };
+  auto text = [&](const char* key, const char* fallback) {
+    const nlohmann::json v = j.value(key, nlohmann::json(fallback));
+    if (!v.is_string()) fail(where, std::string("'") + key + "' must be a string");
+    return v.get<std::string>();
+  };
+  m.views = number("views", 0, 1, Limits::kMaxViews);
+  m.rows = number("rows", 1, 1, Limits::kMaxRows);
+  m.width = number("width", 0, 0, Limits::kMaxSide);
+  m.height = number("height", 0, 0, Limits::kMaxSide);
+  m.bits = number("bits", 8, 8, 32);
+  m.format = text("format", "png");
+  m.order = text("order", "view");
+  if (m.format != "png" && m.format != "exr" && m.format != "tiff")
+    fail(where, "unknown format '" + m.format + "'");
+  if (m.order != "view" && m.order != "epi") fail(where, "unknown order '" + m.order + "'");
+  m.info = j;
+  for (const char* key : {"views", "rows", "width", "height", "format", "order", "bits", "naming"})
+    m.info.erase(key);
+  return m;
+}
+
+Manifest Manifest::read(const std::string& dir) {
+  const fs::path path = fs::path(dir) / "manifest.json";
+  if (!fs::exists(path)) fail(dir, "no manifest.json (not a finished image set)");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(std::ifstream(path));
+  } catch (const nlohmann::json::exception& e) {
+    fail(path.string(), std::string("bad JSON: ") + e.what());
+  }
+  return fromJson(j, path.string());
+}
+
+void Manifest::write(const std::string& dir) const {
+  const fs::path path = fs::path(dir) / "manifest.json";
+  const fs::path tmp = fs::path(dir) / "manifest.json.part";
+  {
+    std::ofstream out(tmp);
+    out << toJson().dump(2) << "\n";
+    if (!out) fail(tmp.string(), "cannot write manifest");
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) fail(path.string(), "cannot write manifest: " + ec.message());
+}
+
+}  // namespace mvr

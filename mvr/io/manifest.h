@@ -1,0 +1,45 @@
+#pragma once
+// The manifest.json of an image set: what the set holds (views, rows, size,
+// format, order) and therefore what its files are called. Every writer of a
+// set (render, the stream's consumer) and every reader (the viewer) goes
+// through this class, so a name is derived in one place.
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "mvr/camera.h"
+
+namespace mvr {
+
+class Manifest {
+ public:
+  int views = 1, rows = 1;
+  int width = 0, height = 0;
+  std::string format = "png";  // png | exr | tiff
+  std::string order = "view";  // view: view_* files; epi: epi_* files (rows are views)
+  int bits = 8;                // per channel in the files (exr: 32)
+  // Everything else the writer records (scene, back end, camera, timings,
+  // files, ...), written beside the layout and kept when read back.
+  nlohmann::json info = nlohmann::json::object();
+
+  // File names. Numbers have at least four digits (rows three) and as many
+  // more as the largest index needs, so names sort in index order.
+  std::string viewName(int row, int view) const;
+  std::string epiName(int row, int scanline) const;
+  // The names as a printf pattern, e.g. "view_%05d" or "view_r%03d_c%04d".
+  std::string viewPattern() const;
+  std::string epiPattern() const;
+
+  // The camera as the manifest records it (distance, image plane, track).
+  void setCamera(const ShearingCamera& camera);
+
+  nlohmann::json toJson() const;
+  // Throws mvr::Error naming `where` for a missing or impossible field.
+  static Manifest fromJson(const nlohmann::json& json, const std::string& where);
+  // dir/manifest.json; throws naming the file when it is missing or bad.
+  static Manifest read(const std::string& dir);
+  // Writes dir/manifest.json under a temporary name and renames it.
+  void write(const std::string& dir) const;
+};
+
+}  // namespace mvr
