@@ -14,12 +14,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "apps/args.h"
 #include "apps/bench_report.h"
-#include "apps/render_command.h"
+#include "apps/cli.h"
 #include "apps/sample_sink.h"
 #include "apps/teacup.h"
 #include "apps/test_scenes.h"
+#include "epi/backend.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_context.h"
 #include "mvr/io/compare.h"
@@ -27,33 +27,6 @@
 #include "mvr/progress.h"
 
 namespace mvr::app {
-
-const char* const kBenchHelp =
-    "usage: mvr bench [SCENE] [options]\n"
-    "Renders one scene with several back ends in one process and GL context and\n"
-    "prints time per view, speed-up against svr and svr-layered, and error\n"
-    "against svr (min PSNR, min identical-pixel fraction over sampled views),\n"
-    "then the break-even view count of each back end against svr.\n"
-    "  --teacup N          the procedural teacup at about N triangles\n"
-    "  --slender N         N long slender vertical quads (MVR's bad case)\n"
-    "  --sweep             Halle's sweep: teacups of 4K, 16K, 63K, 143K triangles at\n"
-    "                      160x140, 640x480, 1120x840 for 1 to 1000 views\n"
-    "  --views LIST        view counts, e.g. 1,10,100 (default 100)\n"
-    "  --size LIST         image sizes, e.g. 160x140,640x480 (default 160x140)\n"
-    "  --rows M            rows of views (full parallax; times are per view of M x N)\n"
-    "  --backends LIST     default svr,svr-layered,deferred,mvr:quad,mvr:strip,\n"
-    "                      mvr:exact,mvr:cpu,interp:center:c1,interp:hierarchical:2:c1;\n"
-    "                      mvr:MODE[:direct] textures directly;\n"
-    "                      interp[:ACQUIRE][:L][:cT][:vis][:bB][:sK][:oP][:MODE] is\n"
-    "                      the image-based back end with L layers, coalescing T\n"
-    "                      pixels, visibility, a budget of B source views, K\n"
-    "                      highlight splits, overlap P pixels\n"
-    "  --repeat R          best of R runs (default 1)\n"
-    "  --error-views K     views compared against svr (default 8)\n"
-    "  --json FILE         also write the results as JSON\n"
-    "  --plots DIR         write gnuplot scripts and PNG plots (needs gnuplot)\n"
-    "  --replot FILE       only plot an earlier run's --json FILE into --plots DIR\n"
-    "  --gl egl|osmesa     GL platform\n";
 
 namespace {
 
@@ -74,56 +47,6 @@ std::string cpuModel() {
   for (std::string line; std::getline(in, line);)
     if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
   return "unknown CPU";
-}
-
-// NAME[:PST[:TEXTURE]], e.g. mvr:exact:direct; interp[:ACQUIRE[:OPTION...]]
-// with options LAYERS (a number), cT (coalesce T pixels), vis (visibility),
-// bB (hierarchical budget), sK (highlight splits), oP (overlap P pixels)
-// and an accuracy mode, e.g.
-// interp:hierarchical:2:c0.5:vis:b5:exact.
-void interpOption(const std::string& token, BackendChoice& c) {
-  char* end = nullptr;
-  const char* text = token.c_str();
-  if (token == "quad" || token == "strip" || token == "exact" || token == "cpu") {
-    c.pst = token;
-    return;
-  }
-  if (token == "vis") {
-    c.visibility = true;
-    return;
-  }
-  if (token.size() > 1 && token[0] == 's') {
-    c.splits = int(std::clamp(std::strtol(text + 1, &end, 10), 0L, 64L));
-  } else if (token.size() > 1 && token[0] == 'b') {
-    c.budget = int(std::clamp(std::strtol(text + 1, &end, 10), 2L, 1024L));
-  } else if (token.size() > 1 && token[0] == 'c') {
-    c.coalesce = std::strtof(text + 1, &end);
-  } else if (token.size() > 1 && token[0] == 'o') {
-    c.overlap = std::strtof(text + 1, &end);
-  } else {
-    const long layers = std::strtol(text, &end, 10);
-    c.maxLayers = int(std::clamp(layers, 1L, 64L));
-  }
-  if (token.empty() || *end != '\0') fail("--backends", "unknown interp option '" + token + "'");
-}
-
-BackendChoice parseBackend(const std::string& s) {
-  std::vector<std::string> field;
-  for (size_t at = 0;;) {
-    const size_t next = s.find(':', at);
-    field.push_back(s.substr(at, next == std::string::npos ? std::string::npos : next - at));
-    if (next == std::string::npos) break;
-    at = next + 1;
-  }
-  BackendChoice c{field[0], defaultPst(field[0]), "vector"};
-  if (c.backend == "interp") {
-    if (field.size() > 1) c.acquire = field[1];
-    for (size_t i = 2; i < field.size(); ++i) interpOption(field[i], c);
-  } else {
-    if (field.size() > 1) c.pst = field[1];
-    if (field.size() > 2) c.texture = field[2];
-  }
-  return c;
 }
 
 struct Config {
@@ -182,7 +105,7 @@ void benchScene(const std::string& name, const Scene& scene, const Config& cfg,
                 std::vector<BenchRecord>& records) {
   std::vector<std::unique_ptr<Renderer>> renderers;
   for (const std::string& l : cfg.backends)
-    renderers.push_back(makeRenderer(parseBackend(l), scene, PixelType::U8));
+    renderers.push_back(makeRenderer(parseBackendSpec(l), scene, PixelType::U8));
   {  // warm-up: shader compilation and first buffer use are not rendering
     auto [w, h] = cfg.sizes[0];
     ShearingCamera warm(cameraFor(scene, w, h), w, h, 2);
@@ -234,7 +157,8 @@ std::vector<int> parseViews(const std::string& list) {
   for (const std::string& v : splitList(list)) {
     char* end = nullptr;
     long n = std::strtol(v.c_str(), &end, 10);
-    if (*end || n < 1 || n > 65536) fail("--views", "'" + v + "' is not a view count 1..65536");
+    if (*end || n < 1 || n > Limits::kMaxViews)
+      fail("--views", "'" + v + "' is not a view count 1.." + std::to_string(Limits::kMaxViews));
     out.push_back(int(n));
   }
   if (out.empty()) fail("--views", "no view counts");
@@ -258,44 +182,73 @@ Scene benchTeacup(int triangles) {
 }  // namespace
 
 int runBench(int argc, char** argv) {
-  Args args(argc, argv, 2,
-            {"teacup", "slender", "views", "size", "rows", "backends", "repeat", "error-views",
-             "json", "plots", "gl", "replot"},
-            {"sweep"});
+  CLI::App app("Renders one scene with several back ends in one process and GL context and "
+               "prints time per view, speed-up against svr and svr-layered, and error against "
+               "svr (min PSNR, min identical-pixel fraction over sampled views), then the "
+               "break-even view count of each back end against svr.",
+               "mvr bench");
+  std::string scenePath, views, sizes, backends = kDefaultBackends, json, plots, replot, gl = "auto";
+  int teacup = 0, slender = 0;
+  bool sweep = false;
+  Config cfg;
+  app.add_option("SCENE", scenePath, "a scene file (default: the bundled scene)");
+  app.add_option("--teacup", teacup, "the procedural teacup at about N triangles")
+      ->check(CLI::Range(100, 10000000))->type_name("N");
+  app.add_option("--slender", slender, "N long slender vertical quads (MVR's bad case)")
+      ->check(CLI::Range(1, 10000000))->type_name("N");
+  app.add_flag("--sweep", sweep,
+               "Halle's sweep: teacups of 4K, 16K, 63K, 143K triangles at 160x140, 640x480, "
+               "1120x840 for 1 to 1000 views");
+  app.add_option("--views", views, "view counts, e.g. 1,10,100 (default 100)")->type_name("LIST");
+  app.add_option("--size", sizes, "image sizes, e.g. 160x140,640x480 (default 160x140)")->type_name("LIST");
+  app.add_option("--rows", cfg.rows, "rows of views (full parallax; times are per view of M x N)")
+      ->check(CLI::Range(1, Limits::kMaxRows))->capture_default_str();
+  app.add_option("--backends", backends,
+                 "back-end specs: mvr:MODE[:direct] textures directly; "
+                 "interp[:ACQUIRE][:L][:cT][:vis][:bB][:sK][:oP][:MODE] is the image-based back "
+                 "end with L layers, coalescing T pixels, visibility, a budget of B source views, "
+                 "K highlight splits, overlap P pixels")
+      ->type_name("LIST")->capture_default_str();
+  app.add_option("--repeat", cfg.repeat, "best of R runs")->check(CLI::Range(1, 100))->capture_default_str();
+  app.add_option("--error-views", cfg.errorViews, "views compared against svr")
+      ->check(CLI::Range(1, 1000))->capture_default_str();
+  app.add_option("--json", json, "also write the results as JSON")->type_name("FILE");
+  app.add_option("--plots", plots, "write gnuplot scripts and PNG plots (needs gnuplot)")->type_name("DIR");
+  app.add_option("--replot", replot, "only plot an earlier run's --json FILE into --plots DIR")
+      ->type_name("FILE");
+  addGlOption(app, gl);
+  if (auto exit = parseCommandLine(app, argc - 1, argv + 1)) return *exit;
+
   setProgressEnabled(false);
-  if (args.has("replot")) {  // plots from an earlier run's JSON: no GL, no rendering
-    if (!args.has("plots")) fail("--replot", "needs --plots DIR");
-    const std::vector<BenchRecord> records = readBenchJson(args.get("replot", ""));
-    writeBenchPlots(args.get("plots", ""), records, findBreakEvens(records));
+  if (!replot.empty()) {  // plots from an earlier run's JSON: no GL, no rendering
+    if (plots.empty()) fail("--replot", "needs --plots DIR");
+    const std::vector<BenchRecord> records = readBenchJson(replot);
+    writeBenchPlots(plots, records, findBreakEvens(records));
     return 0;
   }
-  const bool sweep = args.has("sweep");
-  Config cfg;
-  cfg.views = parseViews(args.get("views", sweep ? "1,2,5,10,20,50,100,200,500,1000" : "100"));
-  cfg.sizes = parseSizes(args.get("size", sweep ? "160x140,640x480,1120x840" : "160x140"));
-  cfg.backends = splitList(args.get("backends", kDefaultBackends));
-  cfg.repeat = args.getInt("repeat", 1, 1, 100);
-  cfg.rows = args.getInt("rows", 1, 1, 4096);
-  cfg.errorViews = args.getInt("error-views", 8, 1, 1000);
+  cfg.views = parseViews(!views.empty() ? views : sweep ? "1,2,5,10,20,50,100,200,500,1000" : "100");
+  cfg.sizes = parseSizes(!sizes.empty() ? sizes : sweep ? "160x140,640x480,1120x840" : "160x140");
+  cfg.backends = splitList(backends);
+  for (const std::string& spec : cfg.backends) parseBackendSpec(spec);  // bad specs before GL
 
   // Scenes are built lazily: a 143K teacup is 10 MB of vertices.
   std::vector<std::pair<std::string, std::function<Scene()>>> scenes;
   if (sweep) {
     for (int n : {4000, 16000, 63000, 143000})
       scenes.emplace_back("teacup" + std::to_string(n / 1000) + "k", [n] { return benchTeacup(n); });
-  } else if (args.has("teacup")) {
-    const int n = args.getInt("teacup", 4000, 100, 10000000);
+  } else if (teacup > 0) {
+    const int n = teacup;
     scenes.emplace_back("teacup" + std::to_string(n / 1000) + "k", [n] { return benchTeacup(n); });
-  } else if (args.has("slender")) {
-    const int n = args.getInt("slender", 1000, 1, 10000000);
+  } else if (slender > 0) {
+    const int n = slender;
     scenes.emplace_back("slender" + std::to_string(n), [n] { return makeSlenderScene(n); });
   } else {
-    const std::string path = args.positional().empty() ? defaultScenePath() : args.positional()[0];
+    const std::string path = scenePath.empty() ? defaultScenePath() : scenePath;
     Scene s = loadScene(path);  // load now: bad input fails before GL
     scenes.emplace_back(std::filesystem::path(path).stem().string(), [s] { return s; });
   }
 
-  auto context = GlContext::create(parseGlPlatform(args.get("gl", "auto")));
+  auto context = GlContext::create(parseGlPlatform(gl));
   BenchMachine machine{context->describe(), cpuModel(), std::thread::hardware_concurrency()};
   std::printf("# mvr bench\n# GL: %s\n# CPU: %s, %u threads\n", machine.gl.c_str(), machine.cpu.c_str(),
               machine.threads);
@@ -313,8 +266,8 @@ int runBench(int argc, char** argv) {
   std::printf("# peak resident memory: %.1f MiB\n", machine.peakRssMiB);
   const std::vector<BreakEven> breakEvens = findBreakEvens(records);
   printBreakEvens(breakEvens);
-  if (args.has("json")) writeBenchJson(args.get("json", ""), machine, records, breakEvens);
-  if (args.has("plots")) writeBenchPlots(args.get("plots", ""), records, breakEvens);
+  if (!json.empty()) writeBenchJson(json, machine, records, breakEvens);
+  if (!plots.empty()) writeBenchPlots(plots, records, breakEvens);
   return 0;
 }
 

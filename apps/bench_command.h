@@ -3,7 +3,7 @@
 // one GL context, same scene and camera, as ratios (docs/BENCHMARKS.md).
 namespace mvr::app {
 
-extern const char* const kBenchHelp;
+// argv[1] is the command's name.
 int runBench(int argc, char** argv);
 
 }  // namespace mvr::app

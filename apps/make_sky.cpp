@@ -4,24 +4,28 @@
 #include <cstdio>
 #include <string>
 
-#include "apps/args.h"
+#include "apps/cli.h"
 #include "apps/sky.h"
 #include "mvr/error.h"
 #include "mvr/io/image_file.h"
 
 int main(int argc, char** argv) {
   try {
-    if (argc > 1 && std::string(argv[1]) == "--help") {
-      std::puts("usage: make_sky [--face N] --cube FILE.png --spheres FILE.png");
-      return 0;
-    }
-    mvr::app::Args args(argc, argv, 1, {"face", "cube", "spheres"}, {});
-    const int face = args.getInt("face", 64, 2, 4096);
-    if (!args.has("cube") || !args.has("spheres")) mvr::fail("make_sky", "needs --cube and --spheres");
-    mvr::writeImage(mvr::app::makeSkyCube(face), args.get("cube", ""));
+    CLI::App app("Writes the procedural sky as a cube strip and a sphere map pair of the same "
+                 "radiance.",
+                 "make_sky");
+    int face = 64;
+    std::string cube, spheres;
+    app.add_option("--face", face, "cube face size in pixels")
+        ->check(CLI::Range(2, 4096))
+        ->capture_default_str();
+    app.add_option("--cube", cube, "the cube strip to write")->type_name("FILE.png")->required();
+    app.add_option("--spheres", spheres, "the sphere map pair to write")->type_name("FILE.png")->required();
+    if (auto exit = mvr::app::parseCommandLine(app, argc, argv)) return *exit;
+    mvr::writeImage(mvr::app::makeSkyCube(face), cube);
     // The pair's maps span the whole sphere in a disc: twice the face size
     // gives them about the cube's sampling rate.
-    mvr::writeImage(mvr::app::makeSkySpherePair(2 * face), args.get("spheres", ""));
+    mvr::writeImage(mvr::app::makeSkySpherePair(2 * face), spheres);
     return 0;
   } catch (const mvr::Error& e) {
     std::fprintf(stderr, "make_sky: %s\n", e.what());

@@ -6,24 +6,25 @@
 #include <string>
 #include <vector>
 
-#include "apps/args.h"
+#include "apps/cli.h"
 #include "apps/teacup.h"
 #include "mvr/error.h"
 #include "mvr/io/mesh_io.h"
 
 int main(int argc, char** argv) {
   try {
-    if (argc > 1 && std::string(argv[1]) == "--help") {
-      std::puts("usage: make_teacup --triangles N --out FILE.ply");
-      return 0;
-    }
-    mvr::app::Args args(argc, argv, 1, {"triangles", "out"}, {});
-    const int triangles = args.getInt("triangles", 4000, 100, 10000000);
-    if (!args.has("out")) mvr::fail("make_teacup", "needs --out FILE.ply");
+    CLI::App app("Writes the procedural teacup as PLY at about N triangles.", "make_teacup");
+    int triangles = 4000;
+    std::string out;
+    app.add_option("--triangles", triangles, "about this many triangles")
+        ->check(CLI::Range(100, 10000000))
+        ->capture_default_str();
+    app.add_option("--out", out, "the PLY file to write")->type_name("FILE.ply")->required();
+    if (auto exit = mvr::app::parseCommandLine(app, argc, argv)) return *exit;
     mvr::Scene cup = mvr::app::makeTeacup(triangles);
-    mvr::saveMeshPly(cup, args.get("out", ""));
+    mvr::saveMeshPly(cup, out);
     std::fprintf(stderr, "make_teacup: %zu triangles, %zu vertices -> %s\n", cup.triangleCount(),
-                 cup.vertexCount(), args.get("out", "").c_str());
+                 cup.vertexCount(), out.c_str());
     return 0;
   } catch (const mvr::Error& e) {
     std::fprintf(stderr, "make_teacup: %s\n", e.what());

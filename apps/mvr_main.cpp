@@ -3,11 +3,12 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <memory>
 
 #include <nlohmann/json.hpp>
 
-#include "apps/args.h"
+#include "apps/cli.h"
 #include "apps/bench_command.h"
 #include "apps/render_command.h"
 #include "apps/viewer.h"
@@ -19,7 +20,7 @@ namespace mvr::app {
 namespace {
 
 const char* const kUsage =
-    "usage: mvr <command> [options]\n"
+    "Commands:\n"
     "  info                       GL version and renderer per context platform\n"
     "  render [SCENE] [options]   render a view set (mvr render --help)\n"
     "  compare DIR_A DIR_B        per image PSNR / SSIM / max error / identical / holes\n"
@@ -27,25 +28,11 @@ const char* const kUsage =
     "  view DIR|SCENE             look at views and EPIs (mvr view --help)\n"
     "  bench [SCENE] [options]    MVR against SVR, svr-layered, deferred (mvr bench --help)\n";
 
-const char* const kCompareHelp =
-    "usage: mvr compare DIR_A DIR_B [--json]\n"
-    "Pairs view_* and epi_* images by name and prints, per image, PSNR (dB over\n"
-    "RGB), SSIM (luma, 11x11 Gaussian window), the largest channel error (0..1),\n"
-    "the fraction of identical pixels, and holes and extras: pixels that the\n"
-    "first image covers and the second leaves empty (alpha 0), and the reverse.\n"
-    "Exits non-zero when the sets differ in names or image sizes.\n";
-
-const char* const kInfoHelp =
-    "usage: mvr info\nTries each GL platform (egl, osmesa, glfw) and prints its GL version\n"
-    "and renderer, or why it is unavailable.\n";
-
-bool wantsHelp(int argc, char** argv) {
-  for (int i = 2; i < argc; ++i)
-    if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") return true;
-  return false;
-}
-
-int runInfo() {
+int runInfo(int argc, char** argv) {
+  CLI::App app("Tries each GL platform (egl, osmesa, glfw) and prints its GL version and "
+               "renderer, or why it is unavailable.",
+               "mvr info");
+  if (auto exit = parseCommandLine(app, argc - 1, argv + 1)) return *exit;
   int available = 0;
   for (GlPlatform p : {GlPlatform::Egl, GlPlatform::OsMesa, GlPlatform::Glfw}) {
     try {
@@ -60,9 +47,18 @@ int runInfo() {
 }
 
 int runCompare(int argc, char** argv) {
-  Args args(argc, argv, 2, {}, {"json"});
-  if (args.positional().size() != 2) fail("compare", "needs two folders (see --help)");
-  auto diffs = compareSets(args.positional()[0], args.positional()[1]);
+  CLI::App app("Pairs view_* and epi_* images by name and prints, per image, PSNR (dB over "
+               "RGB), SSIM (luma, 11x11 Gaussian window), the largest channel error (0..1), the "
+               "fraction of identical pixels, and holes and extras: pixels that the first image "
+               "covers and the second leaves empty (alpha 0), and the reverse. Exits non-zero "
+               "when the sets differ in names or image sizes.",
+               "mvr compare");
+  std::vector<std::string> dirs;
+  bool json = false;
+  app.add_option("DIR_A DIR_B", dirs, "the two sets")->required()->expected(2);
+  app.add_flag("--json", json, "print JSON instead of a table");
+  if (auto exit = parseCommandLine(app, argc - 1, argv + 1)) return *exit;
+  auto diffs = compareSets(dirs[0], dirs[1]);
   double worstPsnr = INFINITY, minIdentical = 1.0, maxError = 0.0, minSsim = 1.0;
   long holes = 0;
   for (const auto& d : diffs) {
@@ -72,7 +68,7 @@ int runCompare(int argc, char** argv) {
     minSsim = std::min(minSsim, d.ssim);
     holes += d.holes;
   }
-  if (args.has("json")) {
+  if (json) {
     nlohmann::json j;
     j["images"] = nlohmann::json::array();
     for (const auto& d : diffs)
@@ -100,40 +96,28 @@ int runCompare(int argc, char** argv) {
 }
 
 int dispatch(int argc, char** argv) {
+  using Command = int (*)(int, char**);
+  const std::map<std::string, Command> commands = {
+      {"info", runInfo},
+      {"render", [](int c, char** v) { return runRender(c, v); }},
+      {"stream", [](int c, char** v) { return runRender(c, v, true); }},
+      {"view", runView},
+      {"compare", runCompare},
+      {"bench", runBench}};
   if (argc < 2) {
-    std::fputs(kUsage, stderr);
+    std::fprintf(stderr, "usage: mvr <command> [options]\n%s", kUsage);
     return 2;
   }
-  const std::string cmd = argv[1];
-  if (cmd == "--help" || cmd == "-h" || cmd == "help") {
-    std::fputs(kUsage, stdout);
-    return 0;
-  }
-  if (cmd == "info") {
-    if (wantsHelp(argc, argv)) return std::fputs(kInfoHelp, stdout), 0;
-    return runInfo();
-  }
-  if (cmd == "render") {
-    if (wantsHelp(argc, argv)) return std::fputs(kRenderHelp, stdout), 0;
-    return runRender(argc, argv);
-  }
-  if (cmd == "view") {
-    if (wantsHelp(argc, argv)) return std::fputs(kViewHelp, stdout), 0;
-    return runView(argc, argv);
-  }
-  if (cmd == "stream") {
-    if (wantsHelp(argc, argv)) return std::fputs(kStreamHelp, stdout), 0;
-    return runRender(argc, argv, true);
-  }
-  if (cmd == "bench") {
-    if (wantsHelp(argc, argv)) return std::fputs(kBenchHelp, stdout), 0;
-    return runBench(argc, argv);
-  }
-  if (cmd == "compare") {
-    if (wantsHelp(argc, argv)) return std::fputs(kCompareHelp, stdout), 0;
-    return runCompare(argc, argv);
-  }
-  fail("mvr", "unknown command '" + cmd + "' (expected info, render, stream, view, compare or bench)");
+  if (commands.count(argv[1])) return commands.at(argv[1])(argc, argv);
+  // No command: the top level's help, --version, or a one-line error.
+  CLI::App app("Multiple viewpoint rendering for 3D displays.", "mvr");
+  app.set_version_flag("--version", std::string("mvr ") + MVR_VERSION);
+  app.footer(kUsage);
+  std::string command;
+  app.add_option("COMMAND", command, "info, render, stream, view, compare or bench")->required();
+  app.allow_extras();
+  if (auto exit = parseCommandLine(app, argc, argv)) return *exit;
+  fail("mvr", "unknown command '" + command + "' (expected info, render, stream, view, compare or bench)");
 }
 
 }  // namespace

@@ -3,19 +3,16 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <set>
 
 #include <nlohmann/json.hpp>
 
-#include "apps/args.h"
+#include "apps/backend_flags.h"
+#include "apps/cli.h"
 #include "epi/epi_stream.h"
-#include "epi/interp_renderer.h"
-#include "epi/mvr_renderer.h"
+#include "epi/backend.h"
 #include "epi/stream_queue.h"
 #include "epi/volume.h"
-#include "mvr/baselines/baselines.h"
 #include "mvr/error.h"
 #include "mvr/frame_sinks.h"
 #include "mvr/gl/gl_context.h"
@@ -24,59 +21,6 @@
 #include "mvr/io/scene_io.h"
 
 namespace mvr::app {
-
-const char* const kRenderHelp =
-    "usage: mvr render [SCENE] [options]\n"
-    "SCENE is a JSON scene file or a mesh (OBJ, PLY, OFF, STL); without it the\n"
-    "bundled default scene is rendered.\n"
-    "  --backend mvr|interp|svr|svr-layered|deferred   renderer (default mvr)\n"
-    "  --pst quad|strip|exact|cpu   MVR accuracy mode (default strip; interp: quad)\n"
-    "  --acquire center|dual|hierarchical   interp: source views from the middle of\n"
-    "                     the track, from both ends (default), or from both ends\n"
-    "                     and then halfway between two sources wherever they leave\n"
-    "                     holes, recursively\n"
-    "  --budget B         interp hierarchical: source views per row at most (default 9)\n"
-    "  --splits K         interp: highlights per view, split at K views across each\n"
-    "                     specular pixel's highlight (default 0: as the source saw it)\n"
-    "  --overlap P        interp: widen each slice by P pixels per side against cracks\n"
-    "                     (default 0.25; more closes more holes, dilates outlines)\n"
-    "  --visibility       interp: drop layer pixels the nearest layer hides from the\n"
-    "                     whole track; stop peeling at a layer with none left\n"
-    "  --max-layers L     interp: depth-peeled layers per source view (default 4)\n"
-    "  --coalesce T       interp: draw runs of source pixels with close depths as one\n"
-    "                     slice when that moves no pixel more than T pixels in any\n"
-    "                     view (default 0: a slice per pixel)\n"
-    "  --texture vector|direct   MVR texturing: 1-D texture vectors per slice\n"
-    "                     (default) or the 2D texture with a per-pixel divide\n"
-    "  --views N          views on the horizontal track (default 16)\n"
-    "  --rows M           rows of views for full parallax (default 1)\n"
-    "  --size WxH         image size in pixels (default 320x240)\n"
-    "  --out DIR          output folder (default out)\n"
-    "  --format png|exr|tiff   image format (default png; exr renders in float)\n"
-    "  --order view|epi   write views (view_*) or EPIs (epi_*) (default view)\n"
-    "  --bits 8|16        bits per channel for png and tiff (16 renders in float)\n"
-    "  --quilt auto|CxR   also write all views tiled in one quilt image,\n"
-    "                     quilt_qs{C}x{R}a{aspect}.{format} (auto: near square)\n"
-    "  --predistort LUT   resample every row through a table of source x per column\n"
-    "  --stream PATH|-    write the raw EPI-major stream (docs/EPI_STREAM.md) to a\n"
-    "                     file or stdout instead of an image set (see mvr stream)\n"
-    "  --gl egl|osmesa|glfw    GL platform (default: egl, else osmesa)\n"
-    "Writes view_0000.png ... (view_r000_c0000.png for grids) and manifest.json.\n";
-
-std::unique_ptr<Renderer> makeRenderer(const BackendChoice& c, const Scene& scene, PixelType type) {
-  if (c.backend == "mvr")
-    return makeMvrRenderer(scene, parsePstMode(c.pst), type, 2, parseTextureMode(c.texture));
-  if (c.backend == "interp")
-    return makeInterpRenderer(scene, type,
-                              {.acquire = parseAcquire(c.acquire), .maxLayers = c.maxLayers,
-                               .mode = parsePstMode(c.pst), .overlap = c.overlap, .coalesce = c.coalesce,
-                               .visibility = c.visibility, .budget = c.budget, .splits = c.splits});
-  if (c.backend == "svr") return makeSvrRenderer(scene, type);
-  if (c.backend == "svr-layered") return makeLayeredSvrRenderer(scene, type);
-  if (c.backend == "deferred") return makeDeferredRenderer(scene, type);
-  fail("--backend",
-       "unknown back end '" + c.backend + "' (expected mvr, interp, svr, svr-layered or deferred)");
-}
 
 namespace {
 
@@ -126,53 +70,91 @@ int streamTo(Renderer& renderer, const ShearingCamera& cam, const std::string& e
 
 }  // namespace
 
-const char* const kStreamHelp =
-    "usage: mvr stream [SCENE] --to -|FILE|unix:PATH|tcp:HOST:PORT [options]\n"
-    "Renders like mvr render and sends each EPI as it completes in the raw\n"
-    "EPI-major stream (docs/EPI_STREAM.md). Sockets connect to a listening\n"
-    "consumer (mvr-consume). A bounded queue decouples rendering from sending;\n"
-    "when the consumer is slow the renderer waits (backpressure).\n"
-    "  --queue K          EPIs held at most (default 8)\n"
-    "  --backend, --pst, --views, --rows, --size, --format, --gl as for render\n";
+namespace {
+
+// The options render and stream share, and each command's own.
+struct RenderFlags {
+  BackendFlags backend;
+  std::string scene;
+  int views = 16, rows = 1, bits = 8, queue = 8;
+  std::pair<int, int> size{320, 240};
+  std::string out = "out", format = "png", order = "view", gl = "auto";
+  std::string stream, quilt, predistort;
+
+  void addShared(CLI::App& app) {
+    app.add_option("SCENE", scene,
+                   "a JSON scene file or a mesh (OBJ, PLY, OFF, STL); default: the bundled scene");
+    backend.add(app);
+    app.add_option("--views", views, "views on the horizontal track")
+        ->check(CLI::Range(1, Limits::kMaxViews))
+        ->capture_default_str();
+    app.add_option("--rows", rows, "rows of views for full parallax")
+        ->check(CLI::Range(1, Limits::kMaxRows))
+        ->capture_default_str();
+    addSizeOption(app, "size", size, "image size in pixels");
+    app.add_option("--format", format, "image format: png, exr or tiff (exr renders in float)")
+        ->capture_default_str();
+    addGlOption(app, gl);
+  }
+
+  void addRenderOwn(CLI::App& app) {
+    app.add_option("--out", out, "output folder")->capture_default_str();
+    app.add_option("--order", order, "write views (view_*) or EPIs (epi_*)")
+        ->check(CLI::IsMember({"view", "epi"}))
+        ->capture_default_str();
+    app.add_option("--bits", bits, "bits per channel for png and tiff (16 renders in float)")
+        ->check(CLI::IsMember({8, 16}))
+        ->capture_default_str();
+    app.add_option("--quilt", quilt,
+                   "also write all views tiled in one quilt image, "
+                   "quilt_qs{C}x{R}a{aspect}.{format} (auto: near square)")
+        ->type_name("auto|CxR");
+    app.add_option("--predistort", predistort,
+                   "resample every row through a table of source x per column")
+        ->type_name("LUT");
+    app.add_option("--stream", stream,
+                   "write the raw EPI-major stream (docs/EPI_STREAM.md) to a file or stdout "
+                   "instead of an image set (see mvr stream)")
+        ->type_name("PATH|-");
+  }
+
+  void addStreamOwn(CLI::App& app) {
+    app.add_option("--to", stream, "where the stream goes")
+        ->type_name("-|FILE|unix:PATH|tcp:HOST:PORT")
+        ->required();
+    app.add_option("--queue", queue, "EPIs held at most")
+        ->check(CLI::Range(1, 4096))
+        ->capture_default_str();
+  }
+};
+
+}  // namespace
 
 int runRender(int argc, char** argv, bool streamCommand) {
-  // The render options both commands share; then each command's own.
-  std::set<std::string> flags = {"backend", "pst", "texture", "acquire", "max-layers", "coalesce",
-                                 "budget", "splits", "overlap", "views", "rows", "size", "format",
-                                 "gl", "queue"};
-  const auto own = streamCommand ? std::set<std::string>{"to"}
-                                 : std::set<std::string>{"out", "order", "stream", "bits", "quilt", "predistort"};
-  flags.insert(own.begin(), own.end());
-  Args args(argc, argv, 2, flags, {"visibility"});
-  const char* streamFlag = streamCommand ? "to" : "stream";
-  const bool streaming = args.has(streamFlag);
-  if (streamCommand && !streaming) fail("stream", "needs --to -|FILE|unix:PATH|tcp:HOST:PORT");
-  if (args.positional().size() > 1) fail("render", "takes at most one scene file");
-  const std::string scenePath =
-      args.positional().empty() ? defaultScenePath() : args.positional()[0];
-  const std::string backend = args.get("backend", "mvr");
-  BackendChoice choice{backend, args.get("pst", defaultPst(backend)),
-                       args.get("texture", "vector"), args.get("acquire", "dual"),
-                       args.getInt("max-layers", 4, 1, 64), float(args.getDouble("coalesce", 0.0)),
-                       args.has("visibility"), args.getInt("budget", 9, 2, 1024),
-                       args.getInt("splits", 0, 0, 64), float(args.getDouble("overlap", 0.25))};
-  const int views = args.getInt("views", 16, 1, 65536);
-  const int rows = args.getInt("rows", 1, 1, 4096);
-  const auto [width, height] = args.getSize("size", {320, 240});
-  const std::string out = args.get("out", "out");
-  const std::string format = args.get("format", "png");
-  const int bits = args.getInt("bits", 8, 8, 16);
+  CLI::App app(streamCommand
+                   ? "Renders like mvr render and sends each EPI as it completes in the raw "
+                     "EPI-major stream (docs/EPI_STREAM.md). Sockets connect to a listening "
+                     "consumer (mvr-consume). A bounded queue decouples rendering from sending; "
+                     "when the consumer is slow the renderer waits (backpressure)."
+                   : "Renders a scene's views with one back end to an image set.",
+               streamCommand ? "mvr stream" : "mvr render");
+  RenderFlags f;
+  f.addShared(app);
+  if (streamCommand) f.addStreamOwn(app);
+  else f.addRenderOwn(app);
+  if (!streamCommand)
+    app.footer("Writes view_0000.png ... (view_r000_c0000.png for grids) and manifest.json.");
+  if (auto exit = parseCommandLine(app, argc - 1, argv + 1)) return *exit;
+
+  const BackendOptions choice = f.backend.resolve();
+  const bool streaming = !f.stream.empty();
+  const std::string scenePath = f.scene.empty() ? defaultScenePath() : f.scene;
+  const int views = f.views, rows = f.rows, bits = f.bits;
+  const auto [width, height] = f.size;
+  const std::string &out = f.out, &format = f.format, &order = f.order;
   // 8-bit PNG renders into 8-bit targets; everything else renders in float.
   const PixelType type = format == "png" && bits == 8 ? PixelType::U8 : PixelType::F32;
-  const std::string order = args.get("order", "view");
-  if (order != "view" && order != "epi") fail("--order", "expected view or epi, not '" + order + "'");
-  if (choice.backend != "mvr" && choice.backend != "interp" && args.has("pst"))
-    fail("--pst", "applies to --backend mvr and interp only");
-  for (const char* flag : {"acquire", "max-layers", "coalesce", "budget", "splits", "overlap", "visibility"})
-    if (choice.backend != "interp" && args.has(flag))
-      fail(std::string("--") + flag, "applies to --backend interp only");
-  if (choice.backend != "mvr" && args.has("texture")) fail("--texture", "applies to --backend mvr only");
-  const GlPlatform platform = parseGlPlatform(args.get("gl", "auto"));
+  const GlPlatform platform = parseGlPlatform(f.gl);
 
   // Input problems first, before any GL or file work.
   Scene scene = loadScene(scenePath);
@@ -180,8 +162,7 @@ int runRender(int argc, char** argv, bool streamCommand) {
   auto context = GlContext::create(platform);
   auto renderer = makeRenderer(choice, scene, type);
 
-  if (streaming)
-    return streamTo(*renderer, camera, args.get(streamFlag, "-"), type, args.getInt("queue", 8, 1, 4096));
+  if (streaming) return streamTo(*renderer, camera, f.stream, type, f.queue);
 
   Manifest layout;
   layout.views = views;
@@ -194,11 +175,11 @@ int runRender(int argc, char** argv, bool streamCommand) {
   ImageSetWriter writer(out, layout);
   // Sink chain: [predistort] -> [reorder] -> writer (+ quilt).
   std::vector<float> lut;
-  if (args.has("predistort")) lut = loadPredistortionTable(args.get("predistort", ""), width);
+  if (!f.predistort.empty()) lut = loadPredistortionTable(f.predistort, width);
   std::unique_ptr<QuiltSink> quilt;
-  if (args.has("quilt")) {
+  if (!f.quilt.empty()) {
     int qc = 0, qr = 0;
-    const std::string q = args.get("quilt", "");
+    const std::string& q = f.quilt;
     if (!q.empty() && q != "auto" && std::sscanf(q.c_str(), "%dx%d", &qc, &qr) != 2)
       fail("--quilt", "'" + q + "' is not COLSxROWS");
     if (order != "view") fail("--quilt", "needs --order view");
@@ -224,7 +205,7 @@ int runRender(int argc, char** argv, bool streamCommand) {
   m["scene"] = scene.source;
   m["triangles"] = scene.triangleCount();
   m["backend"] = renderer->name();
-  if (choice.backend == "mvr" || choice.backend == "interp") m["pst"] = choice.pst;
+  if (choice.hasPst()) m["pst"] = pstModeName(choice.pst());
   m["gl"] = {{"platform", glPlatformName(context->platform())},
              {"version", context->version()},
              {"renderer", context->renderer()}};
@@ -235,7 +216,7 @@ int runRender(int argc, char** argv, bool streamCommand) {
   m["notes"] = stats.notes;
   m["pixel_origin"] = "top-left; view i at camera x = track[0] + i * view_spacing";
   if (quilt) m["quilt"] = quilt->fileName(format);
-  if (!lut.empty()) m["predistortion"] = args.get("predistort", "");
+  if (!lut.empty()) m["predistortion"] = f.predistort;
   writer.commit();
   std::fprintf(stderr, "mvr: %s rendered %d view(s) of %dx%d to %s in %.3f s\n",
                renderer->name().c_str(), views * rows, width, height, out.c_str(),

@@ -13,8 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "apps/args.h"
-#include "apps/render_command.h"
+#include "apps/backend_flags.h"
+#include "apps/cli.h"
 #include "epi/volume.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
@@ -25,16 +25,6 @@
 #include "mvr/progress.h"
 
 namespace mvr::app {
-
-const char* const kViewHelp =
-    "usage: mvr view DIR|SCENE [options]\n"
-    "Shows one view of a rendered set (a folder with manifest.json) with the EPI of\n"
-    "one scanline below it. Given a scene instead, renders it with MVR first\n"
-    "(--views, --size, --pst as for render).\n"
-    "Keys: left/right view, up/down row, mouse over the view picks the scanline,\n"
-    "drag scrubs views, S saves mvr_screenshot_NNNN.png, Q or Esc quits.\n"
-    "  --view K --scanline J   start there\n"
-    "  --screenshot FILE       draw one frame, save it, exit (for tests, under Xvfb)\n";
 
 namespace {
 
@@ -250,37 +240,61 @@ void toDisplay(ViewSet& set) {
 }  // namespace
 
 int runView(int argc, char** argv) {
-  Args args(argc, argv, 2, {"view", "scanline", "screenshot", "views", "size", "pst", "rows"}, {});
-  if (args.positional().size() != 1) fail("view", "needs one folder or scene (see --help)");
-  const std::string source = args.positional()[0];
-  const bool shot = args.has("screenshot");
+  CLI::App app("Shows one view of a rendered set (a folder with manifest.json) with the EPI of "
+               "one scanline below it. Given a scene instead, renders it first (--views, "
+               "--size, --backend and its options as for render).",
+               "mvr view");
+  app.footer("Keys: left/right view, up/down row, mouse over the view picks the scanline, drag "
+             "scrubs views, S saves mvr_screenshot_NNNN.png, Q or Esc quits.");
+  std::string source, screenshot;
+  int views = 32, rows = 1, startView = 0, startScanline = 0;
+  std::pair<int, int> size{320, 240};
+  BackendFlags backend;
+  app.add_option("DIR|SCENE", source, "a rendered set or a scene to render")->required();
+  app.add_option("--view", startView, "start at this view")->check(CLI::NonNegativeNumber);
+  app.add_option("--scanline", startScanline, "start at this scanline")->check(CLI::NonNegativeNumber);
+  app.add_option("--screenshot", screenshot, "draw one frame, save it, exit (for tests, under Xvfb)")
+      ->type_name("FILE");
+  app.add_option("--views", views, "scene: views on the track")
+      ->check(CLI::Range(1, Limits::kMaxViews))
+      ->capture_default_str();
+  app.add_option("--rows", rows, "scene: rows of views")
+      ->check(CLI::Range(1, Limits::kMaxRows))
+      ->capture_default_str();
+  addSizeOption(app, "size", size, "scene: image size in pixels");
+  backend.add(app);
+  if (auto exit = parseCommandLine(app, argc - 1, argv + 1)) return *exit;
+
+  const bool shot = !screenshot.empty();
   ViewSet set;
   std::unique_ptr<GlfwWindow> window;
   if (fs::is_directory(source)) {
     set = loadSet(source);
     window = GlfwWindow::open(set.width, set.height + std::min(set.views, 512), "mvr view", false);
-  } else {  // live: render the scene with MVR in this window's context
+  } else {  // live: render the scene in this window's context
+    const BackendOptions options = backend.resolve();
     Scene scene = loadScene(source);
-    const auto [w, h] = args.getSize("size", {320, 240});
-    set.views = args.getInt("views", 32, 1, 4096);
-    set.rows = args.getInt("rows", 1, 1, 64);
+    const auto [w, h] = size;
+    set.views = views;
+    set.rows = rows;
     set.width = w;
     set.height = h;
     set.images.assign(set.rows, std::vector<Image>(set.views));
     window = GlfwWindow::open(w, h + std::min(set.views, 512), "mvr view", false);
     ShearingCamera cam(cameraFor(scene, w, h), w, h, set.views, set.rows);
-    auto renderer = makeRenderer({"mvr", args.get("pst", "strip")}, scene, PixelType::U8);
+    auto renderer = makeRenderer(options, scene, PixelType::U8);
     ViewCollector collect(set);
-    EpisToViews reorder(collect, w, h, set.views, PixelType::U8);
+    std::unique_ptr<EpisToViews> reorder;
+    if (renderer->order() == FrameOrder::Epi)
+      reorder = std::make_unique<EpisToViews>(collect, w, h, set.views, PixelType::U8);
     RenderStats stats;
-    renderer->render(cam, reorder, stats);
+    renderer->render(cam, reorder ? static_cast<FrameSink&>(*reorder) : collect, stats);
   }
   toDisplay(set);
-  Viewer viewer(std::move(set), *window, args.getInt("view", 0, 0, 65535),
-                args.getInt("scanline", 0, 0, 65535), !shot);
+  Viewer viewer(std::move(set), *window, startView, startScanline, !shot);
   if (shot) {
     viewer.draw();
-    writeImage(viewer.screenshot(), args.get("screenshot", ""));
+    writeImage(viewer.screenshot(), screenshot);
     return 0;
   }
   viewer.run();

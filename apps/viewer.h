@@ -4,7 +4,7 @@
 // save screenshots.
 namespace mvr::app {
 
-extern const char* const kViewHelp;
+// argv[1] is the command's name.
 int runView(int argc, char** argv);
 
 }  // namespace mvr::app

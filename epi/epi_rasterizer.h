@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "mvr/names.h"
 #include "mvr/renderer.h"
 #include "shading/environment_set.h"
 #include "shading/shading_plan.h"
@@ -13,14 +14,22 @@
 namespace mvr {
 
 enum class PstMode { Quad, Strip, Exact, Cpu };
+inline constexpr NameTable<PstMode, 4> kPstModeNames{
+    {{PstMode::Quad, "quad"}, {PstMode::Strip, "strip"}, {PstMode::Exact, "exact"}, {PstMode::Cpu, "cpu"}}};
 
-PstMode parsePstMode(const std::string& name);  // throws on unknown
-const char* pstModeName(PstMode mode);
+inline PstMode parsePstMode(const std::string& name) {  // throws on unknown
+  return parseName(kPstModeNames, name, "--pst", "mode");
+}
+inline const char* pstModeName(PstMode mode) { return nameOf(kPstModeNames, mode); }
 
 // How the texture pass samples: Halle's 1-D texture vectors (default), or
 // the 2D texture directly with a per-pixel divide (for comparison).
 enum class TextureMode { Vector, Direct };
-TextureMode parseTextureMode(const std::string& name);  // throws on unknown
+inline constexpr NameTable<TextureMode, 2> kTextureModeNames{
+    {{TextureMode::Vector, "vector"}, {TextureMode::Direct, "direct"}}};
+inline TextureMode parseTextureMode(const std::string& name) {  // throws on unknown
+  return parseName(kTextureModeNames, name, "--texture", "mode");
+}
 
 // What the rasterizers shade with beyond the lit colours: the scene's
 // lights, materials and textures and the plan's passes. No scene: diffuse
@@ -49,9 +58,15 @@ class EpiRasterizer {
                          RenderStats& stats) = 0;
 };
 
-std::unique_ptr<EpiRasterizer> makeSpanRasterizer(PixelType type, int threads,
-                                                  const EpiShading& shading = {});
-// Needs a current GL context.
+// The one place that chooses between CPU and GL: the span rasterizer for
+// PstMode::Cpu, else the GL rasterizer in that mode (needs a current GL
+// context).
+std::unique_ptr<EpiRasterizer> makeRasterizer(PstMode mode, PixelType type,
+                                              const EpiShading& shading = {});
+
+// Exact spans on every core of the thread pool (mvr/parallel.h).
+std::unique_ptr<EpiRasterizer> makeSpanRasterizer(PixelType type, const EpiShading& shading = {});
+// Quad, strip or exact; needs a current GL context.
 std::unique_ptr<EpiRasterizer> makeGlRasterizer(PstMode mode, PixelType type,
                                                 const EpiShading& shading = {});
 

@@ -12,32 +12,19 @@
 
 namespace mvr {
 
-Acquire parseAcquire(const std::string& name) {
-  if (name == "center") return Acquire::Center;
-  if (name == "dual") return Acquire::Dual;
-  if (name == "hierarchical") return Acquire::Hierarchical;
-  fail("--acquire", "unknown acquisition '" + name + "' (expected center, dual or hierarchical)");
-}
-
-const char* acquireName(Acquire acquire) {
-  switch (acquire) {
-    case Acquire::Center: return "center";
-    case Acquire::Dual: return "dual";
-    case Acquire::Hierarchical: return "hierarchical";
-  }
-  return "?";
+void validate(const InterpOptions& options) {
+  if (options.maxLayers < 1 || options.maxLayers > 64) fail("--max-layers", "must be 1 to 64");
+  if (!(options.coalesce >= 0.0f) || !std::isfinite(options.coalesce))
+    fail("--coalesce", "must be a finite number of pixels, at least 0");
+  if (options.budget < 2 || options.budget > 1024) fail("--budget", "must be 2 to 1024 source views");
+  if (options.splits < 0 || options.splits > 64) fail("--splits", "must be 0 to 64");
+  if (!(options.overlap >= 0.0f && options.overlap <= 4.0f)) fail("--overlap", "must be 0 to 4 pixels");
 }
 
 namespace {
 
-// Before any GL work.
 const InterpOptions& validated(const InterpOptions& options) {
-  if (options.maxLayers < 1) fail("--max-layers", "must be at least 1");
-  if (!(options.coalesce >= 0.0f) || !std::isfinite(options.coalesce))
-    fail("--coalesce", "must be a finite number of pixels, at least 0");
-  if (options.budget < 2) fail("--budget", "must be at least 2 source views");
-  if (options.splits < 0) fail("--splits", "must be at least 0");
-  if (!(options.overlap >= 0.0f && options.overlap <= 4.0f)) fail("--overlap", "must be 0 to 4 pixels");
+  validate(options);
   return options;
 }
 
@@ -59,8 +46,7 @@ class InterpRenderer final : public Renderer {
         sources_(makeSourceLayerRenderer(scene, splits_ > 0)) {
     // Every image slice is coloured by its own vector of source pixels.
     const EpiShading shading{.sliceVectors = true, .sliceHighlights = splits_ > 0};
-    rasterizer_ = options.mode == PstMode::Cpu ? makeSpanRasterizer(type, 2, shading)
-                                               : makeGlRasterizer(options.mode, type, shading);
+    rasterizer_ = makeRasterizer(options.mode, type, shading);
   }
 
   std::string name() const override { return "interp"; }

@@ -19,8 +19,12 @@ namespace mvr {
 //                 wherever those two leave disocclusion holes there,
 //                 recursively, until none does or the budget is spent
 enum class Acquire { Center, Dual, Hierarchical };
-Acquire parseAcquire(const std::string& name);  // throws on unknown
-const char* acquireName(Acquire acquire);
+inline constexpr NameTable<Acquire, 3> kAcquireNames{
+    {{Acquire::Center, "center"}, {Acquire::Dual, "dual"}, {Acquire::Hierarchical, "hierarchical"}}};
+inline Acquire parseAcquire(const std::string& name) {  // throws on unknown
+  return parseName(kAcquireNames, name, "--acquire", "acquisition");
+}
+inline const char* acquireName(Acquire acquire) { return nameOf(kAcquireNames, acquire); }
 
 struct InterpOptions {
   Acquire acquire = Acquire::Dual;
@@ -43,7 +47,10 @@ struct InterpOptions {
   double holeFraction = 1e-3;
 };
 
-// Needs a current GL context.
+// Throws mvr::Error naming the option that is out of range; needs no GL.
+void validate(const InterpOptions& options);
+
+// Validates first; needs a current GL context.
 std::unique_ptr<Renderer> makeInterpRenderer(const Scene& scene, PixelType type,
                                              const InterpOptions& options);
 

@@ -1,7 +1,5 @@
 #include "epi/mvr_renderer.h"
 
-#include <thread>
-
 #include "shading/lighting.h"
 #include "slicing/extreme_vertices.h"
 #include "slicing/slice_table.h"
@@ -11,13 +9,12 @@ namespace {
 
 class MvrRenderer final : public Renderer {
  public:
-  MvrRenderer(const Scene& scene, PstMode mode, PixelType type, int threads, TextureMode texture)
-      : scene_(scene), mode_(mode), threads_(threads),
+  MvrRenderer(const Scene& scene, PstMode mode, PixelType type, TextureMode texture)
+      : scene_(scene), mode_(mode),
         textures_(shading::TextureSet::load(scene)),
         environment_(shading::EnvironmentSet::load(scene)),
         shading_{&scene, shading::planShading(scene), &textures_, &environment_, texture},
-        rasterizer_(mode == PstMode::Cpu ? makeSpanRasterizer(type, threads, shading_)
-                                         : makeGlRasterizer(mode, type, shading_)) {}
+        rasterizer_(makeRasterizer(mode, type, shading_)) {}
 
   std::string name() const override { return "mvr"; }
   FrameOrder order() const override { return FrameOrder::Epi; }
@@ -47,7 +44,7 @@ class MvrRenderer final : public Renderer {
       SliceTable table;
       {
         ScopedStage s(stats.times, "slicing");
-        table = SliceTable::build(vertices, cam.height(), threads_);
+        table = SliceTable::build(vertices, cam.height());
       }
       stats.counters["slices"] += double(table.sliceCount());
       stats.counters["slice_table_bytes"] =
@@ -65,7 +62,6 @@ class MvrRenderer final : public Renderer {
  private:
   const Scene& scene_;
   PstMode mode_;
-  int threads_;
   shading::TextureSet textures_;
   shading::EnvironmentSet environment_;
   EpiShading shading_;
@@ -75,9 +71,8 @@ class MvrRenderer final : public Renderer {
 }  // namespace
 
 std::unique_ptr<Renderer> makeMvrRenderer(const Scene& scene, PstMode mode, PixelType type,
-                                          int threads, TextureMode texture) {
-  if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
-  return std::make_unique<MvrRenderer>(scene, mode, type, threads, texture);
+                                          TextureMode texture) {
+  return std::make_unique<MvrRenderer>(scene, mode, type, texture);
 }
 
 }  // namespace mvr

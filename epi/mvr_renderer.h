@@ -9,9 +9,9 @@
 
 namespace mvr {
 
-// GL modes need a current context; cpu uses `threads` threads and always
+// GL modes need a current context; cpu runs on the thread pool and always
 // samples textures directly.
 std::unique_ptr<Renderer> makeMvrRenderer(const Scene& scene, PstMode mode, PixelType type,
-                                          int threads = 2, TextureMode texture = TextureMode::Vector);
+                                          TextureMode texture = TextureMode::Vector);
 
 }  // namespace mvr

@@ -1,15 +1,14 @@
 // The CPU back end (Halle's span pseudocode): for every PST and every view
 // row it crosses, one exact horizontal span. It is the test oracle and the
 // renderer for machines without a GPU. Scanlines are independent, so
-// threads take whole scanlines; frames leave in scanline order.
+// the pool's workers take whole scanlines; frames leave in scanline order.
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <thread>
 
 #include "epi/epi_rasterizer.h"
 #include "epi/pst.h"
 #include "mvr/error.h"
+#include "mvr/parallel.h"
 #include "mvr/progress.h"
 #include "shading/view_dependent.h"
 
@@ -18,8 +17,7 @@ namespace {
 
 class SpanRasterizer final : public EpiRasterizer {
  public:
-  SpanRasterizer(PixelType type, int threads, const EpiShading& shading)
-      : type_(type), threads_(std::max(1, threads)), shading_(shading) {
+  SpanRasterizer(PixelType type, const EpiShading& shading) : type_(type), shading_(shading) {
     if (shading_.plan.passes().size() > 1 && !shading_.scene && !shading_.sliceVectors)
       fail("cpu rasterizer", "shading passes need a scene");
     if (shading_.plan.texture && !shading_.textures) fail("cpu rasterizer", "texturing needs textures");
@@ -32,22 +30,17 @@ class SpanRasterizer final : public EpiRasterizer {
     const int height = cam.height();
     eye0_ = glm::vec3(cam.eye(0, row));
     eyeStep_ = glm::vec3(cam.eye(1, row) - cam.eye(0, row));
-    const int batch = std::max(1, std::min(height, 4 * threads_));
+    const int batch = std::max(1, std::min(height, 4 * threadCount()));
     std::vector<Image> epis(batch);
     Progress progress("mvr cpu", height);
     for (int first = 0; first < height; first += batch) {
       const int count = std::min(batch, height - first);
       {
         ScopedStage s(stats.times, "raster");
-        std::atomic<int> next{0};
-        auto work = [&] {
-          std::vector<float> depth;
-          for (int k; (k = next++) < count;) epis[k] = fillEpi(v, table, cam, first + k, depth);
-        };
-        std::vector<std::thread> pool;
-        for (int t = 1; t < std::min(threads_, count); ++t) pool.emplace_back(work);
-        work();
-        for (auto& th : pool) th.join();
+        parallelFor(0, count, [&](int k) {
+          thread_local std::vector<float> depth;  // a worker's scratch, reused across EPIs
+          epis[k] = fillEpi(v, table, cam, first + k, depth);
+        });
       }
       for (int k = 0; k < count; ++k) {
         sink.putEpi(row, first + k, epis[k]);
@@ -169,16 +162,14 @@ class SpanRasterizer final : public EpiRasterizer {
   }
 
   PixelType type_;
-  int threads_;
   EpiShading shading_;
   glm::vec3 eye0_{0.0f}, eyeStep_{0.0f};
 };
 
 }  // namespace
 
-std::unique_ptr<EpiRasterizer> makeSpanRasterizer(PixelType type, int threads,
-                                                  const EpiShading& shading) {
-  return std::make_unique<SpanRasterizer>(type, threads, shading);
+std::unique_ptr<EpiRasterizer> makeSpanRasterizer(PixelType type, const EpiShading& shading) {
+  return std::make_unique<SpanRasterizer>(type, shading);
 }
 
 }  // namespace mvr

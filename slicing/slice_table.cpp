@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
+#include <functional>
+
+#include "mvr/parallel.h"
 
 namespace mvr {
 
@@ -58,19 +60,15 @@ void sliceTriangle(const ExtremeVertices& v, uint32_t tri, int bandLo, int bandH
 
 }  // namespace
 
-SliceTable SliceTable::build(const ExtremeVertices& v, int height, int threads) {
-  threads = std::clamp(threads, 1, std::max(1, height));
+SliceTable SliceTable::build(const ExtremeVertices& v, int height, int bands) {
+  if (bands <= 0) bands = threadCount();
+  bands = std::clamp(bands, 1, std::max(1, height));
   SliceTable table;
   table.offsets_.assign(height + 1, 0);
   const auto triangles = uint32_t(v.triangles.size());
-  auto band = [&](int k) { return std::pair{height * k / threads, height * (k + 1) / threads}; };
-  auto forBands = [&](auto&& work) {
-    std::vector<std::thread> pool;
-    for (int k = 1; k < threads; ++k) pool.emplace_back(work, k);
-    work(0);
-    for (auto& th : pool) th.join();
-  };
-  // Pass 1: count per scanline (each thread writes only its own band).
+  auto band = [&](int k) { return std::pair{height * k / bands, height * (k + 1) / bands}; };
+  auto forBands = [&](const std::function<void(int)>& work) { parallelFor(0, bands, work); };
+  // Pass 1: count per scanline (each task writes only its own band).
   forBands([&](int k) {
     auto [lo, hi] = band(k);
     for (uint32_t tri = 0; tri < triangles; ++tri)

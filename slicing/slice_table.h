@@ -45,9 +45,10 @@ class SliceTable {
   size_t sliceCount() const { return slices_.size(); }
   size_t bytes() const { return slices_.size() * sizeof(Slice) + offsets_.size() * sizeof(uint32_t); }
 
-  // Builds the table with `threads` threads, each owning a band of
-  // scanlines: no locks, no sort, slices in triangle order per scanline.
-  static SliceTable build(const ExtremeVertices& v, int height, int threads = 2);
+  // Builds the table in `bands` bands of scanlines (0: one per pool
+  // worker), each task owning its band: no locks, no sort, slices in
+  // triangle order per scanline whatever the band count.
+  static SliceTable build(const ExtremeVertices& v, int height, int bands = 0);
   // A table of segments: v's triangle k is the segment from its vertex x
   // to its vertex y, on scanline scanlineOf[k].
   static SliceTable fromSegments(const std::vector<uint32_t>& scanlineOf, int height);

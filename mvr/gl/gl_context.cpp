@@ -6,22 +6,10 @@
 namespace mvr {
 
 GlPlatform parseGlPlatform(const std::string& name) {
-  if (name == "auto") return GlPlatform::Auto;
-  if (name == "egl") return GlPlatform::Egl;
-  if (name == "osmesa") return GlPlatform::OsMesa;
-  if (name == "glfw") return GlPlatform::Glfw;
-  fail("--gl", "unknown platform '" + name + "' (expected egl, osmesa or glfw)");
+  return parseName(kGlPlatformNames, name, "--gl", "platform");
 }
 
-const char* glPlatformName(GlPlatform platform) {
-  switch (platform) {
-    case GlPlatform::Auto: return "auto";
-    case GlPlatform::Egl: return "egl";
-    case GlPlatform::OsMesa: return "osmesa";
-    case GlPlatform::Glfw: return "glfw";
-  }
-  return "?";
-}
+const char* glPlatformName(GlPlatform platform) { return nameOf(kGlPlatformNames, platform); }
 
 std::string GlContext::renderer() const {
   return reinterpret_cast<const char*>(gl::GetString(GL_RENDERER));

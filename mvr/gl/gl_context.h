@@ -4,9 +4,15 @@
 #include <memory>
 #include <string>
 
+#include "mvr/names.h"
+
 namespace mvr {
 
 enum class GlPlatform { Auto, Egl, OsMesa, Glfw };
+inline constexpr NameTable<GlPlatform, 4> kGlPlatformNames{{{GlPlatform::Auto, "auto"},
+                                                            {GlPlatform::Egl, "egl"},
+                                                            {GlPlatform::OsMesa, "osmesa"},
+                                                            {GlPlatform::Glfw, "glfw"}}};
 
 GlPlatform parseGlPlatform(const std::string& name);  // throws on unknown
 const char* glPlatformName(GlPlatform platform);

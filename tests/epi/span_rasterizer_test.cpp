@@ -35,7 +35,7 @@ TEST(SpanRasterizer, SpansAreClippedAtTheEpiBordersOnly) {
   ShearingCamera cam(spec, width, 21, views);
   SliceTable table = SliceTable::build(v, 21, 1);
   ASSERT_EQ(table.scanline(10).size(), 1u);
-  auto r = makeSpanRasterizer(PixelType::U8, 2);
+  auto r = makeSpanRasterizer(PixelType::U8);
   test::CaptureSink sink;
   RenderStats stats;
   r->rasterize(v, table, cam, 0, sink, stats);

@@ -118,7 +118,7 @@ namespace {
 TEST_F(SpecularVsSvr, PassesSurviveSeveralBatches) {
   Scene scene = loadScene(test::assetPath("textured.json"));
   ShearingCamera cam(*scene.camera, 40, 48, 1000);
-  auto exact = makeMvrRenderer(scene, PstMode::Exact, PixelType::U8, 2, TextureMode::Direct);
+  auto exact = makeMvrRenderer(scene, PstMode::Exact, PixelType::U8, TextureMode::Direct);
   auto cpu = makeMvrRenderer(scene, PstMode::Cpu, PixelType::U8);
   RenderStats stats;
   const test::CaptureSink a = test::renderViews(*exact, cam, stats);

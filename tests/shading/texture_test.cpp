@@ -148,7 +148,7 @@ TEST_F(TextureVsSvr, EveryPathIsCloseToSvrWithoutShimmer) {
   for (Case c : {Case{PstMode::Cpu, TextureMode::Direct, 40.0},
                  Case{PstMode::Exact, TextureMode::Direct, 40.0},
                  Case{PstMode::Exact, TextureMode::Vector, 26.0}}) {
-    auto mvr = makeMvrRenderer(scene, c.mode, PixelType::U8, 2, c.texture);
+    auto mvr = makeMvrRenderer(scene, c.mode, PixelType::U8, c.texture);
     RenderStats stats;
     const test::CaptureSink views = test::renderViews(*mvr, cam, stats);
     EXPECT_EQ(stats.notes["passes"], "diffuse+texture+view-dependent");

@@ -1,0 +1,85 @@
+#include "apps/backend_flags.h"
+
+#include "mvr/error.h"
+
+namespace mvr::app {
+namespace {
+
+// "a|b|c" for the help's type column.
+template <class E, size_t N>
+std::string choices(const NameTable<E, N>& table) {
+  std::string out;
+  for (const auto& entry : table) out += (out.empty() ? "" : "|") + std::string(entry.name);
+  return out;
+}
+
+}  // namespace
+
+void BackendFlags::add(CLI::App& app) {
+  InterpOptions& interp = options_.interp;
+  app.add_option("--backend", backend_, "renderer")
+      ->type_name(choices(kBackendNames))
+      ->capture_default_str();
+  pstOption_ = app.add_option("--pst", pst_,
+                              "accuracy mode of mvr and interp: " + alternatives(kPstModeNames) +
+                                  " (default: mvr " + pstModeName(MvrOptions{}.mode) + ", interp " +
+                                  pstModeName(InterpOptions{}.mode) + ")")
+                   ->type_name(choices(kPstModeNames));
+  textureOption_ = app.add_option("--texture", texture_,
+                                  "mvr texturing: 1-D texture vectors per slice (vector, default) or "
+                                  "the 2D texture with a per-pixel divide (direct)")
+                       ->type_name(choices(kTextureModeNames));
+  interpOptions_ = {
+      app.add_option("--acquire", acquire_,
+                     "interp: source views from the middle of the track (center), both ends "
+                     "(dual), or both ends and then halfway between two sources wherever they "
+                     "leave holes, recursively (hierarchical); default " +
+                         std::string(acquireName(interp.acquire)))
+          ->type_name(choices(kAcquireNames)),
+      app.add_option("--max-layers", interp.maxLayers, "interp: depth-peeled layers per source view")
+          ->capture_default_str(),
+      app.add_option("--coalesce", interp.coalesce,
+                     "interp: draw runs of source pixels with close depths as one slice when that "
+                     "moves no pixel more than T pixels in any view (0: a slice per pixel)")
+          ->type_name("T")
+          ->capture_default_str(),
+      app.add_flag("--visibility", interp.visibility,
+                   "interp: drop layer pixels the nearest layer hides from the whole track; stop "
+                   "peeling at a layer with none left"),
+      app.add_option("--budget", interp.budget, "interp hierarchical: source views per row at most")
+          ->capture_default_str(),
+      app.add_option("--splits", interp.splits,
+                     "interp: highlights per view, split at K views across each specular pixel's "
+                     "highlight (0: as the source saw it)")
+          ->type_name("K")
+          ->capture_default_str(),
+      app.add_option("--overlap", interp.overlap,
+                     "interp: widen each slice by P pixels per side against cracks (more closes "
+                     "more holes, dilates outlines)")
+          ->type_name("P")
+          ->capture_default_str(),
+  };
+}
+
+BackendOptions BackendFlags::resolve() const {
+  BackendOptions o = options_;
+  o.backend = parseName(kBackendNames, backend_, "--backend", "back end");
+  if (pst_) {
+    if (!o.hasPst()) fail("--pst", "applies to --backend mvr and interp only");
+    o.setPst(parsePstMode(*pst_));
+  }
+  if (textureOption_->count()) {
+    if (o.backend != Backend::Mvr) fail("--texture", "applies to --backend mvr only");
+    o.mvr.texture = parseTextureMode(texture_);
+  }
+  for (const CLI::Option* option : interpOptions_)
+    if (option->count() && o.backend != Backend::Interp)
+      fail(option->get_name(), "applies to --backend interp only");
+  if (o.backend == Backend::Interp) {
+    if (!acquire_.empty()) o.interp.acquire = parseAcquire(acquire_);
+    validate(o.interp);
+  }
+  return o;
+}
+
+}  // namespace mvr::app

@@ -1,0 +1,32 @@
+#pragma once
+// The back-end options of every command that renders (render, stream,
+// view), on CLI11, filling one BackendOptions (epi/backend.h).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "epi/backend.h"
+
+namespace mvr::app {
+
+// --backend and the options of each back end, bound to one BackendOptions.
+// After parsing, resolve() applies --pst to the chosen back end, rejects
+// options given for another back end, and validates the values, all before
+// any GL or file work.
+class BackendFlags {
+ public:
+  void add(CLI::App& app);
+  BackendOptions resolve() const;
+
+ private:
+  BackendOptions options_;
+  std::string backend_ = "mvr", acquire_, texture_;
+  std::optional<std::string> pst_;
+  CLI::Option* pstOption_ = nullptr;
+  CLI::Option* textureOption_ = nullptr;
+  std::vector<CLI::Option*> interpOptions_;
+};
+
+}  // namespace mvr::app

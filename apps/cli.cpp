@@ -1,0 +1,55 @@
+#include "apps/cli.h"
+
+#include <cstdio>
+
+#include "mvr/camera.h"
+#include "mvr/error.h"
+#include "mvr/gl/gl_context.h"
+
+namespace mvr::app {
+
+std::optional<int> parseCommandLine(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // CLI11's own report adds a second line; ours is one, like every error.
+    std::string what = e.what();
+    for (char& c : what)
+      if (c == '\n') c = ' ';
+    throw Error(what);
+  }
+  return std::nullopt;
+}
+
+std::pair<int, int> parseSize(const std::string& flag, const std::string& v) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  const int most = Limits::kMaxSide;
+  if (std::sscanf(v.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') ||
+      w < 1 || h < 1 || w > most || h > most)
+    fail(flag, "'" + v + "' is not WxH with sides 1.." + std::to_string(most));
+  return {w, h};
+}
+
+CLI::Option* addSizeOption(CLI::App& app, const std::string& name, std::pair<int, int>& size,
+                           const std::string& description) {
+  const std::string flag = "--" + name;
+  auto* option = app.add_option_function<std::string>(
+      flag, [&size, flag](const std::string& text) { size = parseSize(flag, text); }, description);
+  option->type_name("WxH")->default_str(std::to_string(size.first) + "x" + std::to_string(size.second));
+  return option;
+}
+
+CLI::Option* addGlOption(CLI::App& app, std::string& platform) {
+  return app.add_option("--gl", platform, "GL platform: " + alternatives(kGlPlatformNames) +
+                                              " (auto: egl, else osmesa)")
+      ->capture_default_str();
+}
+
+}  // namespace mvr::app

@@ -1,0 +1,28 @@
+#pragma once
+// The command line's shared pieces on CLI11: one-line errors, typed image
+// sizes, the GL platform.
+#include <optional>
+#include <string>
+#include <utility>
+
+#include <CLI/CLI.hpp>
+
+
+namespace mvr::app {
+
+// Parses argv into app. Help and --version print and give their exit code;
+// every other parse error becomes an mvr::Error (one line, naming the
+// option). nullopt: parsed, carry on.
+std::optional<int> parseCommandLine(CLI::App& app, int argc, char** argv);
+
+// "WxH" with sides 1..Limits::kMaxSide; errors name the flag.
+std::pair<int, int> parseSize(const std::string& flag, const std::string& text);
+
+// An option holding "WxH" into size (validated while parsing).
+CLI::Option* addSizeOption(CLI::App& app, const std::string& name, std::pair<int, int>& size,
+                           const std::string& description);
+
+// --gl egl|osmesa|glfw|auto into platform.
+CLI::Option* addGlOption(CLI::App& app, std::string& platform);
+
+}  // namespace mvr::app

@@ -1,0 +1,78 @@
+#include "epi/backend.h"
+
+#include <cstdlib>
+#include <vector>
+
+#include "epi/mvr_renderer.h"
+#include "mvr/baselines/baselines.h"
+#include "mvr/error.h"
+
+namespace mvr {
+
+std::unique_ptr<Renderer> makeRenderer(const BackendOptions& o, const Scene& scene, PixelType type) {
+  switch (o.backend) {
+    case Backend::Mvr: return makeMvrRenderer(scene, o.mvr.mode, type, o.mvr.texture);
+    case Backend::Interp: return makeInterpRenderer(scene, type, o.interp);
+    case Backend::Svr: return makeSvrRenderer(scene, type);
+    case Backend::SvrLayered: return makeLayeredSvrRenderer(scene, type);
+    case Backend::Deferred: return makeDeferredRenderer(scene, type);
+  }
+  fail("--backend", "unknown back end");
+}
+
+namespace {
+
+std::vector<std::string> fields(const std::string& s) {
+  std::vector<std::string> out;
+  for (size_t at = 0;;) {
+    const size_t next = s.find(':', at);
+    out.push_back(s.substr(at, next == std::string::npos ? std::string::npos : next - at));
+    if (next == std::string::npos) return out;
+    at = next + 1;
+  }
+}
+
+// One interp option token; values are checked where every interp option
+// is (validate(InterpOptions)), not here.
+void interpOption(const std::string& token, InterpOptions& o, const char* where) {
+  for (const auto& mode : kPstModeNames)
+    if (token == mode.name) {
+      o.mode = mode.value;
+      return;
+    }
+  if (token == "vis") {
+    o.visibility = true;
+    return;
+  }
+  char* end = nullptr;
+  const char* text = token.c_str();
+  const char key = token.size() > 1 ? token[0] : '\0';
+  if (key == 's') o.splits = int(std::strtol(text + 1, &end, 10));
+  else if (key == 'b') o.budget = int(std::strtol(text + 1, &end, 10));
+  else if (key == 'c') o.coalesce = std::strtof(text + 1, &end);
+  else if (key == 'o') o.overlap = std::strtof(text + 1, &end);
+  else o.maxLayers = int(std::strtol(text, &end, 10));
+  if (token.empty() || *end != '\0') fail(where, "unknown interp option '" + token + "'");
+}
+
+}  // namespace
+
+BackendOptions parseBackendSpec(const std::string& spec, const char* where) {
+  const std::vector<std::string> field = fields(spec);
+  BackendOptions o;
+  o.backend = parseName(kBackendNames, field[0], where, "back end");
+  if (o.backend == Backend::Interp) {
+    if (field.size() > 1) o.interp.acquire = parseName(kAcquireNames, field[1], where, "acquisition");
+    for (size_t i = 2; i < field.size(); ++i) interpOption(field[i], o.interp, where);
+    validate(o.interp);
+  } else if (o.hasPst()) {
+    if (field.size() > 1) o.mvr.mode = parseName(kPstModeNames, field[1], where, "mode");
+    if (field.size() > 2) o.mvr.texture = parseName(kTextureModeNames, field[2], where, "texture mode");
+    if (field.size() > 3) fail(where, "'" + spec + "' has too many fields");
+  } else if (field.size() > 1) {
+    fail(where, "'" + spec + "': " + field[0] + " takes no options");
+  }
+  return o;
+}
+
+}  // namespace mvr

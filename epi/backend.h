@@ -1,0 +1,53 @@
+#pragma once
+// The back ends a user chooses from, their typed options and the one
+// factory. Every option's default is written once, in its options struct
+// (MvrOptions here, InterpOptions in interp_renderer.h); render, stream,
+// bench and the viewer fill these structs and call makeRenderer.
+#include <memory>
+#include <string>
+
+#include "epi/epi_rasterizer.h"
+#include "epi/interp_renderer.h"
+#include "mvr/names.h"
+#include "mvr/renderer.h"
+#include "mvr/scene.h"
+
+namespace mvr {
+
+enum class Backend { Mvr, Interp, Svr, SvrLayered, Deferred };
+inline constexpr NameTable<Backend, 5> kBackendNames{{{Backend::Mvr, "mvr"},
+                                                      {Backend::Interp, "interp"},
+                                                      {Backend::Svr, "svr"},
+                                                      {Backend::SvrLayered, "svr-layered"},
+                                                      {Backend::Deferred, "deferred"}}};
+
+struct MvrOptions {
+  PstMode mode = PstMode::Strip;
+  TextureMode texture = TextureMode::Vector;  // GL modes; cpu samples directly
+};
+
+struct BackendOptions {
+  Backend backend = Backend::Mvr;
+  MvrOptions mvr;
+  InterpOptions interp;
+
+  // mvr and interp fill EPIs through an accuracy mode; the baselines do not.
+  bool hasPst() const { return backend == Backend::Mvr || backend == Backend::Interp; }
+  // The chosen back end's accuracy mode (its own default unless set).
+  PstMode pst() const { return backend == Backend::Interp ? interp.mode : mvr.mode; }
+  void setPst(PstMode mode) { (backend == Backend::Interp ? interp.mode : mvr.mode) = mode; }
+};
+
+// Throws mvr::Error for options that cannot work (before any GL work where
+// it can). GL back ends need a current context.
+std::unique_ptr<Renderer> makeRenderer(const BackendOptions& options, const Scene& scene,
+                                       PixelType type);
+
+// The benchmark's compact form: NAME[:PST[:TEXTURE]] (mvr:exact:direct) or
+// interp[:ACQUIRE[:OPTION...]] with options L (layers), cT (coalesce T
+// pixels), vis (visibility), bB (budget), sK (splits), oP (overlap P
+// pixels) and an accuracy mode, e.g. interp:hierarchical:2:c0.5:vis:b5:exact.
+// Throws naming `where` for an unknown name or option.
+BackendOptions parseBackendSpec(const std::string& spec, const char* where = "--backends");
+
+}  // namespace mvr

@@ -1,0 +1,9 @@
+#include "epi/epi_rasterizer.h"
+
+namespace mvr {
+
+std::unique_ptr<EpiRasterizer> makeRasterizer(PstMode mode, PixelType type, const EpiShading& shading) {
+  return mode == PstMode::Cpu ? makeSpanRasterizer(type, shading) : makeGlRasterizer(mode, type, shading);
+}
+
+}  // namespace mvr
