@@ -10,6 +10,7 @@
 #include "shading/shading_plan.h"
 #include "shading/texture_set.h"
 #include "slicing/slice_table.h"
+#include "slicing/slice_table_view.h"
 
 namespace mvr {
 
@@ -52,8 +53,9 @@ class EpiRasterizer {
  public:
   virtual ~EpiRasterizer() = default;
   // Fills the EPIs of every scanline of one row of views and hands each to
-  // the sink as sink.putEpi(row, scanline, W x N image).
-  virtual void rasterize(const ExtremeVertices& vertices, const SliceTable& table,
+  // the sink as sink.putEpi(row, scanline, W x N image). The table may live
+  // in host or GPU memory; each rasterizer reads the form it needs.
+  virtual void rasterize(const ExtremeVertices& vertices, const SliceTableView& table,
                          const ShearingCamera& camera, int row, FrameSink& sink,
                          RenderStats& stats) = 0;
 };

@@ -25,8 +25,9 @@ class SpanRasterizer final : public EpiRasterizer {
       fail("cpu rasterizer", "reflection needs the reflection maps");
   }
 
-  void rasterize(const ExtremeVertices& v, const SliceTable& table, const ShearingCamera& cam,
+  void rasterize(const ExtremeVertices& v, const SliceTableView& slices, const ShearingCamera& cam,
                  int row, FrameSink& sink, RenderStats& stats) override {
+    const SliceTable& table = slices.host();  // spans are walked on the CPU
     const int height = cam.height();
     eye0_ = glm::vec3(cam.eye(0, row));
     eyeStep_ = glm::vec3(cam.eye(1, row) - cam.eye(0, row));

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 
+#include "mvr/error.h"
 #include "mvr/parallel.h"
 
 namespace mvr {
@@ -84,6 +85,16 @@ SliceTable SliceTable::build(const ExtremeVertices& v, int height, int bands) {
       sliceTriangle(v, tri, lo, hi,
                     [&](int j, const Slice& s) { table.slices_[cursor[j - lo]++] = s; });
   });
+  return table;
+}
+
+SliceTable SliceTable::fromArrays(std::vector<uint32_t> offsets, std::vector<Slice> slices) {
+  bool ok = !offsets.empty() && offsets.front() == 0 && offsets.back() == slices.size();
+  for (size_t j = 1; ok && j < offsets.size(); ++j) ok = offsets[j - 1] <= offsets[j];
+  if (!ok) fail("slice table", "offsets are not prefix sums of the slices");
+  SliceTable table;
+  table.offsets_ = std::move(offsets);
+  table.slices_ = std::move(slices);
   return table;
 }
 

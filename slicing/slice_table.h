@@ -44,6 +44,13 @@ class SliceTable {
   }
   size_t sliceCount() const { return slices_.size(); }
   size_t bytes() const { return slices_.size() * sizeof(Slice) + offsets_.size() * sizeof(uint32_t); }
+  // The flat arrays: height + 1 prefix sums, and every slice in scanline
+  // order (the layout GPU buffers hold too).
+  std::span<const uint32_t> offsets() const { return offsets_; }
+  std::span<const Slice> slices() const { return slices_; }
+  // A table from those arrays (offsets non-decreasing from 0 to the slice
+  // count); throws mvr::Error otherwise.
+  static SliceTable fromArrays(std::vector<uint32_t> offsets, std::vector<Slice> slices);
 
   // Builds the table in `bands` bands of scanlines (0: one per pool
   // worker), each task owning its band: no locks, no sort, slices in

@@ -61,8 +61,11 @@ class GlRasterizer final : public EpiRasterizer {
     }
   }
 
-  void rasterize(const ExtremeVertices& v, const SliceTable& table, const ShearingCamera& cam,
+  void rasterize(const ExtremeVertices& v, const SliceTableView& slices, const ShearingCamera& cam,
                  int row, FrameSink& sink, RenderStats& stats) override {
+    // PST geometry is still emitted on the CPU, so this reads the host
+    // table; GPU PST generation (issue 14) will read slices.device().
+    const SliceTable& table = slices.host();
     GLint maxSize = 4096;
     gl::GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     const int n = cam.views(), w = cam.width(), h = cam.height();

@@ -1,0 +1,83 @@
+// The slice table in GPU buffers: a round trip keeps every entry, and the
+// rasterizers give the same EPIs from either form of the table.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "epi/epi_rasterizer.h"
+#include "mvr/io/scene_io.h"
+#include "shading/lighting.h"
+#include "slicing/extreme_vertices.h"
+#include "slicing/gpu/gpu_slice_table.h"
+#include "slicing/slice_table_view.h"
+#include "tests/support/capture_sink.h"
+#include "tests/support/gl_fixture.h"
+
+namespace mvr {
+namespace {
+
+class GpuSliceTableTest : public test::GlTest {
+ protected:
+  void SetUp() override {
+    test::GlTest::SetUp();
+    scene = loadScene(test::assetPath("default.json"));
+    camera.emplace(cameraFor(scene, 64, 48), 64, 48, 6);
+    vertices = transformToExtremes(scene, shading::litVertexColors(scene), *camera, 0);
+    table = SliceTable::build(vertices, camera->height());
+  }
+  Scene scene;
+  std::optional<ShearingCamera> camera;
+  ExtremeVertices vertices;
+  SliceTable table;
+};
+
+TEST_F(GpuSliceTableTest, RoundTripKeepsEveryEntry) {
+  ASSERT_GT(table.sliceCount(), 100u);
+  const GpuSliceTable device = GpuSliceTable::upload(table);
+  EXPECT_EQ(device.height(), table.height());
+  EXPECT_EQ(device.sliceCount(), table.sliceCount());
+  const SliceTable back = device.download();
+  ASSERT_EQ(back.offsets().size(), table.offsets().size());
+  ASSERT_EQ(back.slices().size(), table.slices().size());
+  EXPECT_EQ(std::memcmp(back.offsets().data(), table.offsets().data(), table.offsets().size_bytes()), 0);
+  EXPECT_EQ(std::memcmp(back.slices().data(), table.slices().data(), table.slices().size_bytes()), 0);
+}
+
+TEST_F(GpuSliceTableTest, EmptyTableRoundTrips) {
+  const SliceTable empty = SliceTable::fromArrays({0, 0, 0}, {});
+  const SliceTable back = GpuSliceTable::upload(empty).download();
+  EXPECT_EQ(back.height(), 2);
+  EXPECT_EQ(back.sliceCount(), 0u);
+}
+
+TEST_F(GpuSliceTableTest, ViewMakesTheOtherFormOnDemand) {
+  const SliceTableView fromHost(table);
+  EXPECT_TRUE(fromHost.onHost());
+  EXPECT_EQ(&fromHost.host(), &table);
+  EXPECT_EQ(fromHost.device().sliceCount(), table.sliceCount());
+  const GpuSliceTable device = GpuSliceTable::upload(table);
+  const SliceTableView fromDevice(device);
+  EXPECT_TRUE(fromDevice.onDevice());
+  EXPECT_EQ(&fromDevice.device(), &device);
+  EXPECT_EQ(fromDevice.host().sliceCount(), table.sliceCount());
+  EXPECT_EQ(&fromDevice.host(), &fromDevice.host()) << "downloaded once and kept";
+}
+
+// Every rasterizer fills the same EPIs from a GPU-resident table as from the
+// host table it came from: bit for bit, since the entries are the same.
+TEST_F(GpuSliceTableTest, RasterizersGiveTheSameEpisFromEitherForm) {
+  const GpuSliceTable device = GpuSliceTable::upload(table);
+  for (PstMode mode : {PstMode::Cpu, PstMode::Exact, PstMode::Strip}) {
+    auto rasterizer = makeRasterizer(mode, PixelType::U8);
+    test::CaptureSink fromHost, fromDevice;
+    RenderStats stats;
+    rasterizer->rasterize(vertices, table, *camera, 0, fromHost, stats);
+    rasterizer->rasterize(vertices, device, *camera, 0, fromDevice, stats);
+    ASSERT_EQ(fromHost.epis.size(), size_t(camera->height())) << pstModeName(mode);
+    for (const auto& [key, epi] : fromHost.epis)
+      ASSERT_EQ(epi.bytes, fromDevice.epis.at(key).bytes) << pstModeName(mode) << " scanline " << key.second;
+  }
+}
+
+}  // namespace
+}  // namespace mvr
