@@ -46,6 +46,15 @@ CLI::Option* addSizeOption(CLI::App& app, const std::string& name, std::pair<int
   return option;
 }
 
+void addViewCountOptions(CLI::App& app, int& views, int& rows) {
+  app.add_option("--views", views, "views on the horizontal track")
+      ->check(CLI::Range(1, Limits::kMaxViews))
+      ->capture_default_str();
+  app.add_option("--rows", rows, "rows of views for full parallax")
+      ->check(CLI::Range(1, Limits::kMaxRows))
+      ->capture_default_str();
+}
+
 CLI::Option* addGlOption(CLI::App& app, std::string& platform) {
   return app.add_option("--gl", platform, "GL platform: " + alternatives(kGlPlatformNames) +
                                               " (auto: egl, else osmesa)")

@@ -22,6 +22,9 @@ std::pair<int, int> parseSize(const std::string& flag, const std::string& text);
 CLI::Option* addSizeOption(CLI::App& app, const std::string& name, std::pair<int, int>& size,
                            const std::string& description);
 
+// --views N (views per row) and --rows M (full parallax), bounded by Limits.
+void addViewCountOptions(CLI::App& app, int& views, int& rows);
+
 // --gl egl|osmesa|glfw|auto into platform.
 CLI::Option* addGlOption(CLI::App& app, std::string& platform);
 

@@ -85,12 +85,7 @@ struct RenderFlags {
     app.add_option("SCENE", scene,
                    "a JSON scene file or a mesh (OBJ, PLY, OFF, STL); default: the bundled scene");
     backend.add(app);
-    app.add_option("--views", views, "views on the horizontal track")
-        ->check(CLI::Range(1, Limits::kMaxViews))
-        ->capture_default_str();
-    app.add_option("--rows", rows, "rows of views for full parallax")
-        ->check(CLI::Range(1, Limits::kMaxRows))
-        ->capture_default_str();
+    addViewCountOptions(app, views, rows);
     addSizeOption(app, "size", size, "image size in pixels");
     app.add_option("--format", format, "image format: png, exr or tiff (exr renders in float)")
         ->capture_default_str();

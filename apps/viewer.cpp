@@ -255,12 +255,7 @@ int runView(int argc, char** argv) {
   app.add_option("--scanline", startScanline, "start at this scanline")->check(CLI::NonNegativeNumber);
   app.add_option("--screenshot", screenshot, "draw one frame, save it, exit (for tests, under Xvfb)")
       ->type_name("FILE");
-  app.add_option("--views", views, "scene: views on the track")
-      ->check(CLI::Range(1, Limits::kMaxViews))
-      ->capture_default_str();
-  app.add_option("--rows", rows, "scene: rows of views")
-      ->check(CLI::Range(1, Limits::kMaxRows))
-      ->capture_default_str();
+  addViewCountOptions(app, views, rows);
   addSizeOption(app, "size", size, "scene: image size in pixels");
   backend.add(app);
   if (auto exit = parseCommandLine(app, argc - 1, argv + 1)) return *exit;
