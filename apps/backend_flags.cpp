@@ -3,28 +3,17 @@
 #include "mvr/error.h"
 
 namespace mvr::app {
-namespace {
-
-// "a|b|c" for the help's type column.
-template <class E, size_t N>
-std::string choices(const NameTable<E, N>& table) {
-  std::string out;
-  for (const auto& entry : table) out += (out.empty() ? "" : "|") + std::string(entry.name);
-  return out;
-}
-
-}  // namespace
 
 void BackendFlags::add(CLI::App& app) {
   InterpOptions& interp = options_.interp;
   app.add_option("--backend", backend_, "renderer")
       ->type_name(choices(kBackendNames))
       ->capture_default_str();
-  pstOption_ = app.add_option("--pst", pst_,
-                              "accuracy mode of mvr and interp: " + alternatives(kPstModeNames) +
-                                  " (default: mvr " + pstModeName(MvrOptions{}.mode) + ", interp " +
-                                  pstModeName(InterpOptions{}.mode) + ")")
-                   ->type_name(choices(kPstModeNames));
+  app.add_option("--pst", pst_,
+                 "accuracy mode of mvr and interp: " + alternatives(kPstModeNames) +
+                     " (default: mvr " + pstModeName(MvrOptions{}.mode) + ", interp " +
+                     pstModeName(InterpOptions{}.mode) + ")")
+      ->type_name(choices(kPstModeNames));
   textureOption_ = app.add_option("--texture", texture_,
                                   "mvr texturing: 1-D texture vectors per slice (vector, default) or "
                                   "the 2D texture with a per-pixel divide (direct)")

@@ -24,7 +24,6 @@ class BackendFlags {
   BackendOptions options_;
   std::string backend_ = "mvr", acquire_, texture_;
   std::optional<std::string> pst_;
-  CLI::Option* pstOption_ = nullptr;
   CLI::Option* textureOption_ = nullptr;
   std::vector<CLI::Option*> interpOptions_;
 };

@@ -52,7 +52,8 @@ std::string cpuModel() {
 struct Config {
   std::vector<std::pair<int, int>> sizes;
   std::vector<int> views;
-  std::vector<std::string> backends;
+  std::vector<std::string> backends;  // specs, as labels
+  std::vector<BackendOptions> options;  // the same specs, parsed
   int repeat = 1, errorViews = 8, rows = 1;
 };
 
@@ -104,8 +105,8 @@ void printRow(const BenchRecord& r) {
 void benchScene(const std::string& name, const Scene& scene, const Config& cfg,
                 std::vector<BenchRecord>& records) {
   std::vector<std::unique_ptr<Renderer>> renderers;
-  for (const std::string& l : cfg.backends)
-    renderers.push_back(makeRenderer(parseBackendSpec(l), scene, PixelType::U8));
+  for (const BackendOptions& options : cfg.options)
+    renderers.push_back(makeRenderer(options, scene, PixelType::U8));
   {  // warm-up: shader compilation and first buffer use are not rendering
     auto [w, h] = cfg.sizes[0];
     ShearingCamera warm(cameraFor(scene, w, h), w, h, 2);
@@ -229,7 +230,7 @@ int runBench(int argc, char** argv) {
   cfg.views = parseViews(!views.empty() ? views : sweep ? "1,2,5,10,20,50,100,200,500,1000" : "100");
   cfg.sizes = parseSizes(!sizes.empty() ? sizes : sweep ? "160x140,640x480,1120x840" : "160x140");
   cfg.backends = splitList(backends);
-  for (const std::string& spec : cfg.backends) parseBackendSpec(spec);  // bad specs before GL
+  for (const std::string& spec : cfg.backends) cfg.options.push_back(parseBackendSpec(spec));  // before GL
 
   // Scenes are built lazily: a 143K teacup is 10 MB of vertices.
   std::vector<std::pair<std::string, std::function<Scene()>>> scenes;

@@ -34,13 +34,9 @@ int consume(int argc, char** argv) {
   const mvr::EpiStreamHeader& h = reader.header();
   const mvr::PixelType type = h.bytesPerChannel == 1 ? mvr::PixelType::U8 : mvr::PixelType::F32;
   if (format.empty()) format = type == mvr::PixelType::U8 ? "png" : "exr";
-  mvr::Manifest layout;
-  layout.views = int(h.views);
-  layout.rows = int(h.rows);
-  layout.width = int(h.width);
-  layout.height = int(h.height);
-  layout.format = format;
-  mvr::ImageSetWriter writer(out, layout);
+  mvr::ImageSetWriter writer(out, mvr::Manifest{.views = int(h.views), .rows = int(h.rows),
+                                                .width = int(h.width), .height = int(h.height),
+                                                .format = format});
   mvr::EpisToViews views(writer, int(h.width), int(h.height), int(h.views), type);
   size_t frames = 0;
   while (auto f = reader.next()) {

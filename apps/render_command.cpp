@@ -159,15 +159,8 @@ int runRender(int argc, char** argv, bool streamCommand) {
 
   if (streaming) return streamTo(*renderer, camera, f.stream, type, f.queue);
 
-  Manifest layout;
-  layout.views = views;
-  layout.rows = rows;
-  layout.width = width;
-  layout.height = height;
-  layout.format = format;
-  layout.order = order;
-  layout.bits = bits;
-  ImageSetWriter writer(out, layout);
+  ImageSetWriter writer(out, Manifest{.views = views, .rows = rows, .width = width, .height = height,
+                                     .format = format, .order = order, .bits = bits});
   // Sink chain: [predistort] -> [reorder] -> writer (+ quilt).
   std::vector<float> lut;
   if (!f.predistort.empty()) lut = loadPredistortionTable(f.predistort, width);

@@ -19,12 +19,25 @@ struct Named {
 template <class E, size_t N>
 using NameTable = std::array<Named<E>, N>;
 
-// "a, b or c"
+// The names joined: separator between them, lastSeparator before the last.
+template <class E, size_t N>
+std::string joinNames(const NameTable<E, N>& table, const char* separator, const char* lastSeparator) {
+  std::string out;
+  for (size_t i = 0; i < N; ++i)
+    out += (i == 0 ? "" : i + 1 == N ? lastSeparator : separator) + std::string(table[i].name);
+  return out;
+}
+
+// "a, b or c", for messages.
 template <class E, size_t N>
 std::string alternatives(const NameTable<E, N>& table) {
-  std::string out;
-  for (size_t i = 0; i < N; ++i) out += (i == 0 ? "" : i + 1 == N ? " or " : ", ") + std::string(table[i].name);
-  return out;
+  return joinNames(table, ", ", " or ");
+}
+
+// "a|b|c", for a help's type column.
+template <class E, size_t N>
+std::string choices(const NameTable<E, N>& table) {
+  return joinNames(table, "|", "|");
 }
 
 template <class E, size_t N>

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 
 #include "mvr/error.h"
 #include "mvr/parallel.h"
@@ -68,9 +67,8 @@ SliceTable SliceTable::build(const ExtremeVertices& v, int height, int bands) {
   table.offsets_.assign(height + 1, 0);
   const auto triangles = uint32_t(v.triangles.size());
   auto band = [&](int k) { return std::pair{height * k / bands, height * (k + 1) / bands}; };
-  auto forBands = [&](const std::function<void(int)>& work) { parallelFor(0, bands, work); };
   // Pass 1: count per scanline (each task writes only its own band).
-  forBands([&](int k) {
+  parallelFor(0, bands, [&](int k) {
     auto [lo, hi] = band(k);
     for (uint32_t tri = 0; tri < triangles; ++tri)
       sliceTriangle(v, tri, lo, hi, [&](int j, const Slice&) { ++table.offsets_[j + 1]; });
@@ -78,7 +76,7 @@ SliceTable SliceTable::build(const ExtremeVertices& v, int height, int bands) {
   for (int j = 0; j < height; ++j) table.offsets_[j + 1] += table.offsets_[j];
   table.slices_.resize(table.offsets_[height]);
   // Pass 2: fill, in triangle order within each scanline.
-  forBands([&](int k) {
+  parallelFor(0, bands, [&](int k) {
     auto [lo, hi] = band(k);
     std::vector<uint32_t> cursor(table.offsets_.begin() + lo, table.offsets_.begin() + hi);
     for (uint32_t tri = 0; tri < triangles; ++tri)
