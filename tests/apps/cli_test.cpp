@@ -181,4 +181,9 @@ TEST(Cli, HelpForEverySubcommand) {
   for (std::string c : {"info", "render", "compare", "bench"}) EXPECT_EQ(run(c + " --help").status, 0) << c;
 }
 
+TEST(Cli, VersionPrintsTheProjectVersion) {
+  const std::string cmd = std::string(MVR_BINARY) + " --version | grep -qx 'mvr [0-9]*\\.[0-9]*\\.[0-9]*'";
+  EXPECT_EQ(std::system(cmd.c_str()), 0);
+}
+
 }  // namespace
