@@ -18,6 +18,10 @@ void BackendFlags::add(CLI::App& app) {
                                   "mvr texturing: 1-D texture vectors per slice (vector, default) or "
                                   "the 2D texture with a per-pixel divide (direct)")
                        ->type_name(choices(kTextureModeNames));
+  builderOption_ = app.add_option("--pst-builder", builder_,
+                                  "mvr GL modes: build PST geometry on the GPU from the GPU slice table "
+                                  "(gpu, default) or on the CPU, uploaded per batch (cpu)")
+                       ->type_name(choices(kPstBuilderNames));
   interpOptions_ = {
       app.add_option("--acquire", acquire_,
                      "interp: source views from the middle of the track (center), both ends "
@@ -60,6 +64,10 @@ BackendOptions BackendFlags::resolve() const {
   if (textureOption_->count()) {
     if (o.backend != Backend::Mvr) fail("--texture", "applies to --backend mvr only");
     o.mvr.texture = parseTextureMode(texture_);
+  }
+  if (builderOption_->count()) {
+    if (o.backend != Backend::Mvr) fail("--pst-builder", "applies to --backend mvr only");
+    o.mvr.builder = parseName(kPstBuilderNames, builder_, "--pst-builder", "builder");
   }
   for (const CLI::Option* option : interpOptions_)
     if (option->count() && o.backend != Backend::Interp)

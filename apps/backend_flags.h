@@ -22,9 +22,10 @@ class BackendFlags {
 
  private:
   BackendOptions options_;
-  std::string backend_ = "mvr", acquire_, texture_;
+  std::string backend_ = "mvr", acquire_, texture_, builder_;
   std::optional<std::string> pst_;
   CLI::Option* textureOption_ = nullptr;
+  CLI::Option* builderOption_ = nullptr;
   std::vector<CLI::Option*> interpOptions_;
 };
 

@@ -11,7 +11,7 @@ namespace mvr {
 
 std::unique_ptr<Renderer> makeRenderer(const BackendOptions& o, const Scene& scene, PixelType type) {
   switch (o.backend) {
-    case Backend::Mvr: return makeMvrRenderer(scene, o.mvr.mode, type, o.mvr.texture);
+    case Backend::Mvr: return makeMvrRenderer(scene, o.mvr.mode, type, o.mvr.texture, o.mvr.builder);
     case Backend::Interp: return makeInterpRenderer(scene, type, o.interp);
     case Backend::Svr: return makeSvrRenderer(scene, type);
     case Backend::SvrLayered: return makeLayeredSvrRenderer(scene, type);
@@ -55,6 +55,16 @@ void interpOption(const std::string& token, InterpOptions& o, const char* where)
   if (token.empty() || *end != '\0') fail(where, "unknown interp option '" + token + "'");
 }
 
+// One mvr option token: a texture mode, or NAME-psts for a PST builder.
+void mvrOption(const std::string& token, MvrOptions& o, const char* where) {
+  for (const auto& builder : kPstBuilderNames)
+    if (token == std::string(builder.name) + "-psts") {
+      o.builder = builder.value;
+      return;
+    }
+  o.texture = parseName(kTextureModeNames, token, where, "mvr option");
+}
+
 }  // namespace
 
 BackendOptions parseBackendSpec(const std::string& spec, const char* where) {
@@ -67,8 +77,7 @@ BackendOptions parseBackendSpec(const std::string& spec, const char* where) {
     validate(o.interp);
   } else if (o.hasPst()) {
     if (field.size() > 1) o.mvr.mode = parseName(kPstModeNames, field[1], where, "mode");
-    if (field.size() > 2) o.mvr.texture = parseName(kTextureModeNames, field[2], where, "texture mode");
-    if (field.size() > 3) fail(where, "'" + spec + "' has too many fields");
+    for (size_t i = 2; i < field.size(); ++i) mvrOption(field[i], o.mvr, where);
   } else if (field.size() > 1) {
     fail(where, "'" + spec + "': " + field[0] + " takes no options");
   }

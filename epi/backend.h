@@ -24,6 +24,7 @@ inline constexpr NameTable<Backend, 5> kBackendNames{{{Backend::Mvr, "mvr"},
 struct MvrOptions {
   PstMode mode = PstMode::Strip;
   TextureMode texture = TextureMode::Vector;  // GL modes; cpu samples directly
+  PstBuilder builder = PstBuilder::Gpu;       // GL modes
 };
 
 struct BackendOptions {
@@ -43,7 +44,8 @@ struct BackendOptions {
 std::unique_ptr<Renderer> makeRenderer(const BackendOptions& options, const Scene& scene,
                                        PixelType type);
 
-// The benchmark's compact form: NAME[:PST[:TEXTURE]] (mvr:exact:direct) or
+// The benchmark's compact form: NAME[:PST[:OPTION...]] with a texture mode
+// or a PST builder (cpu-psts, gpu-psts) as options (mvr:exact:direct) or
 // interp[:ACQUIRE[:OPTION...]] with options L (layers), cT (coalesce T
 // pixels), vis (visibility), bB (budget), sK (splits), oP (overlap P
 // pixels) and an accuracy mode, e.g. interp:hierarchical:2:c0.5:vis:b5:exact.

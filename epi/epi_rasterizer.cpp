@@ -2,8 +2,10 @@
 
 namespace mvr {
 
-std::unique_ptr<EpiRasterizer> makeRasterizer(PstMode mode, PixelType type, const EpiShading& shading) {
-  return mode == PstMode::Cpu ? makeSpanRasterizer(type, shading) : makeGlRasterizer(mode, type, shading);
+std::unique_ptr<EpiRasterizer> makeRasterizer(PstMode mode, PixelType type, const EpiShading& shading,
+                                              PstBuilder builder) {
+  return mode == PstMode::Cpu ? makeSpanRasterizer(type, shading)
+                              : makeGlRasterizer(mode, type, shading, builder);
 }
 
 }  // namespace mvr

@@ -32,6 +32,13 @@ inline TextureMode parseTextureMode(const std::string& name) {  // throws on unk
   return parseName(kTextureModeNames, name, "--texture", "mode");
 }
 
+// Where the GL modes build PST geometry: on the GPU from the GPU slice
+// table (the default), or on the CPU and uploaded per batch (the reference
+// the GPU path is tested against; the texture-vector passes always use it).
+enum class PstBuilder { Gpu, Cpu };
+inline constexpr NameTable<PstBuilder, 2> kPstBuilderNames{
+    {{PstBuilder::Gpu, "gpu"}, {PstBuilder::Cpu, "cpu"}}};
+
 // What the rasterizers shade with beyond the lit colours: the scene's
 // lights, materials and textures and the plan's passes. No scene: diffuse
 // only.
@@ -64,12 +71,14 @@ class EpiRasterizer {
 // PstMode::Cpu, else the GL rasterizer in that mode (needs a current GL
 // context).
 std::unique_ptr<EpiRasterizer> makeRasterizer(PstMode mode, PixelType type,
-                                              const EpiShading& shading = {});
+                                              const EpiShading& shading = {},
+                                              PstBuilder builder = PstBuilder::Gpu);
 
 // Exact spans on every core of the thread pool (mvr/parallel.h).
 std::unique_ptr<EpiRasterizer> makeSpanRasterizer(PixelType type, const EpiShading& shading = {});
 // Quad, strip or exact; needs a current GL context.
 std::unique_ptr<EpiRasterizer> makeGlRasterizer(PstMode mode, PixelType type,
-                                                const EpiShading& shading = {});
+                                                const EpiShading& shading = {},
+                                                PstBuilder builder = PstBuilder::Gpu);
 
 }  // namespace mvr

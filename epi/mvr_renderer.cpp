@@ -9,12 +9,13 @@ namespace {
 
 class MvrRenderer final : public Renderer {
  public:
-  MvrRenderer(const Scene& scene, PstMode mode, PixelType type, TextureMode texture)
+  MvrRenderer(const Scene& scene, PstMode mode, PixelType type, TextureMode texture,
+              PstBuilder builder)
       : scene_(scene), mode_(mode),
         textures_(shading::TextureSet::load(scene)),
         environment_(shading::EnvironmentSet::load(scene)),
         shading_{&scene, shading::planShading(scene), &textures_, &environment_, texture},
-        rasterizer_(makeRasterizer(mode, type, shading_)) {}
+        rasterizer_(makeRasterizer(mode, type, shading_, builder)) {}
 
   std::string name() const override { return "mvr"; }
   FrameOrder order() const override { return FrameOrder::Epi; }
@@ -71,8 +72,8 @@ class MvrRenderer final : public Renderer {
 }  // namespace
 
 std::unique_ptr<Renderer> makeMvrRenderer(const Scene& scene, PstMode mode, PixelType type,
-                                          TextureMode texture) {
-  return std::make_unique<MvrRenderer>(scene, mode, type, texture);
+                                          TextureMode texture, PstBuilder builder) {
+  return std::make_unique<MvrRenderer>(scene, mode, type, texture, builder);
 }
 
 }  // namespace mvr

@@ -12,6 +12,7 @@ namespace mvr {
 // GL modes need a current context; cpu runs on the thread pool and always
 // samples textures directly.
 std::unique_ptr<Renderer> makeMvrRenderer(const Scene& scene, PstMode mode, PixelType type,
-                                          TextureMode texture = TextureMode::Vector);
+                                          TextureMode texture = TextureMode::Vector,
+                                          PstBuilder builder = PstBuilder::Gpu);
 
 }  // namespace mvr

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "epi/gpu/pst_geometry.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
 #include "shading/lighting.h"
@@ -78,6 +79,70 @@ void prepare() {
 }
 float attr(int i) { return mix(vA0[i >> 2][i & 3], vA1[i >> 2][i & 3], gU) / gInvW; }
 )";
+
+// The same outputs as kSliverVertex and kExactVertex, from vertices pulled
+// out of the GPU slice table (epi/gpu/pst_geometry.h) instead of vertex
+// attributes; passAttribute() (per pass) reads an endpoint's attribute i.
+const char* const kPulledSliverVertex = R"(
+uniform vec2 uScale;
+invariant gl_Position;
+noperspective out float vView;
+flat out vec4 vFlat;
+noperspective out vec4 vA[NV];
+void main() {
+  PstVertex p = pullPstVertex();
+  float depth = p.e0.depth + (p.e1.depth - p.e0.depth) * p.u;
+  gl_Position = vec4(vec2(p.x, p.y) * uScale - 1.0, depth, 1.0);
+  vView = p.r - 0.5;
+  vFlat = vec4(p.front ? 1.0 : -1.0, p.material, 0.0, 0.0);
+  float invW = p.e0.invW + (p.e1.invW - p.e0.invW) * p.u;
+  for (int c = 0; c < NV; ++c) vA[c] = vec4(0.0);
+  for (int i = 0; i < NA; ++i) {
+    float a0 = passAttribute(p.e0, i, p.front), a1 = passAttribute(p.e1, i, p.front);
+    vA[i >> 2][i & 3] = (a0 + (a1 - a0) * p.u) / invW;
+  }
+}
+)";
+
+const char* const kPulledExactVertex = R"(
+uniform vec2 uScale;
+invariant gl_Position;
+noperspective out vec2 vNumDen;
+noperspective out float vView;
+flat out vec4 vEnds;
+flat out vec4 vFlat;
+flat out vec4 vA0[NV];
+flat out vec4 vA1[NV];
+void main() {
+  PstVertex p = pullPstVertex();
+  gl_Position = vec4(vec2(p.x, p.y) * uScale - 1.0, p.e0.depth, 1.0);
+  vNumDen = vec2(p.x - xAt(p.e0, p.r), widthAt(p.e0, p.e1, p.r));
+  vView = p.r - 0.5;
+  vEnds = vec4(p.e0.depth, p.e1.depth, p.e0.invW, p.e1.invW);
+  vFlat = vec4(p.front ? 1.0 : -1.0, p.material, 0.0, 0.0);
+  for (int c = 0; c < NV; ++c) vA0[c] = vA1[c] = vec4(0.0);
+  for (int i = 0; i < NA; ++i) {
+    vA0[i >> 2][i & 3] = passAttribute(p.e0, i, p.front);
+    vA1[i >> 2][i & 3] = passAttribute(p.e1, i, p.front);
+  }
+}
+)";
+
+// Where a pass's attributes lie in the endpoint records (the order
+// EpiPass::gather copies them in).
+std::string passAttributeGlsl(shading::Pass pass, const shading::ShadingPlan& plan) {
+  const int head = PstGeometry::kRecordHead;
+  std::string body;
+  switch (pass) {
+    case shading::Pass::Diffuse: body = "endAttribute(e, (front ? 4 : 7) + i)"; break;
+    case shading::Pass::Texture: body = "endAttribute(e, " + std::to_string(head + plan.uv) + " + i)"; break;
+    case shading::Pass::ViewDependent:
+      body = "endAttribute(e, i < 6 ? " + std::to_string(head + plan.position) + " + i : " +
+             std::to_string(head + plan.reflect - 6) + " + i)";
+      break;
+  }
+  return "float passAttribute(End e, int i, bool front) { return " + body + "; }\n";
+}
 
 const char* const kAttributeHelpers = R"(
 vec2 attr2(int i) { return vec2(attr(i), attr(i + 1)); }
@@ -170,8 +235,10 @@ int passAttributeCount(shading::Pass pass, const EpiShading& shading) {
 
 }  // namespace
 
-EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading)
+EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bool pulled)
     : mode_(mode), pass_(pass), shading_(shading), count_(passAttributeCount(pass, shading)) {
+  if (pulled && (linear() || shading.sliceVectors))
+    fail("EpiPass", "texture-vector passes take their vertices from the CPU");
   if (shading.sliceVectors && pass != shading::Pass::Texture)
     fail("EpiPass", "slices coloured by vectors take the texture pass only");
   if (pass != shading::Pass::Diffuse && !shading.scene && !shading.sliceVectors)
@@ -195,9 +262,14 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading)
     else
       fragment += kTextureDirectMain;
   }
-  program_ = gl::linkProgram(std::string("epi-") + pstModeName(mode) + "-" + shading::passName(pass),
-                             {{GL_VERTEX_SHADER, header + (exact ? kExactVertex : kSliverVertex)},
-                              {GL_FRAGMENT_SHADER, fragment}});
+  std::string vertex = header + (exact ? kExactVertex : kSliverVertex);
+  if (pulled)
+    vertex = header + "#define NA " + std::to_string(count_) + "\n" +
+             PstGeometry::glslPull(PstGeometry::kRecordHead + shading.plan.extraCount) +
+             passAttributeGlsl(pass, shading.plan) + (exact ? kPulledExactVertex : kPulledSliverVertex);
+  program_ = gl::linkProgram(std::string("epi-") + pstModeName(mode) + "-" + shading::passName(pass) +
+                                 (pulled ? "-pulled" : ""),
+                             {{GL_VERTEX_SHADER, vertex}, {GL_FRAGMENT_SHADER, fragment}});
   vao_ = gl::VertexArray::create();
   if (pass != shading::Pass::Diffuse && shading.scene) shading::setLightUniforms(program_, *shading.scene);
 }

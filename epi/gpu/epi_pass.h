@@ -19,7 +19,10 @@ namespace mvr {
 
 class EpiPass {
  public:
-  EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading);
+  // pulled: the vertex shader pulls PST vertices from the GPU slice table
+  // (PstGeometry) instead of reading the CPU-built layouts below; not for
+  // the texture-vector passes.
+  EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bool pulled = false);
 
   shading::Pass pass() const { return pass_; }
   int attributeCount() const { return count_; }
@@ -33,6 +36,7 @@ class EpiPass {
   // and blend.
   bool first() const;
   int stride() const;  // floats per vertex
+  const gl::Program& program() const { return program_; }
   // This pass's attributes of one endpoint, divided by w.
   void gather(const SliceEnd& e, bool front, float* out) const;
   // Uses the program and sets its uniforms and the blend and depth state.

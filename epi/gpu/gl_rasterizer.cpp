@@ -12,12 +12,19 @@
 //          exactly.
 // Scenes that need more than the diffuse pass accumulate the passes
 // (epi/epi_pass.h) in a float target.
+//
+// Where the geometry is built: on the GPU (epi/gpu/pst_geometry.h: the
+// slice table stays in GPU memory, a compute pass and a prefix sum per
+// batch, vertices pulled by the passes' vertex shaders), or on the CPU
+// (below: vertices emitted per batch and uploaded). The texture-vector
+// passes (1-D vectors extracted per slice on the CPU) take the CPU path.
 #include <algorithm>
 #include <cmath>
 #include <optional>
 
 #include "epi/epi_rasterizer.h"
 #include "epi/gpu/epi_pass.h"
+#include "epi/gpu/pst_geometry.h"
 #include "epi/pst.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
@@ -46,12 +53,15 @@ int sliverCount(const Pst& pst, const PstPiece& piece) {
 
 class GlRasterizer final : public EpiRasterizer {
  public:
-  GlRasterizer(PstMode mode, PixelType type, const EpiShading& shading)
+  GlRasterizer(PstMode mode, PixelType type, const EpiShading& shading, PstBuilder builder)
       : mode_(mode), type_(type), shading_(shading) {
+    const bool vectors = shading_.sliceVectors ||
+                         (shading_.plan.texture && shading_.textureMode == TextureMode::Vector);
+    if (builder == PstBuilder::Gpu && !vectors) geometry_.emplace(mode);
     if (shading_.sliceVectors)
       passes_.emplace_back(mode, shading::Pass::Texture, shading_);
     else
-      for (shading::Pass p : shading_.plan.passes()) passes_.emplace_back(mode, p, shading_);
+      for (shading::Pass p : shading_.plan.passes()) passes_.emplace_back(mode, p, shading_, pulled());
     if (shading_.scene) {
       static const shading::TextureSet kNoTextures;
       static const shading::EnvironmentSet kNoMaps;
@@ -63,9 +73,6 @@ class GlRasterizer final : public EpiRasterizer {
 
   void rasterize(const ExtremeVertices& v, const SliceTableView& slices, const ShearingCamera& cam,
                  int row, FrameSink& sink, RenderStats& stats) override {
-    // PST geometry is still emitted on the CPU, so this reads the host
-    // table; GPU PST generation (issue 14) will read slices.device().
-    const SliceTable& table = slices.host();
     GLint maxSize = 4096;
     gl::GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     const int n = cam.views(), w = cam.width(), h = cam.height();
@@ -83,6 +90,10 @@ class GlRasterizer final : public EpiRasterizer {
     const glm::vec3 eye0(cam.eye(0, row)), eyeStep(cam.eye(1, row) - cam.eye(0, row));
     gl::Enable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
     if (materials_) materials_->bind(EpiPass::kTextureUnit);
+    if (pulled()) {
+      ScopedStage s(stats.times, "pst");
+      geometry_->upload(v);
+    }
     Progress progress("mvr " + std::string(pstModeName(mode_)), h);
     std::vector<Image> epis(batch);
     for (int first = 0; first < h; first += batch) {
@@ -91,12 +102,26 @@ class GlRasterizer final : public EpiRasterizer {
       for (int c = 0; c < chunks; ++c) {
         const int view0 = c * chunkRows, views = std::min(chunkRows, n - view0);
         target.clear();
+        if (pulled() && c == 0) {
+          ScopedStage s(stats.times, "pst");
+          geometry_->build(slices.device(), first, count, n);
+          // The build's compute passes use storage bindings of their own.
+          if (materials_) materials_->bind(EpiPass::kTextureUnit);
+        }
         for (const EpiPass& pass : passes_) {
+          if (pulled()) {
+            ScopedStage s(stats.times, "raster");
+            pass.begin(scale, eye0, eyeStep);
+            geometry_->bind(pass.program(), chunkRows, view0);
+            geometry_->draw();
+            gl::Finish();
+            continue;
+          }
           {
             ScopedStage s(stats.times, "pst");
             clearGeometry();
             for (int k = 0; k < count; ++k)
-              emitScanline(pass, v, table, first + k, n, float(k * chunkRows - view0));
+              emitScanline(pass, v, slices.host(), first + k, n, float(k * chunkRows - view0));
           }
           ScopedStage s(stats.times, "raster");
           pass.begin(scale, eye0, eyeStep);
@@ -116,12 +141,15 @@ class GlRasterizer final : public EpiRasterizer {
     setDepthConvention();
     gl::checkError("EPI rasterization");
     stats.counters["epis_per_draw"] = batch;
+    stats.notes["pst_builder"] = pulled() ? "gpu" : "cpu";
     stats.counters["pst_vertices"] += double(verticesEmitted_);
     if (vectorTexels_) stats.counters["texture_vector_texels"] += double(vectorTexels_);
     verticesEmitted_ = vectorTexels_ = 0;
   }
 
  private:
+  bool pulled() const { return geometry_.has_value(); }
+
   void clearGeometry() {
     vertices_.clear();
     indices_.clear();
@@ -265,6 +293,7 @@ class GlRasterizer final : public EpiRasterizer {
   std::vector<uint32_t> indices_;
   shading::TextureVectors vectors_;
   std::optional<shading::GpuMaterials> materials_;  // with a scene
+  std::optional<PstGeometry> geometry_;             // PSTs built on the GPU
   gl::Texture vectorTexture_;
   size_t verticesEmitted_ = 0, vectorTexels_ = 0;
 };
@@ -272,9 +301,9 @@ class GlRasterizer final : public EpiRasterizer {
 }  // namespace
 
 std::unique_ptr<EpiRasterizer> makeGlRasterizer(PstMode mode, PixelType type,
-                                                const EpiShading& shading) {
+                                                const EpiShading& shading, PstBuilder builder) {
   if (mode == PstMode::Cpu) fail("--pst", "cpu is not a GL mode");
-  return std::make_unique<GlRasterizer>(mode, type, shading);
+  return std::make_unique<GlRasterizer>(mode, type, shading, builder);
 }
 
 }  // namespace mvr

@@ -1,14 +1,13 @@
 #include "slicing/gpu/gpu_slice_table.h"
 
-#include <vector>
-
 namespace mvr {
 
 GpuSliceTable GpuSliceTable::upload(const SliceTable& table) {
   const auto slices = table.slices();
   const auto offsets = table.offsets();
   return GpuSliceTable(gl::makeBuffer(slices.data(), slices.size()),
-                       gl::makeBuffer(offsets.data(), offsets.size()), table.height(), slices.size());
+                       gl::makeBuffer(offsets.data(), offsets.size()),
+                       std::vector<uint32_t>(offsets.begin(), offsets.end()));
 }
 
 SliceTable GpuSliceTable::download() const {

@@ -5,6 +5,8 @@
 // Upload and download make the CPU slicer's table and a GPU-built one
 // interchangeable, so the CPU slicer stays the oracle.
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "mvr/gl/gl_handles.h"
 #include "slicing/slice_table.h"
@@ -21,13 +23,19 @@ class GpuSliceTable {
   size_t sliceCount() const { return count_; }
   GLuint slicesBuffer() const { return slices_.id(); }
   GLuint offsetsBuffer() const { return offsets_.id(); }
+  // The height + 1 offsets, also kept on the host (O(height)): callers
+  // batch scanlines by slice ranges without touching the slices.
+  const std::vector<uint32_t>& offsets() const { return hostOffsets_; }
   // Both buffers to shader storage binding points.
   void bind(GLuint slicesBinding, GLuint offsetsBinding) const;
 
  private:
-  GpuSliceTable(gl::Buffer slices, gl::Buffer offsets, int height, size_t count)
-      : slices_(std::move(slices)), offsets_(std::move(offsets)), height_(height), count_(count) {}
+  GpuSliceTable(gl::Buffer slices, gl::Buffer offsets, std::vector<uint32_t> hostOffsets)
+      : slices_(std::move(slices)), offsets_(std::move(offsets)),
+        hostOffsets_(std::move(hostOffsets)), height_(int(hostOffsets_.size()) - 1),
+        count_(hostOffsets_.back()) {}
   gl::Buffer slices_, offsets_;
+  std::vector<uint32_t> hostOffsets_;
   int height_ = 0;
   size_t count_ = 0;
 };

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <vector>
 
 #include "mvr/io/scene_io.h"
 #include "tests/support/render_helpers.h"
@@ -80,6 +81,64 @@ TEST_F(MvrVsSvr, QuadIsMeasurablyWorseOnATwistedScene) {
   EXPECT_GE(exact.minPsnr, 40.0);
   EXPECT_GE(strip.minPsnr, 35.0);
   EXPECT_LT(quad.minPsnr, strip.minPsnr - 3.0) << "quad " << quad.minPsnr << " strip " << strip.minPsnr;
+}
+
+// PST geometry built on the GPU (vertex pulling from the GPU slice table)
+// against the same geometry built on the CPU. Both describe the same
+// triangles; their vertices differ only by float rounding (the shader may
+// contract a multiply-add the CPU rounds twice), a few 1e-5 px at these
+// widths. A pixel changes only where its centre lies that close to an
+// edge, or where a colour sits on an 8-bit rounding boundary: at most a
+// few pixels in 10^4, and never by more than one step away from edges.
+// Scenes: the teacup (culling, many thin slices), the twisted quad (strip
+// with many slivers), the shiny scene (specular pass: depth EQUAL across
+// passes needs the same depths in every pass) and the mirror (reflection).
+TEST_F(MvrVsSvr, GpuBuiltPstsMatchCpuBuiltPsts) {
+  struct Case {
+    std::string name;
+    Scene scene;
+    ShearingCamera cam;
+  };
+  Scene twisted = twistedScene();
+  CameraSpec spec;
+  spec.distance = 4, spec.planeWidth = 3, spec.trackLeft = -3, spec.trackRight = 3;
+  spec.nearDistance = 1, spec.farDistance = 9;
+  std::vector<Case> cases;
+  for (const char* name : {"default.json", "shiny.json", "mirror.json"}) {
+    Scene s = loadScene(test::assetPath(name));
+    const ShearingCamera cam(*s.camera, 96, 72, 9);
+    cases.push_back({name, std::move(s), cam});
+  }
+  cases.push_back({"twisted", twisted, ShearingCamera(spec, 96, 64, 16)});
+  for (const Case& c : cases) {
+    for (PstMode mode : {PstMode::Quad, PstMode::Strip, PstMode::Exact}) {
+      auto gpu = makeMvrRenderer(c.scene, mode, PixelType::U8, TextureMode::Vector, PstBuilder::Gpu);
+      auto cpu = makeMvrRenderer(c.scene, mode, PixelType::U8, TextureMode::Vector, PstBuilder::Cpu);
+      RenderStats gpuStats, cpuStats;
+      const auto gpuViews = test::renderViews(*gpu, c.cam, gpuStats);
+      const auto cpuViews = test::renderViews(*cpu, c.cam, cpuStats);
+      EXPECT_EQ(gpuStats.notes["pst_builder"], "gpu");
+      EXPECT_EQ(cpuStats.notes["pst_builder"], "cpu");
+      const auto d = test::compareViews(cpuViews, gpuViews);
+      const std::string label = std::string(pstModeName(mode)) + " " + c.name;
+      EXPECT_GE(d.minIdentical, 0.999) << label;
+      EXPECT_GE(d.minClose, 0.9995) << label;
+      EXPECT_GE(d.minPsnr, 45.0) << label;
+    }
+  }
+}
+
+// The texture-vector pass extracts its vectors on the CPU: a textured
+// scene keeps CPU-built geometry (and says so); direct texturing pulls.
+TEST_F(MvrVsSvr, TextureVectorsKeepCpuBuiltPsts) {
+  Scene scene = loadScene(test::assetPath("textured.json"));
+  ShearingCamera cam(*scene.camera, 48, 36, 4);
+  for (TextureMode texture : {TextureMode::Vector, TextureMode::Direct}) {
+    auto mvr = makeMvrRenderer(scene, PstMode::Strip, PixelType::U8, texture, PstBuilder::Gpu);
+    RenderStats stats;
+    test::renderViews(*mvr, cam, stats);
+    EXPECT_EQ(stats.notes["pst_builder"], texture == TextureMode::Vector ? "cpu" : "gpu");
+  }
 }
 
 TEST_F(MvrVsSvr, OneAndTwoViews) {

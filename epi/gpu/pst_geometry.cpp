@@ -1,0 +1,267 @@
+#include "epi/gpu/pst_geometry.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "mvr/error.h"
+#include "mvr/gl/gl_program.h"
+
+namespace mvr {
+namespace {
+
+// What the count pass and the vertex shaders share: the slice table, the
+// endpoint records, and sliceEnds() as in slicing/slice_table.cpp.
+const char* const kLibrary = R"(
+layout(std430, binding = 2) readonly buffer Records { float uRecords[]; };
+layout(std430, binding = 3) readonly buffer Triangles { uvec4 uTriangles[]; };  // a, b, c, material | cull << 31
+layout(std430, binding = 4) readonly buffer Slices { uvec4 uSlices[]; };  // triangle, tLong, tShort, flags
+uniform uint uFirstSlice;  // the batch: slices [uFirstSlice, uFirstSlice + uSliceCount)
+uniform uint uSliceCount;
+uniform float uViews;
+
+// A slice endpoint: a point on the edge from vertex p to vertex q.
+struct End { uint p, q; float t, x0, dx, depth, invW; };
+
+float recordAt(uint p, uint q, float t, int at) {
+  float a = uRecords[p * uint(RECORD) + uint(at)], b = uRecords[q * uint(RECORD) + uint(at)];
+  return a + (b - a) * t;
+}
+float endAttribute(End e, int at) { return recordAt(e.p, e.q, e.t, at); }
+End endAt(uint p, uint q, float t) {
+  End e;
+  e.p = p; e.q = q; e.t = t;
+  e.x0 = recordAt(p, q, t, 0);
+  e.dx = recordAt(p, q, t, 1);
+  e.depth = recordAt(p, q, t, 2);
+  e.invW = recordAt(p, q, t, 3);
+  return e;
+}
+void sliceEnds(uint s, out End e0, out End e1, out uint word) {
+  uvec4 slice = uSlices[s];
+  uvec4 tri = uTriangles[slice.x];
+  word = tri.w;
+  uint flags = slice.w;
+  if ((flags & 256u) != 0u) {  // a segment
+    e0 = endAt(tri.x, tri.x, 0.0);
+    e1 = endAt(tri.y, tri.y, 0.0);
+    return;
+  }
+  uint a = tri[flags & 3u], b = tri[(flags >> 2) & 3u], c = tri[(flags >> 4) & 3u];
+  End onLong = endAt(a, c, uintBitsToFloat(slice.y));
+  End onShort = (flags & 64u) != 0u ? endAt(b, c, uintBitsToFloat(slice.z))
+                                    : endAt(a, b, uintBitsToFloat(slice.z));
+  bool swapped = (flags & 128u) != 0u;
+  e0 = swapped ? onShort : onLong;
+  e1 = swapped ? onLong : onShort;
+}
+float xAt(End e, float r) { return e.x0 + (r - 0.5) * e.dx; }
+float widthAt(End e0, End e1, float r) { return xAt(e1, r) - xAt(e0, r); }
+)";
+
+// Per slice: its pieces (epi/pst.cpp) and their sliver counts
+// (sliverCount in gl_rasterizer.cpp), as vertex counts for the prefix sum
+// and a packed record for the vertex shaders: (K0 | K1 << 16, batch
+// scanline | flags << 16), flags: 1 split at r*, 2 piece 0 faces front,
+// 4 piece 1 faces front. K = 0: the piece is absent or culled.
+const char* const kCount = R"(
+layout(local_size_x = 64) in;
+layout(std430, binding = 5) readonly buffer Offsets { uint uOffsets[]; };
+layout(std430, binding = 6) writeonly buffer FirstVertex { uint uFirstVertex[]; };
+layout(std430, binding = 7) writeonly buffer Pieces { uvec2 uPieces[]; };
+uniform uint uFirstScanline;
+uniform uint uScanlines;
+uniform bool uStrip;
+
+uint slivers(End e0, End e1, float top, float bottom) {
+  if (!uStrip) return 1u;
+  float dTop = widthAt(e0, e1, top), dBottom = widthAt(e0, e1, bottom);
+  float widest = max(abs(dTop), abs(dBottom));
+  float perspective = 1.0 - min(e0.invW, e1.invW) / max(e0.invW, e1.invW);
+  float need = max(abs(dTop - dBottom) / 2.0, widest * perspective / 2.0);
+  float cap = clamp(ceil(widest), 1.0, 65535.0);
+  return uint(clamp(ceil(need), 1.0, cap));
+}
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= uSliceCount) return;
+  uint s = uFirstSlice + i;
+  uint lo = uFirstScanline, hi = uFirstScanline + uScanlines - 1u;  // last j with offsets[j] <= s
+  while (lo < hi) {
+    uint mid = (lo + hi + 1u) >> 1;
+    if (uOffsets[mid] <= s) lo = mid; else hi = mid - 1u;
+  }
+  End e0, e1;
+  uint word;
+  sliceEnds(s, e0, e1, word);
+  bool cull = (word >> 31) != 0u;
+  float n = uViews, dL = widthAt(e0, e1, 0.0), dR = widthAt(e0, e1, n);
+  uint k0 = 0u, k1 = 0u, flags = 0u;
+  if ((dL < 0.0 && dR > 0.0) || (dL > 0.0 && dR < 0.0)) {
+    float rStar = n * dL / (dL - dR);  // Halle 5.6.3: the edge-on view
+    flags = 1u | (dL > 0.0 ? 2u : 0u) | (dR > 0.0 ? 4u : 0u);
+    if (rStar > 0.0 && (dL > 0.0 || !cull)) k0 = slivers(e0, e1, 0.0, rStar);
+    if (n > rStar && (dR > 0.0 || !cull)) k1 = slivers(e0, e1, rStar, n);
+  } else if (dL != 0.0 || dR != 0.0) {
+    bool front = dL + dR > 0.0;
+    flags = front ? 2u : 0u;
+    if (front || !cull) k0 = slivers(e0, e1, 0.0, n);
+  }
+  uFirstVertex[i] = 6u * (k0 + k1);
+  uPieces[i] = uvec2(k0 | (k1 << 16), (lo - uFirstScanline) | (flags << 16));
+}
+)";
+
+// Vertex v of the batch: the slice whose first vertex is the last one at
+// or before v; then piece, sliver and corner. Corners 0-5 are (ruling k,
+// top), (k, bottom), (k + 1, top), (k + 1, top), (k, bottom), (k + 1,
+// bottom): bit c of 0x2C says ruling k + 1, of 0x32 the bottom row.
+const char* const kPull = R"(
+layout(std430, binding = 6) readonly buffer FirstVertex { uint uFirstVertex[]; };
+layout(std430, binding = 7) readonly buffer Pieces { uvec2 uPieces[]; };
+uniform int uChunkRows;
+uniform int uView0;
+
+struct PstVertex {
+  End e0, e1;
+  float x, y;  // framebuffer position (pixels)
+  float r;     // EPI row coordinate
+  float u;     // screen-space slice parameter
+  bool front;
+  float material;
+};
+
+PstVertex pullPstVertex() {
+  uint v = uint(gl_VertexID), lo = 0u, hi = uSliceCount - 1u;
+  while (lo < hi) {
+    uint mid = (lo + hi + 1u) >> 1;
+    if (uFirstVertex[mid] <= v) lo = mid; else hi = mid - 1u;
+  }
+  uint local = v - uFirstVertex[lo];
+  uvec2 piece = uPieces[lo];
+  uint k0 = piece.x & 0xFFFFu, k1 = piece.x >> 16, flags = piece.y >> 16;
+  PstVertex p;
+  uint word;
+  sliceEnds(uFirstSlice + lo, p.e0, p.e1, word);
+  p.material = float(word & 0x7FFFFFFFu);
+  float n = uViews, top = 0.0, bottom = n;
+  bool second = local >= 6u * k0;
+  if (second) local -= 6u * k0;
+  if ((flags & 1u) != 0u) {
+    float dL = widthAt(p.e0, p.e1, 0.0), dR = widthAt(p.e0, p.e1, n);
+    float rStar = n * dL / (dL - dR);
+    if (second) top = rStar; else bottom = rStar;
+  }
+  p.front = (flags & (second ? 4u : 2u)) != 0u;
+  uint slivers = second ? k1 : k0, corner = local % 6u;
+  uint ruling = local / 6u + ((0x2Cu >> corner) & 1u);
+  p.r = ((0x32u >> corner) & 1u) != 0u ? bottom : top;
+  // Rulings evenly spaced in the 3D parameter, as the CPU's strips.
+  float s = float(ruling) / float(slivers), iw0 = p.e0.invW, iw1 = p.e1.invW;
+  p.u = ruling == slivers ? 1.0 : s * iw0 / ((1.0 - s) * iw1 + s * iw0);
+  p.x = xAt(p.e0, p.r) + p.u * widthAt(p.e0, p.e1, p.r);
+  p.y = float(int(piece.y & 0xFFFFu) * uChunkRows - uView0) + p.r;
+  return p;
+}
+)";
+
+std::string recordDefine(int stride) { return "#define RECORD " + std::to_string(stride) + "\n"; }
+
+struct DrawArraysIndirectCommand {
+  uint32_t count, instanceCount, first, baseInstance;
+};
+
+}  // namespace
+
+std::string PstGeometry::glslPull(int recordStride) {
+  return recordDefine(recordStride) + kLibrary + kPull;
+}
+
+PstGeometry::PstGeometry(PstMode mode) : mode_(mode) {
+  if (mode == PstMode::Cpu) fail("PstGeometry", "cpu is not a GL mode");
+  const DrawArraysIndirectCommand command{0, 1, 0, 0};
+  indirect_ = gl::makeBuffer(&command, 1, GL_DYNAMIC_STORAGE_BIT);
+  vao_ = gl::VertexArray::create();
+}
+
+void PstGeometry::upload(const ExtremeVertices& v) {
+  const int extras = v.extraCount, stride = kRecordHead + extras;
+  if (stride != recordStride_ || !count_) {
+    count_ = gl::linkProgram("pst-count", {{GL_COMPUTE_SHADER, gl::glslHeader() +
+                                                                   recordDefine(stride) + kLibrary + kCount}});
+    recordStride_ = stride;
+  }
+  std::vector<float> records(v.vertexCount() * size_t(stride));
+  for (size_t i = 0; i < v.vertexCount(); ++i) {
+    float* r = records.data() + i * stride;
+    const float head[kRecordHead] = {v.x0[i], v.dx[i], v.depth[i], v.invW[i],
+                                     v.frontOverW[i].r, v.frontOverW[i].g, v.frontOverW[i].b,
+                                     v.backOverW[i].r, v.backOverW[i].g, v.backOverW[i].b};
+    std::copy_n(head, kRecordHead, r);
+    std::copy_n(v.extrasOverW.data() + i * extras, extras, r + kRecordHead);
+  }
+  std::vector<glm::uvec4> triangles(v.triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    const uint32_t material = v.materials.empty() ? 0 : v.materials[t];
+    const uint32_t cull = v.cullBack.empty() || !v.cullBack[t] ? 0u : 1u << 31;
+    triangles[t] = glm::uvec4(v.triangles[t], material | cull);
+  }
+  records_ = gl::makeBuffer(records.data(), records.size());
+  triangles_ = gl::makeBuffer(triangles.data(), triangles.size());
+}
+
+void PstGeometry::build(const GpuSliceTable& table, int first, int count, int views) {
+  const auto& offsets = table.offsets();
+  table_ = &table;
+  firstSlice_ = offsets[first];
+  sliceCount_ = offsets[first + count] - offsets[first];
+  views_ = views;
+  if (sliceCount_ > capacity_) {
+    capacity_ = sliceCount_ + sliceCount_ / 4;
+    firstVertex_ = gl::makeBuffer<uint32_t>(nullptr, capacity_);
+    pieces_ = gl::makeBuffer<glm::uvec2>(nullptr, capacity_);
+  }
+  if (sliceCount_ > 0) {
+    gl::UseProgram(count_.id());
+    setSliceUniforms(count_);
+    gl::ProgramUniform1ui(count_.id(), gl::GetUniformLocation(count_.id(), "uFirstScanline"), first);
+    gl::ProgramUniform1ui(count_.id(), gl::GetUniformLocation(count_.id(), "uScanlines"), count);
+    gl::setUniform(count_, "uStrip", mode_ == PstMode::Strip ? 1 : 0);
+    bindBuffers();
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kOffsets, table.offsetsBuffer());
+    gl::DispatchCompute((sliceCount_ + 63) / 64, 1, 1);
+    gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+  prefixSum_.exclusive(firstVertex_.id(), 0, sliceCount_, indirect_.id(), 0);
+}
+
+void PstGeometry::setSliceUniforms(const gl::Program& p) const {
+  gl::ProgramUniform1ui(p.id(), gl::GetUniformLocation(p.id(), "uFirstSlice"), firstSlice_);
+  gl::ProgramUniform1ui(p.id(), gl::GetUniformLocation(p.id(), "uSliceCount"), sliceCount_);
+  gl::setUniform(p, "uViews", float(views_));
+}
+
+void PstGeometry::bindBuffers() const {
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kRecords, records_.id());
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTriangles, triangles_.id());
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kSlices, table_->slicesBuffer());
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kFirstVertex, firstVertex_.id());
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kPieces, pieces_.id());
+}
+
+void PstGeometry::bind(const gl::Program& program, int chunkRows, int view0) const {
+  setSliceUniforms(program);
+  gl::setUniform(program, "uChunkRows", chunkRows);
+  gl::setUniform(program, "uView0", view0);
+  bindBuffers();
+}
+
+void PstGeometry::draw() const {
+  if (sliceCount_ == 0) return;
+  gl::BindVertexArray(vao_.id());
+  gl::BindBuffer(GL_DRAW_INDIRECT_BUFFER, indirect_.id());
+  gl::DrawArraysIndirect(GL_TRIANGLES, nullptr);
+  gl::BindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+}
+
+}  // namespace mvr

@@ -1,0 +1,69 @@
+#pragma once
+// PSTs built on the GPU (Halle 5.6.3, 6.4.3): the quad, strip and exact
+// geometry of epi/gpu/gl_rasterizer.cpp without a PST vertex made or
+// uploaded by the CPU. Per batch of scanlines a compute pass reads the
+// batch's slices from the GPU slice table and works out each slice's PST
+// pieces (the split at the edge-on view r*, back-face culling) and, in
+// strip mode, each piece's sliver count from its twist; a prefix sum turns
+// the vertex counts into each slice's first vertex and their total into an
+// indirect draw. The passes' vertex shaders pull their vertices by
+// gl_VertexID (glslPull): the slice by a binary search over the first
+// vertices, then piece, sliver and corner, the endpoints from the extreme
+// vertices. Every shading pass draws the same geometry.
+//
+// Vertices: 6 per sliver (two triangles sharing the diagonal the CPU's
+// strips use), K slivers per piece (K = 1 in quad and exact mode).
+#include <string>
+
+#include "epi/epi_rasterizer.h"
+#include "mvr/gl/gl_handles.h"
+#include "mvr/gl/prefix_sum.h"
+#include "slicing/gpu/gpu_slice_table.h"
+
+namespace mvr {
+
+class PstGeometry {
+ public:
+  // Floats per endpoint record before the extras: x0, dx, depth, 1/w,
+  // front colour / w, back colour / w; then ExtremeVertices::extraCount
+  // extras / w.
+  static constexpr int kRecordHead = 10;
+  // Storage-buffer bindings the pulling vertex shaders read (the Materials
+  // block of the shading passes is binding 1).
+  static constexpr GLuint kRecords = 2, kTriangles = 3, kSlices = 4, kOffsets = 5, kFirstVertex = 6,
+                          kPieces = 7;
+
+  explicit PstGeometry(PstMode mode);  // needs a current GL context
+
+  // Once per row of views: every vertex's endpoint record and the
+  // triangles (index, material, culling). O(vertices), not O(slices).
+  void upload(const ExtremeVertices& v);
+  // The geometry of scanlines [first, first + count) of `table` for
+  // `views` views; the slice table stays on the GPU.
+  void build(const GpuSliceTable& table, int first, int count, int views);
+  // Binds the buffers and sets the pulling uniforms of a pass's program:
+  // EPI row coordinate 0 of batch scanline k lies at framebuffer row
+  // k chunkRows - view0.
+  void bind(const gl::Program& program, int chunkRows, int view0) const;
+  void draw() const;  // one indirect draw of the batch
+
+  // GLSL for a vertex shader: PstVertex pullPstVertex(), and
+  // float endAttribute(End e, int at) reading the record at `at`.
+  static std::string glslPull(int recordStride);
+
+ private:
+  void setSliceUniforms(const gl::Program& p) const;
+  void bindBuffers() const;
+
+  PstMode mode_;
+  gl::Program count_;
+  gl::PrefixSum prefixSum_;
+  gl::Buffer records_, triangles_, firstVertex_, pieces_, indirect_;
+  gl::VertexArray vao_;  // empty: vertices are pulled
+  const GpuSliceTable* table_ = nullptr;
+  size_t capacity_ = 0;  // slices the per-slice buffers hold
+  uint32_t firstSlice_ = 0, sliceCount_ = 0;
+  int views_ = 1, recordStride_ = kRecordHead;
+};
+
+}  // namespace mvr
