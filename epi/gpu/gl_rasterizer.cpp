@@ -57,7 +57,7 @@ class GlRasterizer final : public EpiRasterizer {
       : mode_(mode), type_(type), shading_(shading) {
     const bool vectors = shading_.sliceVectors ||
                          (shading_.plan.texture && shading_.textureMode == TextureMode::Vector);
-    if (builder == PstBuilder::Gpu && !vectors) geometry_.emplace(mode);
+    if (builder == PstBuilder::Gpu && !vectors) geometry_.emplace(mode, shading_.plan.extraCount);
     if (shading_.sliceVectors)
       passes_.emplace_back(mode, shading::Pass::Texture, shading_);
     else
@@ -99,15 +99,17 @@ class GlRasterizer final : public EpiRasterizer {
     for (int first = 0; first < h; first += batch) {
       const int count = std::min(batch, h - first);
       for (int k = 0; k < count; ++k) epis[k] = Image(w, n, type_);
+      if (pulled()) {
+        // Before the clear: on CPU implementations of GL the build's
+        // barriers would otherwise flush the clear of the whole target.
+        ScopedStage s(stats.times, "pst");
+        geometry_->build(slices.device(), first, count, n);
+        // The build's compute passes use storage bindings of their own.
+        if (materials_) materials_->bind(EpiPass::kTextureUnit);
+      }
       for (int c = 0; c < chunks; ++c) {
         const int view0 = c * chunkRows, views = std::min(chunkRows, n - view0);
         target.clear();
-        if (pulled() && c == 0) {
-          ScopedStage s(stats.times, "pst");
-          geometry_->build(slices.device(), first, count, n);
-          // The build's compute passes use storage bindings of their own.
-          if (materials_) materials_->bind(EpiPass::kTextureUnit);
-        }
         for (const EpiPass& pass : passes_) {
           if (pulled()) {
             ScopedStage s(stats.times, "raster");

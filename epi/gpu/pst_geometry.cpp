@@ -177,8 +177,11 @@ std::string PstGeometry::glslPull(int recordStride) {
   return recordDefine(recordStride) + kLibrary + kPull;
 }
 
-PstGeometry::PstGeometry(PstMode mode) : mode_(mode) {
+PstGeometry::PstGeometry(PstMode mode, int extraCount)
+    : mode_(mode), recordStride_(kRecordHead + extraCount) {
   if (mode == PstMode::Cpu) fail("PstGeometry", "cpu is not a GL mode");
+  count_ = gl::linkProgram("pst-count", {{GL_COMPUTE_SHADER, gl::glslHeader() + recordDefine(recordStride_) +
+                                                                 kLibrary + kCount}});
   const DrawArraysIndirectCommand command{0, 1, 0, 0};
   indirect_ = gl::makeBuffer(&command, 1, GL_DYNAMIC_STORAGE_BIT);
   vao_ = gl::VertexArray::create();
@@ -186,11 +189,7 @@ PstGeometry::PstGeometry(PstMode mode) : mode_(mode) {
 
 void PstGeometry::upload(const ExtremeVertices& v) {
   const int extras = v.extraCount, stride = kRecordHead + extras;
-  if (stride != recordStride_ || !count_) {
-    count_ = gl::linkProgram("pst-count", {{GL_COMPUTE_SHADER, gl::glslHeader() +
-                                                                   recordDefine(stride) + kLibrary + kCount}});
-    recordStride_ = stride;
-  }
+  if (stride != recordStride_) fail("PstGeometry", "vertices carry another attribute count");
   std::vector<float> records(v.vertexCount() * size_t(stride));
   for (size_t i = 0; i < v.vertexCount(); ++i) {
     float* r = records.data() + i * stride;

@@ -33,7 +33,9 @@ class PstGeometry {
   static constexpr GLuint kRecords = 2, kTriangles = 3, kSlices = 4, kOffsets = 5, kFirstVertex = 6,
                           kPieces = 7;
 
-  explicit PstGeometry(PstMode mode);  // needs a current GL context
+  // extraCount: the extras per vertex (ExtremeVertices::extraCount). Needs
+  // a current GL context.
+  PstGeometry(PstMode mode, int extraCount);
 
   // Once per row of views: every vertex's endpoint record and the
   // triangles (index, material, culling). O(vertices), not O(slices).
@@ -63,7 +65,7 @@ class PstGeometry {
   const GpuSliceTable* table_ = nullptr;
   size_t capacity_ = 0;  // slices the per-slice buffers hold
   uint32_t firstSlice_ = 0, sliceCount_ = 0;
-  int views_ = 1, recordStride_ = kRecordHead;
+  int views_ = 1, recordStride_;
 };
 
 }  // namespace mvr

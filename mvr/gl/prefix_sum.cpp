@@ -5,43 +5,40 @@
 namespace mvr::gl {
 namespace {
 
-// One workgroup scans one block of 512 elements in shared memory (two per
-// invocation): up-sweep to the block total, then down-sweep to exclusive
-// sums; the block total goes to uSums[block].
+// One workgroup scans one block: each of 64 invocations sums its own run
+// of 16 consecutive elements, invocation 0 scans the 64 run totals, and
+// each invocation writes its run's exclusive sums; the block total goes to
+// uSums[block]. Two barriers per block: CPU implementations of GL
+// (llvmpipe) pay per barrier, GPUs barely notice the serial parts.
 const char* const kScan = R"(
-layout(local_size_x = 256) in;
+layout(local_size_x = 64) in;
 layout(std430, binding = 0) buffer Data { uint uData[]; };
 layout(std430, binding = 1) writeonly buffer Sums { uint uSums[]; };
 uniform uint uFirst;
 uniform uint uCount;
-shared uint s[512];
+shared uint sRun[64];
 void main() {
-  uint t = gl_LocalInvocationID.x, i = gl_WorkGroupID.x * 512u + 2u * t;
-  s[2u * t] = i < uCount ? uData[uFirst + i] : 0u;
-  s[2u * t + 1u] = i + 1u < uCount ? uData[uFirst + i + 1u] : 0u;
-  uint offset = 1u;
-  for (uint d = 256u; d > 0u; d >>= 1u, offset <<= 1u) {
-    barrier();
-    if (t < d) s[offset * (2u * t + 2u) - 1u] += s[offset * (2u * t + 1u) - 1u];
-  }
+  uint t = gl_LocalInvocationID.x, begin = gl_WorkGroupID.x * 1024u + 16u * t;
+  uint end = min(begin + 16u, uCount), sum = 0u;
+  for (uint i = begin; i < end; ++i) sum += uData[uFirst + i];
+  sRun[t] = sum;
   barrier();
   if (t == 0u) {
-    uSums[gl_WorkGroupID.x] = s[511];
-    s[511] = 0u;
-  }
-  for (uint d = 1u; d < 512u; d <<= 1u) {
-    offset >>= 1u;
-    barrier();
-    if (t < d) {
-      uint a = offset * (2u * t + 1u) - 1u, b = offset * (2u * t + 2u) - 1u;
-      uint x = s[a];
-      s[a] = s[b];
-      s[b] += x;
+    uint run = 0u;
+    for (uint k = 0u; k < 64u; ++k) {
+      uint x = sRun[k];
+      sRun[k] = run;
+      run += x;
     }
+    uSums[gl_WorkGroupID.x] = run;
   }
   barrier();
-  if (i < uCount) uData[uFirst + i] = s[2u * t];
-  if (i + 1u < uCount) uData[uFirst + i + 1u] = s[2u * t + 1u];
+  uint run = sRun[t];
+  for (uint i = begin; i < end; ++i) {
+    uint x = uData[uFirst + i];
+    uData[uFirst + i] = run;
+    run += x;
+  }
 }
 )";
 
@@ -53,12 +50,17 @@ layout(std430, binding = 1) readonly buffer Sums { uint uSums[]; };
 uniform uint uFirst;
 uniform uint uCount;
 void main() {
-  uint i = gl_WorkGroupID.x * 512u + gl_LocalInvocationID.x;
   uint add = uSums[gl_WorkGroupID.x];
-  if (i < uCount) uData[uFirst + i] += add;
-  if (i + 256u < uCount) uData[uFirst + i + 256u] += add;
+  for (uint i = gl_WorkGroupID.x * 1024u + gl_LocalInvocationID.x; i < min((gl_WorkGroupID.x + 1u) * 1024u, uCount); i += 256u)
+    uData[uFirst + i] += add;
 }
 )";
+
+// Shader-storage writes made visible to later shaders, to indirect draws
+// and to buffer copies (the total). The copy itself needs no barrier: it
+// is an ordinary GL command.
+constexpr GLbitfield kBarriers =
+    GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT;
 
 void setCounts(const Program& p, uint32_t first, uint32_t count) {
   ProgramUniform1ui(p.id(), GetUniformLocation(p.id(), "uFirst"), first);
@@ -88,7 +90,7 @@ GLuint PrefixSum::scan(GLuint data, uint32_t first, uint32_t count, size_t level
   BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, data);
   BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, sums);
   DispatchCompute(blocks, 1, 1);
-  MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  MemoryBarrier(kBarriers);
   if (blocks == 1) return sums;
   const GLuint total = scan(sums, 0, blocks, level + 1);
   UseProgram(add_.id());
@@ -96,7 +98,7 @@ GLuint PrefixSum::scan(GLuint data, uint32_t first, uint32_t count, size_t level
   BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, data);
   BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, sums);
   DispatchCompute(blocks, 1, 1);
-  MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  MemoryBarrier(kBarriers);
   return total;
 }
 
@@ -110,7 +112,6 @@ void PrefixSum::exclusive(GLuint data, uint32_t first, uint32_t count, GLuint to
     const GLuint total = scan(data, first, count, 0);
     CopyNamedBufferSubData(total, totalBuffer, 0, totalAt, sizeof(uint32_t));
   }
-  MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 }  // namespace mvr::gl

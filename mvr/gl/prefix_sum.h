@@ -2,9 +2,9 @@
 // Exclusive prefix sums of uints in a GPU buffer, by compute shaders: the
 // step that turns per-item counts into output offsets, so that passes
 // which emit a variable number of things per item (slices per triangle,
-// vertices per slice) can write them in order without the CPU. Blelloch's
-// work-efficient scan on 512-element blocks, block sums scanned
-// recursively (three levels reach 2^27 elements).
+// vertices per slice) can write them in order without the CPU. Blocks of
+// 1024 elements, block sums scanned recursively (three levels reach 2^30
+// elements).
 #include <cstdint>
 #include <vector>
 
@@ -23,7 +23,7 @@ class PrefixSum {
   // buffer copies.
   void exclusive(GLuint data, uint32_t first, uint32_t count, GLuint totalBuffer, GLintptr totalAt);
 
-  static constexpr uint32_t kBlock = 512;
+  static constexpr uint32_t kBlock = 1024;
 
  private:
   // Scans count elements at `first` of data; returns the buffer whose

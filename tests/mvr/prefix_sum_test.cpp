@@ -1,4 +1,4 @@
-// The GPU prefix sum against a serial scan: sizes around the 512-element
+// The GPU prefix sum against a serial scan: sizes around the 1024-element
 // block and its square (one, two and three levels), an offset start, and
 // the empty range.
 #include <gtest/gtest.h>
@@ -16,7 +16,7 @@ TEST(PrefixSum, MatchesASerialScanAtEveryLevel) {
   test::sharedContext();
   gl::PrefixSum sum;
   std::mt19937 rng(7);
-  for (uint32_t count : {0u, 1u, 2u, 511u, 512u, 513u, 262143u, 262144u, 262145u, 300000u}) {
+  for (uint32_t count : {0u, 1u, 2u, 15u, 17u, 1023u, 1024u, 1025u, 1048575u, 1048576u, 1048577u, 1200000u}) {
     const uint32_t first = count % 3;  // an offset start leaves the elements before it alone
     std::vector<uint32_t> data(first + count);
     for (uint32_t& x : data) x = rng() % 13;
