@@ -20,6 +20,8 @@
 // passes (1-D vectors extracted per slice on the CPU) take the CPU path.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <memory>
 #include <optional>
 
 #include "epi/epi_rasterizer.h"
@@ -28,6 +30,7 @@
 #include "epi/pst.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
+#include "mvr/gl/readback_ring.h"
 #include "mvr/gl/render_target.h"
 #include "mvr/progress.h"
 #include "shading/gpu_materials.h"
@@ -80,10 +83,14 @@ class GlRasterizer final : public EpiRasterizer {
     const int chunks = (n + chunkRows - 1) / chunkRows;
     const bool accumulate = passes_.size() > 1;
     const PixelType storage = accumulate ? PixelType::F32 : type_;
+    // A batch of scanlines per draw, its framebuffer within the budget;
+    // three such batches in flight in the readback ring.
     const size_t bytesPerRow = size_t(w) * (4 * Image::channelBytes(storage) + 4);
-    const int budgetRows = int(std::max<size_t>(chunkRows, (size_t(256) << 20) / bytesPerRow));
+    const int budgetRows = int(std::max<size_t>(chunkRows, kTargetBudget / bytesPerRow));
     const int batch = chunks > 1 ? 1 : std::clamp(std::min(int(maxSize), budgetRows) / n, 1, h);
     RenderTarget target(w, batch * chunkRows, type_, 0, storage);
+    const size_t rowBytes = size_t(w) * 4 * Image::channelBytes(type_);
+    ReadbackRing ring(size_t(batch) * n * rowBytes);
     setDepthConvention();
     target.bind();
     const glm::vec2 scale(2.0f / w, 2.0f / (batch * chunkRows));
@@ -95,10 +102,8 @@ class GlRasterizer final : public EpiRasterizer {
       geometry_->upload(v);
     }
     Progress progress("mvr " + std::string(pstModeName(mode_)), h);
-    std::vector<Image> epis(batch);
     for (int first = 0; first < h; first += batch) {
       const int count = std::min(batch, h - first);
-      for (int k = 0; k < count; ++k) epis[k] = Image(w, n, type_);
       if (pulled()) {
         // Before the clear: on CPU implementations of GL the build's
         // barriers would otherwise flush the clear of the whole target.
@@ -107,38 +112,31 @@ class GlRasterizer final : public EpiRasterizer {
         // The build's compute passes use storage bindings of their own.
         if (materials_) materials_->bind(EpiPass::kTextureUnit);
       }
+      // The batch's EPIs, filled chunk by chunk as the ring hands them over.
+      auto epis = std::make_shared<std::vector<Image>>();
+      for (int k = 0; k < count; ++k) epis->emplace_back(w, n, type_);
       for (int c = 0; c < chunks; ++c) {
         const int view0 = c * chunkRows, views = std::min(chunkRows, n - view0);
         target.clear();
-        for (const EpiPass& pass : passes_) {
-          if (pulled()) {
-            ScopedStage s(stats.times, "raster");
-            pass.begin(scale, eye0, eyeStep);
-            geometry_->bind(pass.program(), chunkRows, view0);
-            geometry_->draw();
-            gl::Finish();
-            continue;
-          }
-          {
-            ScopedStage s(stats.times, "pst");
-            clearGeometry();
-            for (int k = 0; k < count; ++k)
-              emitScanline(pass, v, slices.host(), first + k, n, float(k * chunkRows - view0));
-          }
-          ScopedStage s(stats.times, "raster");
-          pass.begin(scale, eye0, eyeStep);
-          gl::Buffer vectors = bindTextures(pass);
-          drawGeometry(pass);
-          gl::Finish();
+        const Batch b{first, count, n, chunkRows, view0, scale, eye0, eyeStep};
+        for (const EpiPass& pass : passes_) drawPass(pass, v, slices, b, stats);
+        {
+          ScopedStage s(stats.times, "readback");
+          for (int k = 0; k < count; ++k)
+            ring.readRows(target, k * chunkRows, views,
+                          reinterpret_cast<std::byte*>((*epis)[k].row(view0)));
         }
-        ScopedStage s(stats.times, "readback");
-        for (int k = 0; k < count; ++k) target.readRows(k * chunkRows, views, epis[k], view0);
-      }
-      for (int k = 0; k < count; ++k) {
-        sink.putEpi(row, first + k, epis[k]);
-        progress.step();
+        if (c + 1 < chunks) continue;
+        ring.submit([=, &sink, &progress] {
+          for (int k = 0; k < count; ++k) {
+            sink.putEpi(row, first + k, (*epis)[k]);
+            progress.step();
+          }
+        });
       }
     }
+    ring.drain();
+    stats.times.add("gpu_wait", ring.waitSeconds());
     gl::Disable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
     setDepthConvention();
     gl::checkError("EPI rasterization");
@@ -150,7 +148,41 @@ class GlRasterizer final : public EpiRasterizer {
   }
 
  private:
+  // Colour and depth of one batch's framebuffer.
+  static constexpr size_t kTargetBudget = size_t(256) << 20;
+
   bool pulled() const { return geometry_.has_value(); }
+
+  // Scanlines [first, first + count), views [view0, view0 + chunkRows) of
+  // `views`, stacked chunkRows apart in the framebuffer.
+  struct Batch {
+    int first, count, views, chunkRows, view0;
+    glm::vec2 scale;
+    glm::vec3 eye0, eyeStep;
+  };
+
+  // One shading pass over the batch: pulled geometry, or geometry emitted
+  // here and uploaded.
+  void drawPass(const EpiPass& pass, const ExtremeVertices& v, const SliceTableView& slices,
+                const Batch& b, RenderStats& stats) {
+    if (pulled()) {
+      ScopedStage s(stats.times, "raster");
+      pass.begin(b.scale, b.eye0, b.eyeStep);
+      geometry_->bind(pass.program(), b.chunkRows, b.view0);
+      geometry_->draw();
+      return;
+    }
+    {
+      ScopedStage s(stats.times, "pst");
+      clearGeometry();
+      for (int k = 0; k < b.count; ++k)
+        emitScanline(pass, v, slices.host(), b.first + k, b.views, float(k * b.chunkRows - b.view0));
+    }
+    ScopedStage s(stats.times, "raster");
+    pass.begin(b.scale, b.eye0, b.eyeStep);
+    gl::Buffer vectors = bindTextures(pass);  // deleted after the draw is issued: GL completes it
+    drawGeometry(pass);
+  }
 
   void clearGeometry() {
     vertices_.clear();

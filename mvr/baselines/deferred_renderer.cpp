@@ -23,11 +23,9 @@ class DeferredRenderer final : public Renderer {
       {
         ScopedStage s(stats.times, "geometry");
         pipeline_.geometry(viewProj, gbuffer, nullptr);
-        gl::Finish();
       }
       ScopedStage s(stats.times, "lighting");
       pipeline_.lighting(viewProj, cam.eye(view, row), gbuffer, target);
-      gl::Finish();
     });
     gl::checkError("deferred render");
   }

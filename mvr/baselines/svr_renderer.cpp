@@ -1,11 +1,14 @@
 // Single viewpoint rendering: the baseline MVR must beat. Lighting runs in
 // the vertex shader for every view, as a conventional renderer does.
 #include <algorithm>
+#include <memory>
+#include <vector>
 
 #include "mvr/baselines/baselines.h"
 #include "mvr/baselines/view_loop.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
+#include "mvr/gl/readback_ring.h"
 #include "mvr/gl/render_target.h"
 #include "mvr/gl/scene_buffers.h"
 #include "mvr/progress.h"
@@ -201,7 +204,6 @@ class SvrRenderer final : public Renderer {
       gl::setUniform(program_, "uEye", glm::vec3(cam.eye(view, row)));
       target.clear();
       buffers_.draw();
-      gl::Finish();
     });
     gl::checkError("svr render");
     stats.counters["draw_calls"] = double(cam.rows()) * cam.views();
@@ -259,6 +261,8 @@ class LayeredSvrRenderer final : public Renderer {
     buffers_.bind();
     Progress progress("svr-layered", long(matrices.size()));
     const int total = int(matrices.size());
+    const size_t layerBytes = size_t(cam.width()) * cam.height() * 4 * Image::channelBytes(type_);
+    ReadbackRing ring(size_t(batch) * layerBytes);
     for (int first = 0; first < total; first += batch) {
       const int count = std::min(batch, total - first);
       {
@@ -266,29 +270,37 @@ class LayeredSvrRenderer final : public Renderer {
         gl::setUniform(program_, "uLayerBase", first);
         target.clear();
         buffers_.draw(count);
-        gl::Finish();
       }
-      for (int k = 0; k < count; ++k) {
-        Image img;
-        {
-          ScopedStage s(stats.times, "readback");
-          img = target.readLayer(k);
+      auto images = std::make_shared<std::vector<Image>>(count, Image(cam.width(), cam.height(), type_));
+      {
+        ScopedStage s(stats.times, "readback");
+        for (int k = 0; k < count; ++k)
+          ring.readLayer(target, k, reinterpret_cast<std::byte*>((*images)[k].row(0)));
+      }
+      ring.submit([=, views = cam.views(), &sink, &progress] {
+        for (int k = 0; k < count; ++k) {
+          sink.putView((first + k) / views, (first + k) % views, (*images)[k]);
+          progress.step();
         }
-        sink.putView((first + k) / cam.views(), (first + k) % cam.views(), img);
-        progress.step();
-      }
+      });
     }
+    ring.drain();
+    stats.times.add("gpu_wait", ring.waitSeconds());
     gl::checkError("svr-layered render");
     stats.counters["layers_per_draw"] = batch;
     stats.notes["layer_routing"] = vsLayer_ ? "vertex shader" : "geometry shader";
   }
 
  private:
+  // Bytes of colour and depth per batch of layers; three batches' colour
+  // in flight in the readback ring.
+  static constexpr size_t kBatchBudget = size_t(64) << 20;
+
   int batchSize(const ShearingCamera& cam) const {
     GLint maxLayers = 256;
     gl::GetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
     const size_t perLayer = size_t(cam.width()) * cam.height() * (4 * Image::channelBytes(type_) + 4);
-    const size_t budget = size_t(512) << 20;  // bytes of colour + depth per batch
+    const size_t budget = kBatchBudget;
     size_t n = std::max<size_t>(1, budget / perLayer);
     n = std::min({n, size_t(maxLayers), size_t(cam.views()) * cam.rows()});
     return int(n);

@@ -1,6 +1,10 @@
 #pragma once
-// The view-major loop the baselines share: draw a view, read it back, hand
-// it to the sink, report progress.
+// The view-major loop the baselines share: draw a view, read it back
+// through a readback ring (the next views are drawn while earlier ones
+// travel), hand each to the sink in order, report progress.
+#include <memory>
+
+#include "mvr/gl/readback_ring.h"
 #include "mvr/gl/render_target.h"
 #include "mvr/progress.h"
 #include "mvr/renderer.h"
@@ -12,18 +16,24 @@ template <class Draw>
 void renderEachView(const ShearingCamera& cam, const RenderTarget& target, const char* label,
                     FrameSink& sink, RenderStats& stats, Draw&& draw) {
   Progress progress(label, long(cam.rows()) * cam.views());
+  const PixelType type = target.type();
+  ReadbackRing ring(size_t(target.width()) * target.height() * 4 * Image::channelBytes(type));
   for (int row = 0; row < cam.rows(); ++row) {
     for (int view = 0; view < cam.views(); ++view) {
       draw(row, view);
-      Image img;
+      auto img = std::make_shared<Image>(target.width(), target.height(), type);
       {
         ScopedStage s(stats.times, "readback");
-        img = target.read();
+        ring.readRows(target, 0, target.height(), reinterpret_cast<std::byte*>(img->row(0)));
       }
-      sink.putView(row, view, img);
-      progress.step();
+      ring.submit([img, row, view, &sink, &progress] {
+        sink.putView(row, view, *img);
+        progress.step();
+      });
     }
   }
+  ring.drain();
+  stats.times.add("gpu_wait", ring.waitSeconds());
 }
 
 }  // namespace mvr

@@ -22,6 +22,12 @@ bool hasExtension(const std::string& name) {
   return false;
 }
 
+bool rendersOnCpu() {
+  const auto* renderer = reinterpret_cast<const char*>(GetString(GL_RENDERER));
+  const std::string name = renderer ? renderer : "";
+  return name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos;
+}
+
 void checkError(const char* what) {
   GLenum err = GetError();
   if (err == GL_NO_ERROR) return;

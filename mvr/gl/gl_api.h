@@ -20,6 +20,11 @@ void loadFunctions(ProcAddressFn getProcAddress);
 
 bool hasExtension(const std::string& name);
 
+// The current context renders on the CPU (Mesa llvmpipe or softpipe):
+// reads are synchronous there, and staging them through buffers only adds
+// a copy.
+bool rendersOnCpu();
+
 // Throws mvr::Error("GL: <what>: <error name>") if glGetError reports one.
 void checkError(const char* what);
 

@@ -1,0 +1,113 @@
+#include "mvr/gl/readback_ring.h"
+
+#include <cstring>
+
+#include "mvr/error.h"
+#include "mvr/timer.h"
+
+namespace mvr {
+namespace {
+
+constexpr GLbitfield kMapping = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+
+GLenum pixelType(PixelType t) { return t == PixelType::U8 ? GL_UNSIGNED_BYTE : GL_FLOAT; }
+
+ReadbackStaging gStaging = ReadbackStaging::Auto;
+
+bool stage() {
+  return gStaging == ReadbackStaging::Always || (gStaging == ReadbackStaging::Auto && !gl::rendersOnCpu());
+}
+
+}  // namespace
+
+void setReadbackStaging(ReadbackStaging staging) { gStaging = staging; }
+
+ReadbackRing::ReadbackRing(size_t slotBytes, int slots)
+    : slotBytes_(std::max<size_t>(slotBytes, 1)), layerReader_(gl::Framebuffer::create()) {
+  if (!stage()) return;
+  slots_.resize(std::max(slots, 1));
+  for (Slot& slot : slots_) {
+    slot.buffer = gl::Buffer::create();
+    gl::NamedBufferStorage(slot.buffer.id(), GLsizeiptr(slotBytes_), nullptr, kMapping);
+    slot.bytes = static_cast<const std::byte*>(
+        gl::MapNamedBufferRange(slot.buffer.id(), 0, GLsizeiptr(slotBytes_), kMapping));
+    if (!slot.bytes) fail("GL", "cannot map a readback buffer of " + std::to_string(slotBytes_) + " bytes");
+  }
+}
+
+ReadbackRing::~ReadbackRing() {
+  // Batches still pending are dropped (an exception is unwinding the
+  // render); fences and mappings are released.
+  for (Slot& slot : slots_) {
+    if (slot.fence) gl::DeleteSync(slot.fence);
+    gl::UnmapNamedBuffer(slot.buffer.id());
+  }
+}
+
+void ReadbackRing::readRows(const RenderTarget& target, int y, int h, std::byte* dst) {
+  read(target, target.framebuffer(), y, h, dst);
+}
+
+void ReadbackRing::readLayer(const RenderTarget& target, int layer, std::byte* dst) {
+  // A framebuffer on just this layer: reading the array texture itself
+  // (glGetTextureSubImage) may copy every layer on some drivers.
+  gl::NamedFramebufferTextureLayer(layerReader_.id(), GL_COLOR_ATTACHMENT0, target.colorTexture(), 0, layer);
+  gl::NamedFramebufferReadBuffer(layerReader_.id(), GL_COLOR_ATTACHMENT0);
+  read(target, layerReader_.id(), 0, target.height(), dst);
+}
+
+void ReadbackRing::read(const RenderTarget& target, GLuint framebuffer, int y, int h, std::byte* dst) {
+  const size_t bytes = size_t(target.width()) * h * 4 * Image::channelBytes(target.type());
+  gl::BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+  gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
+  if (!staged()) {
+    gl::ReadPixels(0, y, target.width(), h, GL_RGBA, pixelType(target.type()), dst);
+    return;
+  }
+  Slot& slot = slots_[current_];
+  if (slot.used + bytes > slotBytes_) fail("ReadbackRing", "a batch reads more than a slot holds");
+  gl::BindBuffer(GL_PIXEL_PACK_BUFFER, slot.buffer.id());
+  gl::ReadPixels(0, y, target.width(), h, GL_RGBA, pixelType(target.type()),
+                 reinterpret_cast<void*>(slot.used));
+  gl::BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  slot.copies.push_back({slot.used, bytes, dst});
+  slot.used += bytes;
+}
+
+void ReadbackRing::submit(Done done) {
+  if (!staged()) {
+    done();
+    return;
+  }
+  Slot& slot = slots_[current_];
+  slot.fence = gl::FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  slot.done = std::move(done);
+  gl::Flush();  // the fence must reach the GPU before anyone waits on it
+  current_ = (current_ + 1) % slots_.size();
+  finish(slots_[current_]);
+}
+
+void ReadbackRing::drain() {
+  for (size_t k = 1; k <= slots_.size(); ++k) finish(slots_[(current_ + k) % slots_.size()]);
+}
+
+void ReadbackRing::finish(Slot& slot) {
+  if (!slot.fence) return;
+  const Stopwatch watch;
+  for (;;) {
+    const GLenum result = gl::ClientWaitSync(slot.fence, GL_SYNC_FLUSH_COMMANDS_BIT, 1000000000);
+    if (result == GL_ALREADY_SIGNALED || result == GL_CONDITION_SATISFIED) break;
+    if (result == GL_WAIT_FAILED) fail("GL", "waiting for a readback failed");
+  }
+  gl::DeleteSync(slot.fence);
+  slot.fence = nullptr;
+  for (const Copy& c : slot.copies) std::memcpy(c.dst, slot.bytes + c.at, c.bytes);
+  waitSeconds_ += watch.seconds();
+  slot.copies.clear();
+  slot.used = 0;
+  Done done = std::move(slot.done);
+  slot.done = nullptr;
+  done();
+}
+
+}  // namespace mvr
