@@ -5,6 +5,7 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -22,6 +23,7 @@
 #include "epi/backend.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_context.h"
+#include "mvr/gl/readback_ring.h"
 #include "mvr/io/compare.h"
 #include "mvr/io/scene_io.h"
 #include "mvr/progress.h"
@@ -76,6 +78,33 @@ Run measure(Renderer& renderer, const ShearingCamera& cam, int repeat, const std
   return best;
 }
 
+// Seconds to read w x h x frames RGBA8 pixels back through a readback
+// ring with nothing drawn, in reads of up to 64 MB: the floor under every
+// back end's time for that many frames.
+double readbackFloor(int w, int h, long frames, int repeat) {
+  GLint maxSize = 4096;
+  gl::GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  const long rowBytes = long(w) * 4, totalRows = long(h) * frames;
+  const int rows = int(std::clamp<long>((64L << 20) / rowBytes, 1, std::min<long>(maxSize, totalRows)));
+  RenderTarget target(w, rows, PixelType::U8);
+  target.clear();
+  std::vector<Image> landing(4, Image(w, rows, PixelType::U8));  // one per slot and one being read
+  double best = INFINITY;
+  for (int k = 0; k < repeat; ++k) {
+    ReadbackRing ring(size_t(rows) * rowBytes);
+    const Stopwatch watch;
+    int serial = 0;
+    for (long done = 0; done < totalRows; done += rows, ++serial) {
+      const int now = int(std::min<long>(rows, totalRows - done));
+      ring.readRows(target, 0, now, reinterpret_cast<std::byte*>(landing[serial % 4].row(0)));
+      ring.submit([] {});
+    }
+    ring.drain();
+    best = std::min(best, watch.seconds());
+  }
+  return best;
+}
+
 void errorAgainst(const Run& ref, const Run& r, BenchRecord& rec) {
   rec.minPsnr = INFINITY;
   rec.minIdentical = rec.minClose = rec.minSsim = 1.0;
@@ -117,8 +146,13 @@ void benchScene(const std::string& name, const Scene& scene, const Config& cfg,
     }
   }
   for (auto [w, h] : cfg.sizes) {
+    // The fixed cost: every back end at one view.
+    std::vector<double> fixed;
+    const ShearingCamera one(cameraFor(scene, w, h), w, h, 1, 1);
+    for (auto& r : renderers) fixed.push_back(measure(*r, one, cfg.repeat, {0}).seconds);
     for (int n : cfg.views) {
       ShearingCamera cam(cameraFor(scene, w, h), w, h, n, cfg.rows);
+      const double floor = readbackFloor(w, h, long(n) * cfg.rows, cfg.repeat);
       const std::vector<int> sampled = spreadViews(n, cfg.errorViews);
       std::vector<Run> runs;
       for (auto& r : renderers) runs.push_back(measure(*r, cam, cfg.repeat, sampled));
@@ -144,6 +178,10 @@ void benchScene(const std::string& name, const Scene& scene, const Config& cfg,
         if (svr) errorAgainst(*svr, runs[k], rec);
         rec.slices = runs[k].stats.counters.count("slices") ? runs[k].stats.counters.at("slices") : 0;
         rec.averagePolygonHeight = height;
+        rec.fixedSeconds = fixed[k];
+        const long frames = long(n) * cfg.rows;
+        rec.marginalSeconds = frames > 1 ? (rec.seconds - fixed[k]) / double(frames - 1) : NAN;
+        rec.floorSeconds = floor;
         rec.stages = runs[k].stats.times.seconds;
         rec.counters = runs[k].stats.counters;
         printRow(rec);
@@ -265,6 +303,7 @@ int runBench(int argc, char** argv) {
   getrusage(RUSAGE_SELF, &usage);
   machine.peakRssMiB = usage.ru_maxrss / 1024.0;
   std::printf("# peak resident memory: %.1f MiB\n", machine.peakRssMiB);
+  printCostModel(records);
   const std::vector<BreakEven> breakEvens = findBreakEvens(records);
   printBreakEvens(breakEvens);
   if (!json.empty()) writeBenchJson(json, machine, records, breakEvens);

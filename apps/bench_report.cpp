@@ -83,6 +83,17 @@ void printBreakEvens(const std::vector<BreakEven>& breakEvens) {
   }
 }
 
+void printCostModel(const std::vector<BenchRecord>& records) {
+  std::printf("# cost model: fixed = time at one view; marginal = (t(N) - fixed) / (N - 1);\n"
+              "# floor = reading the same pixels back with nothing drawn; x_floor = total / floor\n");
+  std::printf("%-16s %-9s %6s %-24s %10s %12s %10s %8s\n", "scene", "size", "views", "backend",
+              "fixed_s", "marginal_ms", "floor_s", "x_floor");
+  for (const BenchRecord& r : records)
+    std::printf("%-16s %-9s %6d %-24s %10.4f %12.4f %10.4f %8.2f\n", r.scene.c_str(),
+                sizeName(r.width, r.height).c_str(), r.views * r.rows, r.backend.c_str(), r.fixedSeconds,
+                1e3 * r.marginalSeconds, r.floorSeconds, r.seconds / r.floorSeconds);
+}
+
 void writeBenchJson(const std::string& path, const BenchMachine& machine,
                     const std::vector<BenchRecord>& records, const std::vector<BreakEven>& breakEvens) {
   using nlohmann::json;
@@ -99,6 +110,8 @@ void writeBenchJson(const std::string& path, const BenchMachine& machine,
                             {"min_within_one_step", num(r.minClose)},
                             {"min_ssim", num(r.minSsim)}, {"mean_holes", r.meanHoles},
                             {"average_polygon_height_px", r.averagePolygonHeight},
+                            {"fixed_s", num(r.fixedSeconds)}, {"marginal_ms_per_view", num(1e3 * r.marginalSeconds)},
+                            {"readback_floor_s", num(r.floorSeconds)},
                             {"stages_s", r.stages}, {"counters", r.counters}});
   for (const BreakEven& b : breakEvens)
     j["break_even"].push_back({{"scene", b.scene}, {"width", b.width}, {"height", b.height},

@@ -1,6 +1,7 @@
 #pragma once
 // What the benchmark measured, and what follows from it: break-even view
 // counts against SVR (Halle 7.4), JSON and gnuplot plots (Halle figs 7-5..7-8).
+#include <cmath>
 #include <map>
 #include <string>
 #include <vector>
@@ -15,6 +16,10 @@ struct BenchRecord {
   double minPsnr = 0, minIdentical = 0, minClose = 0, minSsim = 0;
   double meanHoles = 0;  // per sampled view: pixels svr covers and this back end leaves empty
   double slices = 0, averagePolygonHeight = 0;
+  // The cost model t(N) = fixed + (N - 1) marginal from this run and a
+  // one-view run, and the floor: reading the same pixels back with nothing
+  // drawn (mvr/gl/readback_ring.h), which no back end can beat.
+  double fixedSeconds = NAN, marginalSeconds = NAN, floorSeconds = NAN;
   std::map<std::string, double> stages, counters;
 };
 
@@ -35,6 +40,9 @@ struct BreakEven {
 };
 
 std::vector<BreakEven> findBreakEvens(const std::vector<BenchRecord>& records);
+// Per record: fixed cost, marginal cost per view, readback floor and the
+// total as a multiple of the floor.
+void printCostModel(const std::vector<BenchRecord>& records);
 void printBreakEvens(const std::vector<BreakEven>& breakEvens);
 void writeBenchJson(const std::string& path, const BenchMachine& machine,
                     const std::vector<BenchRecord>& records, const std::vector<BreakEven>& breakEvens);

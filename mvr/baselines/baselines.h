@@ -1,7 +1,9 @@
 #pragma once
 // The conventional renderers MVR is measured against (issue 2):
 //  svr          one draw per view, per-vertex lighting in the vertex shader
-//  svr-layered  many views per draw: instancing + gl_Layer into an array
+//  svr-layered  many views per draw: instancing + gl_Layer into an array;
+//               on a GL that renders on the CPU, per-view svr unless
+//               layers are forced (tests of the layered path)
 //  deferred     per view a G-buffer (albedo, normal, depth) and a lighting pass
 #include <memory>
 
@@ -11,7 +13,8 @@
 namespace mvr {
 
 std::unique_ptr<Renderer> makeSvrRenderer(const Scene& scene, PixelType type);
-std::unique_ptr<Renderer> makeLayeredSvrRenderer(const Scene& scene, PixelType type);
+std::unique_ptr<Renderer> makeLayeredSvrRenderer(const Scene& scene, PixelType type,
+                                                 bool forceLayers = false);
 std::unique_ptr<Renderer> makeDeferredRenderer(const Scene& scene, PixelType type);
 
 }  // namespace mvr

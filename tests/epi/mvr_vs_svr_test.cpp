@@ -152,7 +152,7 @@ TEST_F(MvrVsSvr, StagedReadbackChangesNoPixel) {
   using Factory = std::unique_ptr<Renderer> (*)(const Scene&, PixelType);
   const std::pair<const char*, Factory> backEnds[] = {
       {"svr", makeSvrRenderer},
-      {"svr-layered", makeLayeredSvrRenderer},
+      {"svr-layered", [](const Scene& s, PixelType t) { return makeLayeredSvrRenderer(s, t, true); }},
       {"deferred", makeDeferredRenderer},
       {"mvr", [](const Scene& s, PixelType t) { return makeMvrRenderer(s, PstMode::Exact, t); }}};
   for (const auto& [name, make] : backEnds) {
@@ -181,6 +181,21 @@ TEST_F(MvrVsSvr, StagedReadbackChangesNoPixel) {
   setReadbackStaging(ReadbackStaging::Auto);
   ASSERT_EQ(epis[1].epis.size(), 24u);
   for (const auto& [key, epi] : epis[0].epis) EXPECT_EQ(epi.bytes, epis[1].epis.at(key).bytes);
+}
+
+// svr-layered draws layers where they pay (a GPU) and single views where
+// the GL rasterises on the CPU; forced layers always layer.
+TEST_F(MvrVsSvr, LayeredSvrLayersOnlyWhereLayersPay) {
+  Scene scene = loadScene(test::assetPath("cube.json"));
+  ShearingCamera cam(*scene.camera, 32, 24, 5);
+  for (bool force : {false, true}) {
+    auto layered = makeLayeredSvrRenderer(scene, PixelType::U8, force);
+    RenderStats stats;
+    test::renderViews(*layered, cam, stats);
+    const bool perView = gl::rendersOnCpu() && !force;
+    EXPECT_EQ(stats.notes["layer_routing"].rfind("none", 0) == 0, perView) << stats.notes["layer_routing"];
+    EXPECT_EQ(stats.counters.count("layers_per_draw") == 1, !perView);
+  }
 }
 
 TEST_F(MvrVsSvr, OneAndTwoViews) {

@@ -71,7 +71,7 @@ inline BackEndsAgainstSvr compareBackEndsWithSvr(const Scene& scene, const Shear
   BackEndsAgainstSvr out;
   auto svr = makeSvrRenderer(scene, PixelType::U8);
   const CaptureSink reference = renderViews(*svr, cam);
-  auto layered = makeLayeredSvrRenderer(scene, PixelType::U8);
+  auto layered = makeLayeredSvrRenderer(scene, PixelType::U8, /*forceLayers=*/true);
   out.difference["svr-layered"] = compareViews(reference, renderViews(*layered, cam));
   auto deferred = makeDeferredRenderer(scene, PixelType::U8);
   out.difference["deferred"] = compareViews(reference, renderViews(*deferred, cam));
