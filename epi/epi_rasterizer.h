@@ -65,6 +65,9 @@ class EpiRasterizer {
   virtual void rasterize(const ExtremeVertices& vertices, const SliceTableView& table,
                          const ShearingCamera& camera, int row, FrameSink& sink,
                          RenderStats& stats) = 0;
+  // Whether it reads the table from GPU buffers (then a GPU slicer saves
+  // the upload) rather than from host memory.
+  virtual bool readsDeviceTable() const { return false; }
 };
 
 // The one place that chooses between CPU and GL: the span rasterizer for

@@ -1,7 +1,11 @@
 #include "epi/mvr_renderer.h"
 
+#include <algorithm>
+#include <optional>
+
 #include "shading/lighting.h"
 #include "slicing/extreme_vertices.h"
+#include "slicing/gpu/gpu_slicer.h"
 #include "slicing/slice_table.h"
 
 namespace mvr {
@@ -42,14 +46,24 @@ class MvrRenderer final : public Renderer {
         ScopedStage s(stats.times, "row_step");
         moveToRow(vertices, row);
       }
+      if (rasterizer_->readsDeviceTable()) {
+        // Sliced on the GPU: only the offsets come back to the host.
+        if (!gpuSlicer_) gpuSlicer_.emplace();
+        std::optional<GpuSliceTable> table;
+        {
+          ScopedStage s(stats.times, "slicing");
+          table.emplace(gpuSlicer_->build(vertices, cam.height()));
+        }
+        countSlices(table->sliceCount(), stats);
+        rasterizer_->rasterize(vertices, *table, cam, row, sink, stats);
+        continue;
+      }
       SliceTable table;
       {
         ScopedStage s(stats.times, "slicing");
         table = SliceTable::build(vertices, cam.height());
       }
-      stats.counters["slices"] += double(table.sliceCount());
-      stats.counters["slice_table_bytes"] =
-          std::max(stats.counters["slice_table_bytes"], double(table.bytes()));
+      countSlices(table.sliceCount(), stats);
       rasterizer_->rasterize(vertices, table, cam, row, sink, stats);
     }
     stats.notes["pst"] = pstModeName(mode_);
@@ -61,12 +75,19 @@ class MvrRenderer final : public Renderer {
   }
 
  private:
+  static void countSlices(size_t slices, RenderStats& stats) {
+    stats.counters["slices"] += double(slices);
+    stats.counters["slice_table_bytes"] =
+        std::max(stats.counters["slice_table_bytes"], double(slices * sizeof(Slice)));
+  }
+
   const Scene& scene_;
   PstMode mode_;
   shading::TextureSet textures_;
   shading::EnvironmentSet environment_;
   EpiShading shading_;
   std::unique_ptr<EpiRasterizer> rasterizer_;
+  std::optional<GpuSlicer> gpuSlicer_;  // when the rasterizer reads GPU tables
 };
 
 }  // namespace

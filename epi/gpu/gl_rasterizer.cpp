@@ -74,6 +74,8 @@ class GlRasterizer final : public EpiRasterizer {
     }
   }
 
+  bool readsDeviceTable() const override { return pulled(); }
+
   void rasterize(const ExtremeVertices& v, const SliceTableView& slices, const ShearingCamera& cam,
                  int row, FrameSink& sink, RenderStats& stats) override {
     GLint maxSize = 4096;

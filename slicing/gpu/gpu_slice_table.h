@@ -17,6 +17,10 @@ class GpuSliceTable {
  public:
   // Needs a current GL context.
   static GpuSliceTable upload(const SliceTable& table);
+  // A table a GPU pass built: its buffers and the offsets on the host.
+  static GpuSliceTable adopt(gl::Buffer slices, gl::Buffer offsets, std::vector<uint32_t> hostOffsets) {
+    return GpuSliceTable(std::move(slices), std::move(offsets), std::move(hostOffsets));
+  }
   SliceTable download() const;
 
   int height() const { return height_; }

@@ -1,9 +1,16 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
+#include <vector>
 
+#include "mvr/io/scene_io.h"
+#include "shading/lighting.h"
 #include "slicing/extreme_vertices.h"
+#include "slicing/gpu/gpu_slicer.h"
 #include "slicing/slice_table.h"
+#include "tests/support/gl_fixture.h"
 
 namespace mvr {
 namespace {
@@ -138,6 +145,88 @@ TEST(ExtremeVertices, ImagePlaneHasZeroDisparityAndDepthHasTheClosedForm) {
   EXPECT_NEAR(v.dx[1], 50.0 * 2.0 / 6.0 * 0.2, 1e-5);
   for (int i = 0; i < 11; ++i)
     EXPECT_NEAR(v.x0[2] + i * v.dx[2], cam.project(glm::dvec3(s.positions[2]), i).x, 1e-4);
+}
+
+}  // namespace
+}  // namespace mvr
+
+namespace mvr {
+namespace {
+
+// The GPU slicer against the CPU slicer (the oracle): the same offsets,
+// per scanline the same triangles in the same order with the same corner
+// flags, and endpoints within 1e-4 px in every view (x at r = 0 and r = N
+// for N = 100; both derive from tLong and tShort, which the GPU's division
+// may round differently by an ulp or two).
+void expectSameTable(const ExtremeVertices& v, int height, const char* label) {
+  const SliceTable cpu = SliceTable::build(v, height);
+  GpuSlicer slicer;
+  const GpuSliceTable device = slicer.build(v, height);
+  EXPECT_EQ(device.offsets(), std::vector<uint32_t>(cpu.offsets().begin(), cpu.offsets().end())) << label;
+  const SliceTable gpu = device.download();
+  ASSERT_EQ(gpu.sliceCount(), cpu.sliceCount()) << label;
+  for (int j = 0; j < height; ++j) {
+    const auto a = cpu.scanline(j), b = gpu.scanline(j);
+    ASSERT_EQ(a.size(), b.size()) << label << " scanline " << j;
+    for (size_t k = 0; k < a.size(); ++k) {
+      ASSERT_EQ(a[k].triangle, b[k].triangle) << label << " scanline " << j;
+      ASSERT_EQ(a[k].flags, b[k].flags) << label << " scanline " << j;
+      const auto [a0, a1] = sliceEnds(v, a[k]);
+      const auto [b0, b1] = sliceEnds(v, b[k]);
+      for (float r : {0.0f, 100.0f}) {
+        auto x = [r](const SliceEnd& e) { return e.x0 + (r - 0.5f) * e.dx; };
+        const float tolerance = 1e-4f * std::max(1.0f, std::abs(x(a0)) / 100.0f);
+        ASSERT_NEAR(x(a0), x(b0), tolerance) << label << " scanline " << j;
+        ASSERT_NEAR(x(a1), x(b1), tolerance) << label << " scanline " << j;
+      }
+    }
+  }
+}
+
+TEST(GpuSlicer, MatchesTheCpuSlicerOnRandomTriangles) {
+  test::sharedContext();
+  expectSameTable(randomTriangles(3000, 60, 5), 60, "random");
+  expectSameTable(randomTriangles(7, 1, 9), 1, "one scanline");
+}
+
+TEST(GpuSlicer, MatchesTheCpuSlicerOnTheTeacup) {
+  test::sharedContext();
+  const Scene scene = loadScene(test::assetPath("default.json"));
+  const ShearingCamera cam(cameraFor(scene, 120, 90), 120, 90, 8);
+  expectSameTable(transformToExtremes(scene, shading::litVertexColors(scene), cam, 0), 90, "teacup");
+}
+
+// Vertices exactly on scanline centres, flat (horizontal) triangles,
+// triangles wholly above or below the image, one spanning every scanline,
+// degenerate ones, and no triangles at all.
+TEST(GpuSlicer, MatchesTheCpuSlicerOnEdgeCases) {
+  test::sharedContext();
+  const int height = 16;
+  ExtremeVertices v;
+  auto add = [&](float y0, float y1, float y2) {
+    const auto base = uint32_t(v.y.size());
+    for (float y : {y0, y1, y2}) {
+      v.x0.push_back(3.0f * float(v.y.size() % 5));
+      v.dx.push_back(0.25f * float(v.y.size() % 3) - 0.25f);
+      v.y.push_back(y);
+      v.depth.push_back(0.5f);
+      v.invW.push_back(1.0f);
+      v.frontOverW.emplace_back(1.0f);
+      v.backOverW.emplace_back(1.0f);
+    }
+    v.triangles.emplace_back(base, base + 1, base + 2);
+    v.cullBack.push_back(0);
+  };
+  expectSameTable(v, height, "empty");
+  add(0.5f, 3.5f, 8.5f);       // every corner on a centre
+  add(4.0f, 4.0f, 4.0f);       // flat
+  add(2.5f, 2.5f, 9.0f);       // flat top on a centre
+  add(-9.0f, -5.0f, -1.0f);    // above
+  add(20.0f, 30.0f, 25.0f);    // below
+  add(-100.0f, 50.0f, 200.0f); // every scanline
+  add(7.5f, 7.5f, 7.5f);       // a point on a centre
+  add(15.49f, 15.51f, 15.5f);  // the last centre
+  expectSameTable(v, height, "edge cases");
 }
 
 }  // namespace

@@ -1,0 +1,162 @@
+#include "slicing/gpu/gpu_slicer.h"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "mvr/error.h"
+#include "mvr/gl/gl_program.h"
+
+namespace mvr {
+namespace {
+
+// The CPU slicer's arithmetic (slicing/slice_table.cpp), term for term.
+const char* const kCommon = R"(
+layout(std430, binding = 0) readonly buffer Ys { float uY[]; };
+layout(std430, binding = 1) readonly buffer Triangles { uvec4 uTriangles[]; };
+layout(std430, binding = 2) buffer Cells { uint uCells[]; };  // scanline-major: cell j * blocks + b
+uniform uint uTriangleCount;
+uniform uint uBlocks;
+uniform uint uPerBlock;
+uniform int uHeight;
+
+// Scanlines [first, last) whose centres j + 0.5 lie in [ymin, ymax).
+ivec2 scanlineRange(float y0, float y1, float y2) {
+  float lo = min(y0, min(y1, y2)), hi = max(y0, max(y1, y2));
+  int first = max(0, int(ceil(lo - 0.5)));
+  int last = min(uHeight, int(ceil(hi - 0.5)));
+  return ivec2(first, max(first, last));
+}
+uint blockEnd(uint b) { return min((b + 1u) * uPerBlock, uTriangleCount); }
+)";
+
+const char* const kCount = R"(
+layout(local_size_x = 64) in;
+void main() {
+  uint b = gl_GlobalInvocationID.x;
+  if (b >= uBlocks) return;
+  for (uint t = b * uPerBlock; t < blockEnd(b); ++t) {
+    uvec4 tri = uTriangles[t];
+    ivec2 range = scanlineRange(uY[tri.x], uY[tri.y], uY[tri.z]);
+    for (int j = range.x; j < range.y; ++j) uCells[uint(j) * uBlocks + b] += 1u;
+  }
+}
+)";
+
+// offsets[j] = first slot of scanline j's first cell; offsets[height] =
+// the slice count (the scan's total, at word 0 of Total).
+const char* const kOffsets = R"(
+layout(local_size_x = 64) in;
+layout(std430, binding = 3) writeonly buffer Offsets { uint uOffsets[]; };
+layout(std430, binding = 4) readonly buffer Total { uint uTotal; };
+void main() {
+  uint j = gl_GlobalInvocationID.x;
+  if (j > uint(uHeight)) return;
+  uOffsets[j] = j < uint(uHeight) ? uCells[j * uBlocks] : uTotal;
+}
+)";
+
+const char* const kFill = R"(
+layout(local_size_x = 64) in;
+layout(std430, binding = 5) writeonly buffer Slices { uvec4 uSlices[]; };
+void main() {
+  uint b = gl_GlobalInvocationID.x;
+  if (b >= uBlocks) return;
+  for (uint t = b * uPerBlock; t < blockEnd(b); ++t) {
+    uvec4 tri = uTriangles[t];
+    float y[3] = float[3](uY[tri.x], uY[tri.y], uY[tri.z]);
+    ivec2 range = scanlineRange(y[0], y[1], y[2]);
+    if (range.x >= range.y) continue;
+    // Corners sorted by y; the permutation's parity orders the endpoints.
+    uint a = 0u, m = 1u, c = 2u;
+    bool odd = false;
+    if (y[m] < y[a]) { uint s = a; a = m; m = s; odd = !odd; }
+    if (y[c] < y[m]) { uint s = m; m = c; c = s; odd = !odd; }
+    if (y[m] < y[a]) { uint s = a; a = m; m = s; odd = !odd; }
+    float ya = y[a], yb = y[m], yc = y[c];
+    uint corners = a | (m << 2) | (c << 4) | (odd ? 0u : 128u);
+    float invLong = 1.0 / (yc - ya);
+    for (int j = range.x; j < range.y; ++j) {
+      float yy = float(j) + 0.5;
+      bool lower = yy >= yb;
+      float tShort = lower ? (yy - yb) / (yc - yb) : (yy - ya) / (yb - ya);
+      uint cell = uint(j) * uBlocks + b, at = uCells[cell];
+      uCells[cell] = at + 1u;
+      uSlices[at] = uvec4(t, floatBitsToUint((yy - ya) * invLong), floatBitsToUint(tShort),
+                          corners | (lower ? 64u : 0u));
+    }
+  }
+}
+)";
+
+gl::Program compute(const char* name, const char* main) {
+  return gl::linkProgram(name, {{GL_COMPUTE_SHADER, gl::glslHeader() + kCommon + main}});
+}
+
+// Grid cells at most: blocks x height stays within this.
+constexpr size_t kMaxCells = size_t(1) << 22;
+constexpr uint32_t kMinPerBlock = 32;
+
+uint32_t groups(size_t n) { return uint32_t((n + 63) / 64); }
+
+}  // namespace
+
+GpuSlicer::GpuSlicer()
+    : count_(compute("slice-count", kCount)), offsets_(compute("slice-offsets", kOffsets)),
+      fill_(compute("slice-fill", kFill)) {}
+
+GpuSliceTable GpuSlicer::build(const ExtremeVertices& v, int height) {
+  if (height < 1) fail("GpuSlicer", "height must be at least 1");
+  const auto triangles = uint32_t(v.triangles.size());
+  const auto blocks = uint32_t(std::clamp<size_t>(triangles / kMinPerBlock, 1, std::max<size_t>(1, kMaxCells / height)));
+  const uint32_t perBlock = std::max<uint32_t>(1, (triangles + blocks - 1) / blocks);
+  const size_t cellCount = size_t(blocks) * height;
+
+  std::vector<glm::uvec4> indices(triangles);
+  for (uint32_t t = 0; t < triangles; ++t) indices[t] = glm::uvec4(v.triangles[t], 0u);
+  const gl::Buffer ys = gl::makeBuffer(v.y.data(), v.y.size());
+  const gl::Buffer tris = gl::makeBuffer(indices.data(), indices.size());
+  gl::Buffer cells = gl::makeBuffer<uint32_t>(nullptr, cellCount, GL_DYNAMIC_STORAGE_BIT);
+  const uint32_t zero = 0;
+  gl::ClearNamedBufferSubData(cells.id(), GL_R32UI, 0, GLsizeiptr(cellCount * sizeof(uint32_t)), GL_RED_INTEGER,
+                              GL_UNSIGNED_INT, &zero);
+  const gl::Buffer total = gl::makeBuffer(&zero, 1, GL_DYNAMIC_STORAGE_BIT);
+  gl::Buffer offsets = gl::makeBuffer<uint32_t>(nullptr, size_t(height) + 1);
+
+  auto use = [&](const gl::Program& p) {
+    gl::UseProgram(p.id());
+    gl::ProgramUniform1ui(p.id(), gl::GetUniformLocation(p.id(), "uTriangleCount"), triangles);
+    gl::ProgramUniform1ui(p.id(), gl::GetUniformLocation(p.id(), "uBlocks"), blocks);
+    gl::ProgramUniform1ui(p.id(), gl::GetUniformLocation(p.id(), "uPerBlock"), perBlock);
+    gl::setUniform(p, "uHeight", height);
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, ys.id());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, tris.id());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, cells.id());
+  };
+  gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the clear
+  use(count_);
+  gl::DispatchCompute(groups(blocks), 1, 1);
+  gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  prefixSum_.exclusive(cells.id(), 0, uint32_t(cellCount), total.id(), 0);
+  use(offsets_);
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, offsets.id());
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, total.id());
+  gl::DispatchCompute(groups(size_t(height) + 1), 1, 1);
+  gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+
+  // The one readback: height + 1 offsets, for the slices buffer's size and
+  // the rasterizer's batches.
+  std::vector<uint32_t> hostOffsets(size_t(height) + 1);
+  gl::GetNamedBufferSubData(offsets.id(), 0, GLsizeiptr(hostOffsets.size() * sizeof(uint32_t)), hostOffsets.data());
+  gl::Buffer slices = gl::makeBuffer<Slice>(nullptr, hostOffsets.back());
+  if (hostOffsets.back() > 0) {
+    use(fill_);
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, slices.id());
+    gl::DispatchCompute(groups(blocks), 1, 1);
+    gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+  gl::checkError("GPU slicing");
+  return GpuSliceTable::adopt(std::move(slices), std::move(offsets), std::move(hostOffsets));
+}
+
+}  // namespace mvr

@@ -1,0 +1,32 @@
+#pragma once
+// The scanline slice table built on the GPU (Halle 6.4.2 as compute
+// passes): the same entries, in the same order, as SliceTable::build, the
+// CPU slicer that stays its oracle. Triangles are split into blocks; one
+// invocation per block counts its triangles' slices per scanline into a
+// scanline-major grid of (scanline, block) cells, a prefix sum over the
+// grid gives every cell its first slot, and the same invocations write
+// their slices there in triangle order. Per scanline that is block order,
+// then triangle order within a block: the CPU's triangle order, with no
+// atomics and no sort. Only the height + 1 offsets come back to the host
+// (GpuSliceTable keeps them for batching); the slices never do.
+#include "mvr/gl/gl_handles.h"
+#include "mvr/gl/prefix_sum.h"
+#include "slicing/extreme_vertices.h"
+#include "slicing/gpu/gpu_slice_table.h"
+
+namespace mvr {
+
+class GpuSlicer {
+ public:
+  GpuSlicer();  // needs a current GL context
+
+  // The table of v's triangles over `height` scanlines. Uploads y per
+  // vertex and the triangles' indices: O(vertices + triangles).
+  GpuSliceTable build(const ExtremeVertices& v, int height);
+
+ private:
+  gl::Program count_, offsets_, fill_;
+  gl::PrefixSum prefixSum_;
+};
+
+}  // namespace mvr
