@@ -11,7 +11,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/support/cli.h"
+#include "tests/support/gl_fixture.h"
+
 namespace {
+
+namespace test = mvr::test;
 
 namespace fs = std::filesystem;
 
@@ -24,7 +29,7 @@ Result run(const std::string& args) {
   // ctest runs tests in parallel processes: one stderr file per process.
   const fs::path errFile =
       fs::temp_directory_path() / ("mvr_cli_stderr_" + std::to_string(getpid()) + ".txt");
-  const std::string cmd = std::string(MVR_BINARY) + " " + args + " >/dev/null 2>" + errFile.string();
+  const std::string cmd = test::mvrBinary() + " " + args + " >/dev/null 2>" + errFile.string();
   int rc = std::system(cmd.c_str());
   std::stringstream ss;
   ss << std::ifstream(errFile).rdbuf();
@@ -88,12 +93,12 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
   fs::path d = outDir("bad");
   const fs::path noTexture = outDir("bad_scene") / "missing_texture.json";
   fs::create_directories(noTexture.parent_path());
-  std::ofstream(noTexture) << R"({"meshes": [{"file": ")" << MVR_TEST_ASSETS
+  std::ofstream(noTexture) << R"({"meshes": [{"file": ")" << test::assetsDir()
                            << R"(/plane.obj", "material": {"texture": "nothere.png"}}]})";
   // A square image is neither a cube strip (6:1) nor a sphere map pair (2:1).
   const fs::path squareMap = noTexture.parent_path() / "square_map.json";
-  std::ofstream(squareMap) << R"({"meshes": [{"file": ")" << MVR_TEST_ASSETS
-                           << R"(/plane.obj", "material": {"reflection_map": ")" << MVR_TEST_ASSETS
+  std::ofstream(squareMap) << R"({"meshes": [{"file": ")" << test::assetsDir()
+                           << R"(/plane.obj", "material": {"reflection_map": ")" << test::assetsDir()
                            << R"(/checker.png"}}]})";
   for (std::string args : std::vector<std::string>{"render /nonexistent/scene.json --out " + d.string(),
                            "render " + noTexture.string() + " --out " + d.string(),
@@ -131,7 +136,7 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
 TEST(Cli, RendersUnderGlfwWithAVirtualDisplay) {
   if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "no xvfb-run";
   fs::path d = outDir("glfw");
-  const std::string cmd = "xvfb-run -a " + std::string(MVR_BINARY) +
+  const std::string cmd = "xvfb-run -a " + test::mvrBinary() +
                           " render --gl glfw --views 2 --size 32x24 --out " + d.string() +
                           " >/dev/null 2>&1";
   ASSERT_EQ(WEXITSTATUS(std::system(cmd.c_str())), 0);
@@ -182,7 +187,7 @@ TEST(Cli, HelpForEverySubcommand) {
 }
 
 TEST(Cli, VersionPrintsTheProjectVersion) {
-  const std::string cmd = std::string(MVR_BINARY) + " --version | grep -qx 'mvr [0-9]*\\.[0-9]*\\.[0-9]*'";
+  const std::string cmd = test::mvrBinary() + " --version | grep -qx 'mvr [0-9]*\\.[0-9]*\\.[0-9]*'";
   EXPECT_EQ(std::system(cmd.c_str()), 0);
 }
 

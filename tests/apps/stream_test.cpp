@@ -19,8 +19,8 @@ void expectSameSet(const std::filesystem::path& a, const std::filesystem::path& 
 TEST(Stream, PipeProducerToConsumer) {
   auto ref = test::freshDir("stream_ref"), got = test::freshDir("stream_pipe");
   ASSERT_EQ(test::runMvr("render" + kArgs + " --out " + ref.string()).status, 0);
-  auto r = test::shell(std::string(MVR_BINARY) + " stream" + kArgs + " --queue 2 --to - | " +
-                       MVR_CONSUME + " --from - --out " + got.string());
+  auto r = test::shell(test::mvrBinary() + " stream" + kArgs + " --queue 2 --to - | " +
+                       test::consumeBinary() + " --from - --out " + got.string());
   ASSERT_EQ(r.status, 0) << r.err;
   expectSameSet(ref, got);
 }
@@ -31,9 +31,9 @@ TEST(Stream, UnixSocketProducerToListeningConsumer) {
                             ("mvr_test_" + std::to_string(getpid()) + ".sock")).string();
   ASSERT_EQ(test::runMvr("render" + kArgs + " --out " + ref.string()).status, 0);
   // The consumer listens; the producer retries until the socket exists.
-  auto r = test::shell(std::string(MVR_CONSUME) + " --from unix:" + sock + " --out " + got.string() +
+  auto r = test::shell(test::consumeBinary() + " --from unix:" + sock + " --out " + got.string() +
                        " & for i in $(seq 50); do [ -S " + sock + " ] && break; sleep 0.1; done; " +
-                       MVR_BINARY + " stream" + kArgs + " --to unix:" + sock + " && wait");
+                       test::mvrBinary() + " stream" + kArgs + " --to unix:" + sock + " && wait");
   ASSERT_EQ(r.status, 0) << r.err;
   expectSameSet(ref, got);
 }
@@ -47,7 +47,7 @@ TEST(Stream, FileStreamAndTruncationIsReported) {
   const auto size = std::filesystem::file_size(path);
   EXPECT_EQ(size, 64u + 40u * (8u + 56u * 6u * 4u));
   std::filesystem::resize_file(path, size - 100);
-  auto r = test::shell(std::string(MVR_CONSUME) + " --from " + path + " --out " + (file / "out").string());
+  auto r = test::shell(test::consumeBinary() + " --from " + path + " --out " + (file / "out").string());
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.err.find("truncated"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(file / "out" / "manifest.json"));
@@ -55,7 +55,7 @@ TEST(Stream, FileStreamAndTruncationIsReported) {
 
 TEST(Stream, ConsumerGoneIsAnErrorNotAHang) {
   // pipefail: the pipeline's status is the producer's, not head's.
-  auto r = test::shell("bash -o pipefail -c '" + std::string(MVR_BINARY) +
+  auto r = test::shell("bash -o pipefail -c '" + test::mvrBinary() +
                        " stream --views 64 --size 256x200 --to - | head -c 100 >/dev/null'");
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_NE(r.err.find("mvr: stream: write failed"), std::string::npos) << r.err;

@@ -17,7 +17,7 @@ TEST(Viewer, ScreenshotShowsTheViewAndItsEpi) {
   auto set = test::freshDir("viewer_set");
   ASSERT_EQ(test::runMvr("render --views 7 --size 64x48 --out " + set.string()).status, 0);
   const std::string shot = (set / "shot.png").string();
-  auto r = test::shell("xvfb-run -a " + std::string(MVR_BINARY) + " view " + set.string() +
+  auto r = test::shell("xvfb-run -a " + test::mvrBinary() + " view " + set.string() +
                        " --view 3 --scanline 30 --screenshot " + shot);
   ASSERT_EQ(r.status, 0) << r.err;
   Image s = readImage(shot);

@@ -27,8 +27,19 @@ inline CliResult shell(const std::string& commandLine) {
   return {WEXITSTATUS(rc), ss.str()};
 }
 
+// The programs under test: MVR_TEST_MVR and MVR_TEST_CONSUME from the
+// environment (packed copies on another machine), else the build's.
+inline std::string mvrBinary() {
+  const char* path = std::getenv("MVR_TEST_MVR");
+  return path ? path : MVR_BINARY;
+}
+inline std::string consumeBinary() {
+  const char* path = std::getenv("MVR_TEST_CONSUME");
+  return path ? path : MVR_CONSUME;
+}
+
 inline CliResult runMvr(const std::string& args) {
-  return shell(std::string(MVR_BINARY) + " " + args + " >/dev/null");
+  return shell(mvrBinary() + " " + args + " >/dev/null");
 }
 
 inline std::filesystem::path freshDir(const std::string& name) {

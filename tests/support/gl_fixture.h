@@ -3,17 +3,22 @@
 // first use: context creation is slow on llvmpipe.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <memory>
+#include <string>
 
 #include "mvr/gl/gl_context.h"
 #include "mvr/progress.h"
 
 namespace mvr::test {
 
+// MVR_TEST_GL=egl|osmesa|auto picks the platform (scripts/gpu-tests forces
+// EGL on GPU machines).
 inline GlContext& sharedContext() {
   static std::unique_ptr<GlContext> ctx = [] {
     setProgressEnabled(false);
-    return GlContext::create(GlPlatform::Auto);
+    const char* platform = std::getenv("MVR_TEST_GL");
+    return GlContext::create(platform ? parseGlPlatform(platform) : GlPlatform::Auto);
   }();
   return *ctx;
 }
@@ -23,6 +28,12 @@ class GlTest : public ::testing::Test {
   void SetUp() override { sharedContext(); }
 };
 
-inline std::string assetPath(const std::string& name) { return std::string(MVR_TEST_ASSETS) + "/" + name; }
+// The assets folder: MVR_TEST_ASSETS from the environment (a packed copy on
+// another machine), else the checkout's, compiled in.
+inline std::string assetsDir() {
+  const char* dir = std::getenv("MVR_TEST_ASSETS");
+  return dir ? dir : MVR_TEST_ASSETS;
+}
+inline std::string assetPath(const std::string& name) { return assetsDir() + "/" + name; }
 
 }  // namespace mvr::test
