@@ -19,8 +19,9 @@ void BackendFlags::add(CLI::App& app) {
                                   "the 2D texture with a per-pixel divide (direct)")
                        ->type_name(choices(kTextureModeNames));
   builderOption_ = app.add_option("--pst-builder", builder_,
-                                  "mvr GL modes: build PST geometry on the GPU from the GPU slice table "
-                                  "(gpu, default) or on the CPU, uploaded per batch (cpu)")
+                                  "mvr GL modes: slice and build PST geometry on the GPU (gpu) or on the "
+                                  "CPU, uploaded per batch (cpu); auto (default): gpu unless GL renders "
+                                  "on the CPU (llvmpipe)")
                        ->type_name(choices(kPstBuilderNames));
   interpOptions_ = {
       app.add_option("--acquire", acquire_,

@@ -24,7 +24,7 @@ inline constexpr NameTable<Backend, 5> kBackendNames{{{Backend::Mvr, "mvr"},
 struct MvrOptions {
   PstMode mode = PstMode::Strip;
   TextureMode texture = TextureMode::Vector;  // GL modes; cpu samples directly
-  PstBuilder builder = PstBuilder::Gpu;       // GL modes
+  PstBuilder builder = PstBuilder::Auto;      // GL modes
 };
 
 struct BackendOptions {
@@ -45,7 +45,7 @@ std::unique_ptr<Renderer> makeRenderer(const BackendOptions& options, const Scen
                                        PixelType type);
 
 // The benchmark's compact form: NAME[:PST[:OPTION...]] with a texture mode
-// or a PST builder (cpu-psts, gpu-psts) as options (mvr:exact:direct) or
+// or a PST builder (auto-psts, gpu-psts, cpu-psts) as options (mvr:exact:direct) or
 // interp[:ACQUIRE[:OPTION...]] with options L (layers), cT (coalesce T
 // pixels), vis (visibility), bB (budget), sK (splits), oP (overlap P
 // pixels) and an accuracy mode, e.g. interp:hierarchical:2:c0.5:vis:b5:exact.

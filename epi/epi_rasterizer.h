@@ -32,12 +32,15 @@ inline TextureMode parseTextureMode(const std::string& name) {  // throws on unk
   return parseName(kTextureModeNames, name, "--texture", "mode");
 }
 
-// Where the GL modes build PST geometry: on the GPU from the GPU slice
-// table (the default), or on the CPU and uploaded per batch (the reference
-// the GPU path is tested against; the texture-vector passes always use it).
-enum class PstBuilder { Gpu, Cpu };
-inline constexpr NameTable<PstBuilder, 2> kPstBuilderNames{
-    {{PstBuilder::Gpu, "gpu"}, {PstBuilder::Cpu, "cpu"}}};
+// Where the GL modes slice and build PST geometry: on the GPU (slice table
+// and PSTs in GPU memory), or on the CPU with PSTs uploaded per batch (the
+// reference the GPU path is tested against; the texture-vector passes
+// always use it). Auto, the default: the GPU, unless GL itself renders on
+// the CPU (llvmpipe), where the CPU path's lower per-view cost wins
+// (docs/BENCHMARKS.md, issue 14).
+enum class PstBuilder { Auto, Gpu, Cpu };
+inline constexpr NameTable<PstBuilder, 3> kPstBuilderNames{
+    {{PstBuilder::Auto, "auto"}, {PstBuilder::Gpu, "gpu"}, {PstBuilder::Cpu, "cpu"}}};
 
 // What the rasterizers shade with beyond the lit colours: the scene's
 // lights, materials and textures and the plan's passes. No scene: diffuse
@@ -75,13 +78,13 @@ class EpiRasterizer {
 // context).
 std::unique_ptr<EpiRasterizer> makeRasterizer(PstMode mode, PixelType type,
                                               const EpiShading& shading = {},
-                                              PstBuilder builder = PstBuilder::Gpu);
+                                              PstBuilder builder = PstBuilder::Auto);
 
 // Exact spans on every core of the thread pool (mvr/parallel.h).
 std::unique_ptr<EpiRasterizer> makeSpanRasterizer(PixelType type, const EpiShading& shading = {});
 // Quad, strip or exact; needs a current GL context.
 std::unique_ptr<EpiRasterizer> makeGlRasterizer(PstMode mode, PixelType type,
                                                 const EpiShading& shading = {},
-                                                PstBuilder builder = PstBuilder::Gpu);
+                                                PstBuilder builder = PstBuilder::Auto);
 
 }  // namespace mvr

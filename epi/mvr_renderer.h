@@ -13,6 +13,6 @@ namespace mvr {
 // samples textures directly.
 std::unique_ptr<Renderer> makeMvrRenderer(const Scene& scene, PstMode mode, PixelType type,
                                           TextureMode texture = TextureMode::Vector,
-                                          PstBuilder builder = PstBuilder::Gpu);
+                                          PstBuilder builder = PstBuilder::Auto);
 
 }  // namespace mvr

@@ -60,7 +60,8 @@ class GlRasterizer final : public EpiRasterizer {
       : mode_(mode), type_(type), shading_(shading) {
     const bool vectors = shading_.sliceVectors ||
                          (shading_.plan.texture && shading_.textureMode == TextureMode::Vector);
-    if (builder == PstBuilder::Gpu && !vectors) geometry_.emplace(mode, shading_.plan.extraCount);
+    const bool gpu = builder == PstBuilder::Gpu || (builder == PstBuilder::Auto && !gl::rendersOnCpu());
+    if (gpu && !vectors) geometry_.emplace(mode, shading_.plan.extraCount);
     if (shading_.sliceVectors)
       passes_.emplace_back(mode, shading::Pass::Texture, shading_);
     else

@@ -93,7 +93,8 @@ TEST_F(MvrVsSvr, QuadIsMeasurablyWorseOnATwistedScene) {
 // few pixels in 10^4, and never by more than one step away from edges.
 // Scenes: the teacup (culling, many thin slices), the twisted quad (strip
 // with many slivers), the shiny scene (specular pass: depth EQUAL across
-// passes needs the same depths in every pass) and the mirror (reflection).
+// passes needs the same depths in every pass), the mirror (reflection)
+// and the textured scene (direct texturing).
 TEST_F(MvrVsSvr, GpuBuiltPstsMatchCpuBuiltPsts) {
   struct Case {
     std::string name;
@@ -105,7 +106,7 @@ TEST_F(MvrVsSvr, GpuBuiltPstsMatchCpuBuiltPsts) {
   spec.distance = 4, spec.planeWidth = 3, spec.trackLeft = -3, spec.trackRight = 3;
   spec.nearDistance = 1, spec.farDistance = 9;
   std::vector<Case> cases;
-  for (const char* name : {"default.json", "shiny.json", "mirror.json"}) {
+  for (const char* name : {"default.json", "shiny.json", "mirror.json", "textured.json"}) {
     Scene s = loadScene(test::assetPath(name));
     const ShearingCamera cam(*s.camera, 96, 72, 9);
     cases.push_back({name, std::move(s), cam});
@@ -113,8 +114,9 @@ TEST_F(MvrVsSvr, GpuBuiltPstsMatchCpuBuiltPsts) {
   cases.push_back({"twisted", twisted, ShearingCamera(spec, 96, 64, 16)});
   for (const Case& c : cases) {
     for (PstMode mode : {PstMode::Quad, PstMode::Strip, PstMode::Exact}) {
-      auto gpu = makeMvrRenderer(c.scene, mode, PixelType::U8, TextureMode::Vector, PstBuilder::Gpu);
-      auto cpu = makeMvrRenderer(c.scene, mode, PixelType::U8, TextureMode::Vector, PstBuilder::Cpu);
+      // Textures sampled directly: the texture-vector pass has no GPU path.
+      auto gpu = makeMvrRenderer(c.scene, mode, PixelType::U8, TextureMode::Direct, PstBuilder::Gpu);
+      auto cpu = makeMvrRenderer(c.scene, mode, PixelType::U8, TextureMode::Direct, PstBuilder::Cpu);
       RenderStats gpuStats, cpuStats;
       const auto gpuViews = test::renderViews(*gpu, c.cam, gpuStats);
       const auto cpuViews = test::renderViews(*cpu, c.cam, cpuStats);
@@ -131,6 +133,7 @@ TEST_F(MvrVsSvr, GpuBuiltPstsMatchCpuBuiltPsts) {
 
 // The texture-vector pass extracts its vectors on the CPU: a textured
 // scene keeps CPU-built geometry (and says so); direct texturing pulls.
+// Auto builds on the GPU unless GL renders on the CPU.
 TEST_F(MvrVsSvr, TextureVectorsKeepCpuBuiltPsts) {
   Scene scene = loadScene(test::assetPath("textured.json"));
   ShearingCamera cam(*scene.camera, 48, 36, 4);
@@ -140,6 +143,10 @@ TEST_F(MvrVsSvr, TextureVectorsKeepCpuBuiltPsts) {
     test::renderViews(*mvr, cam, stats);
     EXPECT_EQ(stats.notes["pst_builder"], texture == TextureMode::Vector ? "cpu" : "gpu");
   }
+  auto automatic = makeMvrRenderer(scene, PstMode::Strip, PixelType::U8, TextureMode::Direct);
+  RenderStats stats;
+  test::renderViews(*automatic, cam, stats);
+  EXPECT_EQ(stats.notes["pst_builder"], gl::rendersOnCpu() ? "cpu" : "gpu");
 }
 
 // Reads staged through the readback ring's pixel-pack buffers and fences
