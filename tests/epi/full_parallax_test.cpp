@@ -31,8 +31,7 @@ TEST(FullParallax, GridMatchesSvrGrid) {
   auto mvr = makeMvrRenderer(scene, PstMode::Cpu, PixelType::U8);
   test::CaptureSink a = test::renderViews(*svr, cam), b = test::renderViews(*mvr, cam);
   ASSERT_EQ(a.views.size(), 12u);
-  auto d = test::compareViews(a, b);
-  EXPECT_GE(d.minIdentical, 0.99);
+  test::expectCloseOnAnyGl(test::compareViews(a, b), 0.99, 40.0, "cpu");
   // Rows really differ: the top and bottom rows see the cup from above and below.
   EXPECT_LT(compareImages(a.views.at({0, 1}), a.views.at({2, 1})).identicalFraction, 0.95);
 }

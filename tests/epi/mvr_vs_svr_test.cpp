@@ -1,9 +1,10 @@
 // MVR against SVR on the same scene and camera, per view. Tolerances:
-//  cpu, exact  >= 99.5% identical pixels and PSNR >= 40 dB; what differs is
-//              silhouette pixels where the two rasterizers' fill rules and
-//              sub-pixel snapping disagree, and 1-LSB rounding of colours.
-//              (At 96 x 72 one full-contrast silhouette pixel alone costs
-//              42 dB, so 45 dB would demand pixel-identical silhouettes.)
+//  cpu, exact  >= 99.5% of pixels within one 8-bit step and PSNR >= 40 dB
+//              (test::expectCloseOnAnyGl has the derivation); what differs
+//              more is silhouette pixels where the two rasterizers' fill
+//              rules and sub-pixel snapping disagree. (At 96 x 72 one
+//              full-contrast silhouette pixel alone costs 42 dB, so 45 dB
+//              would demand pixel-identical silhouettes.)
 //  strip       PSNR >= 40 dB: slivers interpolate linearly between exact
 //              rulings, half a pixel of attribute misplacement at most.
 //  quad        on a strongly twisted scene, measurably worse than strip.
@@ -31,21 +32,15 @@ class MvrVsSvr : public test::GlTest {
 TEST_F(MvrVsSvr, CubeExactModesMatch) {
   Scene scene = loadScene(test::assetPath("cube.json"));
   ShearingCamera cam(*scene.camera, 96, 72, 9);
-  for (PstMode mode : {PstMode::Cpu, PstMode::Exact}) {
-    auto d = run(scene, cam, mode);
-    EXPECT_GE(d.minIdentical, 0.995) << pstModeName(mode);
-    EXPECT_GE(d.minPsnr, 40.0) << pstModeName(mode);
-  }
+  for (PstMode mode : {PstMode::Cpu, PstMode::Exact})
+    test::expectCloseOnAnyGl(run(scene, cam, mode), 0.995, 40.0, pstModeName(mode));
 }
 
 TEST_F(MvrVsSvr, TeacupExactModesMatchAndStripIsClose) {
   Scene scene = loadScene(test::assetPath("default.json"));
   ShearingCamera cam(*scene.camera, 120, 90, 7);
-  for (PstMode mode : {PstMode::Cpu, PstMode::Exact}) {
-    auto d = run(scene, cam, mode);
-    EXPECT_GE(d.minIdentical, 0.995) << pstModeName(mode);
-    EXPECT_GE(d.minPsnr, 40.0) << pstModeName(mode);
-  }
+  for (PstMode mode : {PstMode::Cpu, PstMode::Exact})
+    test::expectCloseOnAnyGl(run(scene, cam, mode), 0.995, 40.0, pstModeName(mode));
   auto strip = run(scene, cam, PstMode::Strip);
   EXPECT_GE(strip.minPsnr, 40.0);
 }
@@ -209,8 +204,7 @@ TEST_F(MvrVsSvr, OneAndTwoViews) {
   Scene scene = loadScene(test::assetPath("cube.json"));
   for (int n : {1, 2}) {
     ShearingCamera cam(*scene.camera, 64, 48, n);
-    auto d = run(scene, cam, PstMode::Cpu);
-    EXPECT_GE(d.minIdentical, 0.995) << n << " views";
+    test::expectCloseOnAnyGl(run(scene, cam, PstMode::Cpu), 0.995, 40.0, std::to_string(n) + " views");
   }
 }
 

@@ -163,8 +163,8 @@ TEST_F(ReflectionVsSvr, EveryBackEndMatchesSvr) {
     const bool exactish = std::string(mode) == "cpu" || std::string(mode) == "exact";
     EXPECT_GE(r.difference.at(mode).minPsnr, exactish ? 45.0 : 35.0) << mode;
   }
-  EXPECT_GE(r.difference.at("exact").minIdentical, 0.995);
-  EXPECT_GE(r.difference.at("cpu").minClose, 0.995);
+  for (const char* mode : {"cpu", "exact"})
+    test::expectCloseOnAnyGl(r.difference.at(mode), 0.995, 45.0, mode);
 }
 
 // A mirror on the image plane has zero disparity: every view sees the same

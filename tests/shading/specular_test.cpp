@@ -85,8 +85,8 @@ TEST_F(SpecularVsSvr, EveryModeMatchesSvr) {
     EXPECT_EQ(r.passes.at(mode), "diffuse+view-dependent") << mode;
     EXPECT_GE(r.difference.at(mode).minPsnr, 40.0) << mode;
   }
-  EXPECT_GE(r.difference.at("cpu").minIdentical, 0.995);
-  EXPECT_GE(r.difference.at("exact").minIdentical, 0.995);
+  for (const char* mode : {"cpu", "exact"})
+    test::expectCloseOnAnyGl(r.difference.at(mode), 0.995, 40.0, mode);
 }
 
 TEST_F(SpecularVsSvr, HighlightsMoveWithTheViewAndTheRow) {
@@ -97,7 +97,7 @@ TEST_F(SpecularVsSvr, HighlightsMoveWithTheViewAndTheRow) {
   auto svr = makeSvrRenderer(scene, PixelType::U8);
   auto cpu = makeMvrRenderer(scene, PstMode::Cpu, PixelType::U8);
   const test::CaptureSink a = test::renderViews(*svr, cam), b = test::renderViews(*cpu, cam);
-  EXPECT_GE(test::compareViews(a, b).minIdentical, 0.995);
+  test::expectCloseOnAnyGl(test::compareViews(a, b), 0.995, 40.0, "cpu");
   // Without the highlight, the same views differ from these.
   Scene matte = scene;
   for (Material& m : matte.materials) m.specular = glm::vec3(0);
