@@ -26,6 +26,7 @@
 #include "mvr/gl/readback_ring.h"
 #include "mvr/io/compare.h"
 #include "mvr/io/scene_io.h"
+#include "mvr/parallel.h"
 #include "mvr/progress.h"
 
 namespace mvr::app {
@@ -256,6 +257,7 @@ int runBench(int argc, char** argv) {
   app.add_option("--replot", replot, "only plot an earlier run's --json FILE into --plots DIR")
       ->type_name("FILE");
   addGlOption(app, gl);
+  addThreadsOption(app);
   if (auto exit = parseCommandLine(app, argc - 1, argv + 1)) return *exit;
 
   setProgressEnabled(false);
@@ -288,9 +290,9 @@ int runBench(int argc, char** argv) {
   }
 
   auto context = GlContext::create(parseGlPlatform(gl));
-  BenchMachine machine{context->describe(), cpuModel(), std::thread::hardware_concurrency()};
-  std::printf("# mvr bench\n# GL: %s\n# CPU: %s, %u threads\n", machine.gl.c_str(), machine.cpu.c_str(),
-              machine.threads);
+  BenchMachine machine{context->describe(), cpuModel(), unsigned(threadCount())};
+  std::printf("# mvr bench\n# GL: %s\n# CPU: %s, %u cores, %u pool threads\n", machine.gl.c_str(),
+              machine.cpu.c_str(), std::thread::hardware_concurrency(), machine.threads);
   std::printf("%-16s %-9s %6s %-24s %10s %10s %8s %9s %8s %7s %10s %7s %10s\n", "scene", "size",
               "views", "backend", "total_s", "ms/view", "x_svr", "x_layered", "PSNR_dB", "SSIM",
               "identical", "holes", "slices");

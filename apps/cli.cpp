@@ -5,6 +5,7 @@
 #include "mvr/camera.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_context.h"
+#include "mvr/parallel.h"
 
 namespace mvr::app {
 
@@ -59,6 +60,14 @@ CLI::Option* addGlOption(CLI::App& app, std::string& platform) {
   return app.add_option("--gl", platform, "GL platform: " + alternatives(kGlPlatformNames) +
                                               " (auto: egl, else osmesa)")
       ->capture_default_str();
+}
+
+CLI::Option* addThreadsOption(CLI::App& app) {
+  return app.add_option_function<int>("--threads", [](const int& n) { setThreadCount(n); },
+                                      "worker threads for slicing, CPU rasterization and image "
+                                      "encoding (default 0: every core)")
+      ->check(CLI::Range(0, 4096))
+      ->type_name("N");
 }
 
 }  // namespace mvr::app

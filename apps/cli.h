@@ -28,4 +28,9 @@ void addViewCountOptions(CLI::App& app, int& views, int& rows);
 // --gl egl|osmesa|glfw|auto into platform.
 CLI::Option* addGlOption(CLI::App& app, std::string& platform);
 
+// --threads N: the pool's workers (mvr/parallel.h) for slicing, the CPU
+// rasterizer and image encoding; applied as soon as it is parsed. 0 (the
+// default): every core.
+CLI::Option* addThreadsOption(CLI::App& app);
+
 }  // namespace mvr::app

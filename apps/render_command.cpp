@@ -90,6 +90,7 @@ struct RenderFlags {
     app.add_option("--format", format, "image format: png, exr or tiff (exr renders in float)")
         ->capture_default_str();
     addGlOption(app, gl);
+    addThreadsOption(app);
   }
 
   void addRenderOwn(CLI::App& app) {

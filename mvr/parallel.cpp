@@ -1,11 +1,14 @@
 #include "mvr/parallel.h"
 
+#include <exception>
 #include <memory>
+#include <mutex>
 
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 namespace mvr {
 namespace {
@@ -33,6 +36,60 @@ void parallelFor(int begin, int end, const std::function<void(int)>& body) {
   tbb::parallel_for(tbb::blocked_range<int>(begin, end, 1), [&](const tbb::blocked_range<int>& r) {
     for (int i = r.begin(); i < r.end(); ++i) body(i);
   });
+}
+
+struct BoundedTasks::State {
+  tbb::task_group group;
+  std::mutex mutex;
+  int inFlight = 0, limit = 1;
+  std::exception_ptr error;
+
+  void rethrow() {  // with mutex held
+    if (!error) return;
+    std::exception_ptr e = std::exchange(error, nullptr);
+    std::rethrow_exception(e);
+  }
+};
+
+BoundedTasks::BoundedTasks(int limit) : state_(std::make_unique<State>()) {
+  state_->limit = limit > 0 ? limit : 2 * threadCount();
+}
+
+BoundedTasks::~BoundedTasks() { state_->group.wait(); }
+
+void BoundedTasks::submit(std::function<void()> task) {
+  State& s = *state_;
+  bool full = false;
+  {
+    std::lock_guard lock(s.mutex);
+    s.rethrow();
+    full = s.inFlight >= s.limit;
+  }
+  // Full: the caller runs queued tasks until all are done (with one thread
+  // it is the only one that can).
+  if (full) s.group.wait();
+  {
+    std::lock_guard lock(s.mutex);
+    s.rethrow();
+    ++s.inFlight;
+  }
+  s.group.run([&s, task = std::move(task)] {
+    std::exception_ptr failure;
+    try {
+      task();
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    std::lock_guard lock(s.mutex);
+    if (failure && !s.error) s.error = failure;
+    --s.inFlight;
+  });
+}
+
+void BoundedTasks::wait() {
+  state_->group.wait();
+  std::lock_guard lock(state_->mutex);
+  state_->rethrow();
 }
 
 }  // namespace mvr

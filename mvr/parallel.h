@@ -3,6 +3,7 @@
 // ParallelFor: slicing, the CPU span rasterizer and encoding share its
 // workers instead of spawning threads per call.
 #include <functional>
+#include <memory>
 
 namespace mvr {
 
@@ -13,5 +14,25 @@ void setThreadCount(int n);
 // body(i) for every i in [begin, end), one index per task, in any order
 // and on any worker; returns when all are done. Exceptions propagate.
 void parallelFor(int begin, int end, const std::function<void(int)>& body);
+
+// Tasks run on the pool's workers while the caller goes on (image encoding
+// beside rendering), at most `limit` queued or running at once: beyond
+// that submit() runs queued tasks itself until they are done, which bounds
+// the memory the tasks hold. wait() helps run them and rethrows the first
+// task's exception; so does the next submit() once a task has failed.
+class BoundedTasks {
+ public:
+  explicit BoundedTasks(int limit = 0);  // 0: twice the pool's workers
+  ~BoundedTasks();                       // waits; errors are dropped
+  BoundedTasks(const BoundedTasks&) = delete;
+  BoundedTasks& operator=(const BoundedTasks&) = delete;
+
+  void submit(std::function<void()> task);
+  void wait();
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 }  // namespace mvr

@@ -1,6 +1,7 @@
 #include "mvr/io/image_set.h"
 
 #include <filesystem>
+#include <memory>
 
 #include "mvr/error.h"
 #include "mvr/io/image_file.h"
@@ -23,14 +24,21 @@ ImageSetWriter::ImageSetWriter(std::string dir, Manifest manifest)
 
 ImageSetWriter::~ImageSetWriter() {
   if (committed_) return;
+  try {
+    encoder_.wait();  // no file may appear after the clean-up
+  } catch (...) {
+  }
   std::error_code ec;
   for (const std::string& f : written_) fs::remove(f, ec);
 }
 
 void ImageSetWriter::put(const std::string& name, const Image& image) {
-  std::string path = (fs::path(dir_) / name).string();
-  writeImage(image, path, manifest_.bits);
-  written_.push_back(path);
+  auto copy = std::make_shared<const Image>(image);  // the caller's image is gone after return
+  encoder_.submit([this, path = (fs::path(dir_) / name).string(), copy] {
+    writeImage(*copy, path, manifest_.bits);
+    std::lock_guard lock(writtenMutex_);
+    written_.push_back(path);
+  });
 }
 
 void ImageSetWriter::putView(int row, int view, const Image& image) {
@@ -44,6 +52,7 @@ void ImageSetWriter::putEpi(int row, int scanline, const Image& epi) {
 }
 
 void ImageSetWriter::commit() {
+  flush();
   if (manifest_.format == "exr") manifest_.bits = 32;
   manifest_.info["files"] = written_.size();
   manifest_.write(dir_);

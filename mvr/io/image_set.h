@@ -1,12 +1,17 @@
 #pragma once
 // Writes a rendered set to a folder: view_0000.png ... (view_r000_c0000.png
-// for grids), epi_0000.png ..., and manifest.json last. Until commit() the
-// set is incomplete: if the writer is destroyed first (an error), every file
-// it wrote is removed, so no half-written set looks finished.
+// for grids), epi_0000.png ..., and manifest.json last. Images are encoded
+// on the thread pool while rendering goes on (a bounded number queued, so
+// memory stays bounded); each file appears complete or not at all. Until
+// commit() the set is incomplete: if the writer is destroyed first (an
+// error), every file it wrote is removed, so no half-written set looks
+// finished. An encoding error surfaces at the next put or at commit().
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include "mvr/io/manifest.h"
+#include "mvr/parallel.h"
 #include "mvr/renderer.h"
 
 namespace mvr {
@@ -24,6 +29,9 @@ class ImageSetWriter final : public FrameSink {
   void putExtra(const std::string& name, const Image& image);
   // What commit() writes; fill its info before.
   Manifest& manifest() { return manifest_; }
+  // Waits until every image put so far is on disk; rethrows an encoding
+  // error.
+  void flush() { encoder_.wait(); }
   // Writes the manifest, last: from now on the set is complete.
   void commit();
 
@@ -34,8 +42,10 @@ class ImageSetWriter final : public FrameSink {
 
   std::string dir_;
   Manifest manifest_;
+  std::mutex writtenMutex_;
   std::vector<std::string> written_;
   bool committed_ = false;
+  BoundedTasks encoder_;  // last member: destroyed (drained) first
 };
 
 }  // namespace mvr

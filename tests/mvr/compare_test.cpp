@@ -114,10 +114,32 @@ TEST(ImageSetWriter, UncommittedSetIsRemoved) {
   {
     ImageSetWriter writer(dir.string(), layout(2));
     writer.putView(0, 0, gradient(8, 6, 0));
+    writer.flush();
     EXPECT_TRUE(fs::exists(dir / "view_0000.png"));
+    writer.putView(0, 1, gradient(8, 6, 1));  // still being encoded when the writer goes
   }
+  EXPECT_FALSE(fs::exists(dir / "view_0001.png"));
   EXPECT_FALSE(fs::exists(dir / "view_0000.png"));
   EXPECT_FALSE(fs::exists(dir / "manifest.json"));
+}
+
+// An image that cannot be written (a folder in the way of its file)
+// fails the set at commit: no manifest, the other files removed.
+TEST(ImageSetWriter, AFailedEncodeFailsTheCommit) {
+  fs::path dir = fs::temp_directory_path() / "mvr_failed_encode";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "view_0001.png");
+  {
+    ImageSetWriter writer(dir.string(), layout(3));
+    writer.putView(0, 0, gradient(8, 6, 0));
+    writer.putView(0, 1, gradient(8, 6, 1));
+    writer.putView(0, 2, gradient(8, 6, 2));
+    EXPECT_THROW(writer.commit(), Error);
+  }
+  EXPECT_FALSE(fs::exists(dir / "manifest.json"));
+  EXPECT_FALSE(fs::exists(dir / "view_0000.png"));
+  EXPECT_FALSE(fs::exists(dir / "view_0002.png"));
+  fs::remove_all(dir);
 }
 
 TEST(ImageSetWriter, NamesGrowDigitsWithTheViewCount) {
