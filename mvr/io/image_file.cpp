@@ -2,6 +2,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 
@@ -9,7 +10,7 @@
 
 namespace mvr {
 
-void writeImage(const Image& image, const std::string& path, int bits) {
+void writeImage(const Image& image, const std::string& path, int bits, int pngCompression) {
   namespace fs = std::filesystem;
   const std::string ext = fs::path(path).extension().string();
   const std::string tmp = path + ".part" + ext;
@@ -20,6 +21,7 @@ void writeImage(const Image& image, const std::string& path, int bits) {
                             : bits == 16 ? OIIO::TypeDesc::UINT16
                                          : OIIO::TypeDesc::UINT8;
   OIIO::ImageSpec spec(image.width, image.height, 4, fileType);
+  if (ext == ".png") spec.attribute("png:compressionLevel", std::clamp(pngCompression, 0, 9));
   const OIIO::TypeDesc memType = image.type == PixelType::U8 ? OIIO::TypeDesc::UINT8
                                                              : OIIO::TypeDesc::FLOAT;
   if (!out->open(tmp, spec) || !out->write_image(memType, image.bytes.data()) || !out->close()) {

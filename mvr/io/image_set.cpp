@@ -16,6 +16,7 @@ ImageSetWriter::ImageSetWriter(std::string dir, Manifest manifest)
     fail("--format", "unknown format '" + format + "' (expected png, exr or tiff)");
   if (manifest_.bits != 8 && manifest_.bits != 16) fail("--bits", "expected 8 or 16");
   if (manifest_.bits == 16 && format == "exr") fail("--bits", "exr is always 32-bit float");
+  if (manifest_.compression < 0 || manifest_.compression > 9) fail("--compression", "expected 0..9");
   std::error_code ec;
   fs::create_directories(dir_, ec);
   if (ec || !fs::is_directory(dir_)) fail(dir_, "cannot create output folder");
@@ -35,7 +36,7 @@ ImageSetWriter::~ImageSetWriter() {
 void ImageSetWriter::put(const std::string& name, const Image& image) {
   auto copy = std::make_shared<const Image>(image);  // the caller's image is gone after return
   encoder_.submit([this, path = (fs::path(dir_) / name).string(), copy] {
-    writeImage(*copy, path, manifest_.bits);
+    writeImage(*copy, path, manifest_.bits, manifest_.compression);
     std::lock_guard lock(writtenMutex_);
     written_.push_back(path);
   });

@@ -70,6 +70,7 @@ nlohmann::json Manifest::toJson() const {
   j["format"] = format;
   j["order"] = order;
   j["bits"] = bits;
+  if (format == "png") j["png_compression"] = compression;
   j["naming"] = order == "view" ? viewPattern() : epiPattern() + " (rows: views)";
   return j;
 }
@@ -94,13 +95,15 @@ Manifest Manifest::fromJson(const nlohmann::json& j, const std::string& where) {
   m.width = number("width", 0, 0, Limits::kMaxSide);
   m.height = number("height", 0, 0, Limits::kMaxSide);
   m.bits = number("bits", 8, 8, 32);
+  m.compression = number("png_compression", kDefaultPngCompression, 0, 9);
   m.format = text("format", "png");
   m.order = text("order", "view");
   if (m.format != "png" && m.format != "exr" && m.format != "tiff")
     fail(where, "unknown format '" + m.format + "'");
   if (m.order != "view" && m.order != "epi") fail(where, "unknown order '" + m.order + "'");
   m.info = j;
-  for (const char* key : {"views", "rows", "width", "height", "format", "order", "bits", "naming"})
+  for (const char* key : {"views", "rows", "width", "height", "format", "order", "bits", "png_compression",
+                          "naming"})
     m.info.erase(key);
   return m;
 }

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mvr/camera.h"
+#include "mvr/io/image_file.h"
 
 namespace mvr {
 
@@ -18,6 +19,7 @@ class Manifest {
   std::string format = "png";  // png | exr | tiff
   std::string order = "view";  // view: view_* files; epi: epi_* files (rows are views)
   int bits = 8;                // per channel in the files (exr: 32)
+  int compression = kDefaultPngCompression;  // png files: zlib level 0-9
   // Everything else the writer records (scene, back end, camera, timings,
   // files, ...), written beside the layout and kept when read back.
   nlohmann::json info = nlohmann::json::object();
