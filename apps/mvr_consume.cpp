@@ -5,6 +5,7 @@
 //   mvr-consume --from unix:/tmp/mvr.sock --out DIR &  mvr stream --to unix:/tmp/mvr.sock
 #include <cstdio>
 #include <istream>
+#include <new>
 
 #include "apps/cli.h"
 #include "epi/epi_stream.h"
@@ -39,15 +40,10 @@ int consume(int argc, char** argv) {
                                                 .format = format});
   mvr::EpisToViews views(writer, int(h.width), int(h.height), int(h.views), type);
   size_t frames = 0;
-  while (auto f = reader.next()) {
-    if (f->scanline < 0 || f->scanline >= int(h.height) || f->row < 0 || f->row >= int(h.rows))
-      mvr::fail("stream", "EPI outside the header's size");
+  while (auto f = reader.next()) {  // in order, all of them, nothing after (or it throws)
     views.putEpi(f->row, f->scanline, f->epi);
     ++frames;
   }
-  if (frames != size_t(h.height) * h.rows)
-    mvr::fail("stream", "ended after " + std::to_string(frames) + " of " +
-                            std::to_string(size_t(h.height) * h.rows) + " EPIs");
   writer.manifest().info = {{"source", "stream " + from},
                             {"timings_s", {{"total", watch.seconds()}}}};
   writer.commit();
@@ -63,6 +59,12 @@ int main(int argc, char** argv) {
     return consume(argc, argv);
   } catch (const mvr::Error& e) {
     std::fprintf(stderr, "mvr-consume: %s\n", e.what());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "mvr-consume: out of memory for the stream's views (fewer views or a smaller size)\n");
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mvr-consume: internal error: %s\n", e.what());
     return 1;
   }
 }

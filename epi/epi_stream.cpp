@@ -3,6 +3,7 @@
 #include <array>
 #include <cstring>
 
+#include "mvr/camera.h"
 #include "mvr/error.h"
 
 namespace mvr {
@@ -61,15 +62,39 @@ EpiStreamReader::EpiStreamReader(std::istream& in) : in_(in) {
   header_.channels = getU32(bytes.data() + 28);
   header_.bytesPerChannel = getU32(bytes.data() + 32);
   if (header_.channels != 4 || (header_.bytesPerChannel != 1 && header_.bytesPerChannel != 4) ||
-      header_.width == 0 || header_.views == 0 || header_.height == 0)
+      header_.width == 0 || header_.views == 0 || header_.height == 0 || header_.rows == 0)
     fail("stream", "header describes no valid EPI");
+  // The renderer's own bounds (mvr/camera.h): a header beyond them is not
+  // from mvr, and sizing buffers from it could exhaust memory.
+  auto within = [](const char* field, uint32_t value, int limit) {
+    if (value > uint32_t(limit))
+      fail("stream", std::string("header ") + field + " " + std::to_string(value) + " exceeds " +
+                         std::to_string(limit));
+  };
+  within("width", header_.width, Limits::kMaxSide);
+  within("height", header_.height, Limits::kMaxSide);
+  within("views", header_.views, Limits::kMaxViews);
+  within("rows", header_.rows, Limits::kMaxRows);
 }
 
 std::optional<EpiStreamReader::Frame> EpiStreamReader::next() {
+  const size_t total = size_t(header_.height) * header_.rows;
   uint8_t tag[8];
   in_.read(reinterpret_cast<char*>(tag), 8);
-  if (in_.gcount() == 0 && in_.eof()) return std::nullopt;
+  if (read_ == total) {  // complete: anything more is not this stream
+    if (in_.gcount() == 0 && in_.eof()) return std::nullopt;
+    fail("stream", "data after the last of " + std::to_string(total) + " EPIs");
+  }
+  if (in_.gcount() == 0 && in_.eof())
+    fail("stream", "ended after " + std::to_string(read_) + " of " + std::to_string(total) + " EPIs");
   if (in_.gcount() != 8) fail("stream", "truncated EPI tag");
+  // EPI-major order: row by row, scanline by scanline.
+  const uint32_t row = uint32_t(read_ / header_.height), scanline = uint32_t(read_ % header_.height);
+  if (getU32(tag) != row || getU32(tag + 4) != scanline)
+    fail("stream", "EPI " + std::to_string(read_) + " is tagged row " + std::to_string(getU32(tag)) +
+                       " scanline " + std::to_string(getU32(tag + 4)) + ", expected row " +
+                       std::to_string(row) + " scanline " + std::to_string(scanline));
+  ++read_;
   Frame f{int(getU32(tag)), int(getU32(tag + 4)),
           Image(int(header_.width), int(header_.views),
                 header_.bytesPerChannel == 1 ? PixelType::U8 : PixelType::F32)};

@@ -40,17 +40,22 @@ class EpiStreamWriter final : public FrameSink {
 // Reads a stream back: header first, then EPIs until the end.
 class EpiStreamReader {
  public:
-  explicit EpiStreamReader(std::istream& in);  // throws on a bad header
+  // Throws on a bad header, or one beyond the renderer's Limits.
+  explicit EpiStreamReader(std::istream& in);
   const EpiStreamHeader& header() const { return header_; }
   struct Frame {
     int row, scanline;
     Image epi;
   };
-  std::optional<Frame> next();  // nullopt at a clean end; throws if truncated
+  // The next EPI in stream order; nullopt after the header's last one.
+  // Throws on a stream cut short, an EPI tagged out of order, or data
+  // after the last EPI.
+  std::optional<Frame> next();
 
  private:
   std::istream& in_;
   EpiStreamHeader header_;
+  size_t read_ = 0;  // EPIs read so far
 };
 
 }  // namespace mvr

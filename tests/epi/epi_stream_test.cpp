@@ -2,6 +2,7 @@
 
 #include <cstring>
 #include <sstream>
+#include <vector>
 
 #include "epi/epi_stream.h"
 #include "mvr/error.h"
@@ -50,6 +51,52 @@ TEST(EpiStream, BadAndTruncatedStreamsAreErrors) {
   std::stringstream truncated(cut);
   EpiStreamReader r(truncated);
   EXPECT_THROW(r.next(), Error);
+}
+
+// A complete stream of `count` EPIs of 4 x 3 (height 2, one row), with the
+// given tags.
+std::string streamOf(const std::vector<std::pair<int, int>>& tags) {
+  std::stringstream s;
+  EpiStreamWriter w(s, {4, 2, 3, 1, 4, 1});
+  for (auto [row, scanline] : tags) w.putEpi(row, scanline, Image(4, 3, PixelType::U8));
+  w.finish();
+  return s.str();
+}
+
+std::string errorOf(const std::string& bytes) {
+  std::stringstream in(bytes);
+  try {
+    EpiStreamReader r(in);
+    while (r.next()) {
+    }
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Header fields beyond the renderer's limits (what crashed mvr-consume
+// with bad_alloc and length_error), EPIs out of order, bytes after the
+// last EPI, and a stream that stops between EPIs: one-line errors.
+TEST(EpiStream, HostileStreamsAreOneLineErrors) {
+  const std::string good = streamOf({{0, 0}, {0, 1}});
+  EXPECT_EQ(errorOf(good), "");
+  auto withField = [&](int offset, uint32_t value) {
+    std::string bytes = good;
+    for (int k = 0; k < 4; ++k) bytes[offset + k] = char((value >> (8 * k)) & 0xFF);
+    return bytes;
+  };
+  EXPECT_NE(errorOf(withField(12, 0x7fffffffu)).find("width 2147483647 exceeds 16384"), std::string::npos);
+  EXPECT_NE(errorOf(withField(16, 0xffffffffu)).find("height"), std::string::npos);
+  EXPECT_NE(errorOf(withField(20, 0xffffffffu)).find("views"), std::string::npos);
+  EXPECT_NE(errorOf(withField(24, 0xffffffffu)).find("rows"), std::string::npos);
+  EXPECT_NE(errorOf(withField(24, 0)).find("no valid EPI"), std::string::npos);
+  EXPECT_NE(errorOf(streamOf({{0, 1}, {0, 0}})).find("EPI 0 is tagged row 0 scanline 1, expected row 0 scanline 0"),
+            std::string::npos);
+  EXPECT_NE(errorOf(good + "x").find("data after the last of 2 EPIs"), std::string::npos);
+  EXPECT_NE(errorOf(streamOf({{0, 0}})).find("ended after 1 of 2 EPIs"), std::string::npos);
+  for (const std::string& e : {errorOf(good + "xyz"), errorOf(withField(16, 0xffffffffu))})
+    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
 }
 
 }  // namespace
