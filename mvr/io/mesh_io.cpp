@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "mvr/error.h"
+#include "mvr/io/mesh_check.h"
 
 namespace mvr {
 namespace {
@@ -32,6 +33,7 @@ Scene loadMesh(const std::string& path) {
   silenceOpenMesh();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such mesh file");
+  checkMeshFile(path);  // OpenMesh trusts its input; this does not
   TriMesh mesh;
   OpenMesh::IO::Options opt = OpenMesh::IO::Options::VertexNormal |
                               OpenMesh::IO::Options::VertexColor |

@@ -64,7 +64,44 @@ TEST_F(SceneIo, BareMeshIsCentredAndLit) {
 
 TEST_F(SceneIo, MissingFile) { expectError((dir_ / "nothing.obj").string(), "no such mesh file"); }
 
-TEST_F(SceneIo, UnreadableMesh) { expectError(write("junk.ply", "ply\ngarbage\n"), "cannot read mesh"); }
+TEST_F(SceneIo, UnreadableMesh) {
+  expectError(write("junk.ply", "ply\ngarbage\n"), "unknown PLY header keyword 'garbage'");
+  expectError(write("junk.xyz", "garbage\n"), "cannot read mesh");
+}
+
+// Issue 16's repros: inputs that corrupted memory or hung inside OpenMesh
+// are refused before it reads them, with the file and line.
+TEST_F(SceneIo, ObjFaceNamingAMissingVertex) {
+  const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                          "f 1/1 2/2 3/3\nf 1/1 2/2 7/3\n";
+  expectError(write("missing.obj", obj), "missing.obj:8: face refers to vertex 7 but 3 are defined");
+  expectError(write("uv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n"),
+              "uv.obj:5: face refers to texture coordinate 2 but 1 are defined");
+  expectError(write("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"), "bad face index '0'");
+  expectError(write("two.obj", "v 0 0 0\nv 1 0 0\nf 1 2\n"), "face with 2 corners");
+  // Negative indices count back from the last vertex defined.
+  EXPECT_EQ(loadScene(write("relative.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n")).triangles.size(), 1u);
+  expectError(write("back.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 -2 -1\n"), "face refers to vertex -4");
+}
+
+TEST_F(SceneIo, BrokenPlyHeadersAndCutData) {
+  std::ifstream in(test::assetPath("teacup_4k.ply"), std::ios::binary);
+  const std::string ply((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(ply.size(), 1000u);
+  std::string mangled = ply;
+  mangled.replace(mangled.find("element"), 7, "elemXnt");
+  expectError(write("mangled.ply", mangled), "unknown PLY header keyword 'elemXnt'");
+  expectError(write("cut100.ply", ply.substr(0, 100)), "no end_header");
+  const size_t header = ply.find("end_header") + 11;
+  expectError(write("cutdata.ply", ply.substr(0, header + (ply.size() - header) / 2)), "PLY data is cut");
+  const std::string ascii =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  expectError(write("cutfaces.ply", ascii), "PLY data is cut: 4 of 5 element lines");
+  EXPECT_EQ(loadScene(write("whole.ply", ascii + "3 0 2 1\n")).triangles.size(), 2u);
+  EXPECT_GT(loadScene(test::assetPath("teacup_4k.ply")).triangles.size(), 3000u);
+}
 
 TEST_F(SceneIo, EmptyMesh) { expectError(write("empty.obj", "v 0 0 0\nv 1 0 0\n"), "no triangles"); }
 

@@ -1,0 +1,160 @@
+#include "mvr/io/mesh_check.h"
+
+#include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <vector>
+
+#include "mvr/error.h"
+
+namespace mvr {
+namespace {
+
+[[noreturn]] void failAt(const std::string& path, long line, const std::string& what) {
+  fail(path + ":" + std::to_string(line), what);
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// One face corner "v", "v/vt", "v//vn" or "v/vt/vn" against the counts so far.
+void checkCorner(const std::string& path, long line, const std::string& corner, const long (&defined)[3]) {
+  static const char* const kWhat[3] = {"vertex", "texture coordinate", "normal"};
+  size_t at = 0;
+  for (int k = 0; k < 3 && at <= corner.size(); ++k) {
+    const size_t slash = corner.find('/', at);
+    const std::string field = corner.substr(at, slash == std::string::npos ? std::string::npos : slash - at);
+    at = slash == std::string::npos ? corner.size() + 1 : slash + 1;
+    if (field.empty()) {
+      if (k == 0) failAt(path, line, "face corner '" + corner + "' has no vertex index");
+      continue;
+    }
+    long index = 0;
+    const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), index);
+    if (ec != std::errc() || end != field.data() + field.size() || index == 0)
+      failAt(path, line, "bad face index '" + field + "'");
+    const long resolved = index > 0 ? index : defined[k] + 1 + index;
+    if (resolved < 1 || resolved > defined[k])
+      failAt(path, line, "face refers to " + std::string(kWhat[k]) + " " + std::to_string(index) + " but " +
+                             std::to_string(defined[k]) + " are defined before it");
+  }
+}
+
+void checkObj(const std::string& path) {
+  std::ifstream in(path);
+  long defined[3] = {0, 0, 0};  // v, vt, vn
+  long line = 0;
+  for (std::string text; std::getline(in, text);) {
+    ++line;
+    std::istringstream words(text);
+    std::string key;
+    words >> key;
+    if (key == "v") ++defined[0];
+    else if (key == "vt") ++defined[1];
+    else if (key == "vn") ++defined[2];
+    else if (key == "f") {
+      int corners = 0;
+      for (std::string corner; words >> corner; ++corners) checkCorner(path, line, corner, defined);
+      if (corners < 3) failAt(path, line, "face with " + std::to_string(corners) + " corners (needs 3)");
+    }
+  }
+}
+
+int plyTypeBytes(const std::string& type) {
+  static const std::map<std::string, int> kBytes{
+      {"char", 1},  {"uchar", 1},  {"int8", 1},   {"uint8", 1},   {"short", 2},   {"ushort", 2},
+      {"int16", 2}, {"uint16", 2}, {"int", 4},    {"uint", 4},    {"int32", 4},   {"uint32", 4},
+      {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
+  const auto it = kBytes.find(type);
+  return it == kBytes.end() ? 0 : it->second;
+}
+
+void checkPly(const std::string& path) {
+  constexpr size_t kMaxHeader = 1 << 16;
+  std::ifstream in(path, std::ios::binary);
+  struct Element {
+    std::string name;
+    unsigned long long count;
+    unsigned long long fixedBytes = 0;  // per element, list items not counted
+  };
+  std::vector<Element> elements;
+  std::string format;
+  long line = 0;
+  bool ended = false;
+  for (std::string text; !ended && std::getline(in, text);) {
+    ++line;
+    if (in.tellg() > std::streamoff(kMaxHeader)) failAt(path, line, "PLY header longer than 64 KiB");
+    if (!text.empty() && text.back() == '\r') text.pop_back();
+    if (in.eof() && text != "end_header") break;  // an unterminated last line: the file was cut
+    std::istringstream words(text);
+    std::string key;
+    words >> key;
+    if (line == 1) {
+      if (key != "ply") fail(path, "not a PLY file (no 'ply' on the first line)");
+      continue;
+    }
+    if (key == "format") {
+      std::string version;
+      words >> format >> version;
+      if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
+        failAt(path, line, "unknown PLY format '" + format + "'");
+    } else if (key == "element") {
+      Element e;
+      std::string count;
+      words >> e.name >> count;
+      const auto [end, ec] = std::from_chars(count.data(), count.data() + count.size(), e.count);
+      if (e.name.empty() || ec != std::errc() || end != count.data() + count.size() || e.count > (1ull << 31))
+        failAt(path, line, "bad element line '" + text + "'");
+      elements.push_back(e);
+    } else if (key == "property") {
+      if (elements.empty()) failAt(path, line, "property before any element");
+      std::string type, countType, itemType;
+      words >> type;
+      if (type == "list") {
+        words >> countType >> itemType;
+        if (!plyTypeBytes(countType) || !plyTypeBytes(itemType))
+          failAt(path, line, "bad list property '" + text + "'");
+        elements.back().fixedBytes += plyTypeBytes(countType);
+      } else {
+        if (!plyTypeBytes(type)) failAt(path, line, "unknown property type '" + type + "'");
+        elements.back().fixedBytes += plyTypeBytes(type);
+      }
+    } else if (key == "end_header") {
+      ended = true;
+    } else if (key != "comment" && key != "obj_info" && !key.empty()) {
+      failAt(path, line, "unknown PLY header keyword '" + key + "'");
+    }
+  }
+  if (!ended) fail(path, "PLY header has no end_header (file cut short)");
+  if (format.empty()) fail(path, "PLY header has no format line");
+  const std::streamoff dataStart = in.tellg();
+  const auto size = std::streamoff(std::filesystem::file_size(path));
+  if (format == "ascii") {
+    unsigned long long needed = 0, have = 0;
+    for (const Element& e : elements) needed += e.count;
+    for (std::string text; have < needed && std::getline(in, text);)
+      if (text.find_first_not_of(" \t\r") != std::string::npos) ++have;
+    if (have < needed)
+      fail(path, "PLY data is cut: " + std::to_string(have) + " of " + std::to_string(needed) + " element lines");
+    return;
+  }
+  unsigned long long needed = 0;
+  for (const Element& e : elements) needed += e.count * e.fixedBytes;
+  if (static_cast<unsigned long long>(size - dataStart) < needed)
+    fail(path, "PLY data is cut: its elements need at least " + std::to_string(needed) + " bytes, the file has " +
+                   std::to_string(size - dataStart));
+}
+
+}  // namespace
+
+void checkMeshFile(const std::string& path) {
+  const std::string ext = lower(std::filesystem::path(path).extension().string());
+  if (ext == ".obj") checkObj(path);
+  else if (ext == ".ply") checkPly(path);
+}
+
+}  // namespace mvr
