@@ -1,5 +1,8 @@
 #include "mvr/io/image_set.h"
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 
@@ -19,7 +22,16 @@ ImageSetWriter::ImageSetWriter(std::string dir, Manifest manifest)
   if (manifest_.compression < 0 || manifest_.compression > 9) fail("--compression", "expected 0..9");
   std::error_code ec;
   fs::create_directories(dir_, ec);
-  if (ec || !fs::is_directory(dir_)) fail(dir_, "cannot create output folder");
+  if (ec) fail(dir_, "cannot create output folder: " + ec.message());
+  if (!fs::is_directory(dir_)) fail(dir_, "cannot create output folder: a file is in the way");
+  // Find a read-only folder now, not after rendering.
+  const fs::path probe = fs::path(dir_) / ".mvr_write_probe";
+  if (std::FILE* f = std::fopen(probe.c_str(), "wb")) {
+    std::fclose(f);
+    fs::remove(probe, ec);
+  } else {
+    fail(dir_, std::string("cannot write into the output folder: ") + std::strerror(errno));
+  }
   fs::remove(fs::path(dir_) / "manifest.json", ec);  // an old set is no longer complete
 }
 

@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <fstream>
+
 #include <cmath>
 #include <filesystem>
 
@@ -140,6 +144,35 @@ TEST(ImageSetWriter, AFailedEncodeFailsTheCommit) {
   EXPECT_FALSE(fs::exists(dir / "view_0000.png"));
   EXPECT_FALSE(fs::exists(dir / "view_0002.png"));
   fs::remove_all(dir);
+}
+
+// A folder that cannot be written is found before any rendering, with the
+// operating system's reason; so is a file where the folder should be.
+TEST(ImageSetWriter, AnUnwritableFolderFailsAtOnceWithTheReason) {
+  const fs::path dir = fs::temp_directory_path() / "mvr_read_only_set";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec);
+  const bool enforced = ::access(dir.c_str(), W_OK) != 0;  // root may write anyway
+  if (enforced) {
+    try {
+      ImageSetWriter writer(dir.string(), layout(2));
+      FAIL() << "no error";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("cannot write into the output folder: Permission denied"),
+                std::string::npos) << e.what();
+    }
+  }
+  fs::permissions(dir, fs::perms::owner_all);
+  fs::remove_all(dir);
+  std::ofstream(dir.string()) << "a file";
+  try {
+    ImageSetWriter writer(dir.string(), layout(2));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot create output folder"), std::string::npos) << e.what();
+  }
+  fs::remove(dir);
 }
 
 TEST(ImageSetWriter, NamesGrowDigitsWithTheViewCount) {
