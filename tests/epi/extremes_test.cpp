@@ -146,7 +146,8 @@ TEST(Extremes, EdgeOnAtAView) {
   auto d = checkAll(s, cam, "edge-on");
   expectAgree(d, 0.98);
   auto cpu = makeMvrRenderer(s, PstMode::Cpu, PixelType::U8);
-  const Image& edgeOn = test::renderViews(*cpu, cam).views.at({0, 3});
+  const test::CaptureSink views = test::renderViews(*cpu, cam);  // owns the images
+  const Image& edgeOn = views.views.at({0, 3});
   int covered = 0;
   for (int y = 0; y < edgeOn.height; ++y)
     for (int x = 0; x < edgeOn.width; ++x) covered += edgeOn.pixel(x, y).a > 0;
