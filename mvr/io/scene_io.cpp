@@ -55,7 +55,7 @@ class SceneReader {
     if (!in) fail(path_, "cannot open scene file");
     try {
       return Json::parse(in);
-    } catch (const Json::parse_error& e) {
+    } catch (const Json::exception& e) {  // syntax, and numbers beyond a double (1e999)
       fail(path_, std::string("bad JSON: ") + e.what());
     }
   }

@@ -125,7 +125,10 @@ TEST_F(SceneIo, NonFiniteCoordinates) {
   expectError(write("inf.ply", plyTriangle(INFINITY)), "non-finite");
 }
 
-TEST_F(SceneIo, BadJson) { expectError(write("bad.json", "{\"meshes\": [}"), "bad JSON"); }
+TEST_F(SceneIo, BadJson) {
+  expectError(write("bad.json", "{\"meshes\": [}"), "bad JSON");
+  expectError(write("huge.json", "{\"meshes\": [], \"camera\": {\"distance\": 1e999}}"), "number overflow");
+}
 
 TEST_F(SceneIo, UnknownKeys) {
   expectError(cubeJson(", \"lihgts\": []"), "unknown key \"lihgts\"");
