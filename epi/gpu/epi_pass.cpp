@@ -13,15 +13,31 @@
 namespace mvr {
 namespace {
 
-const char* const kSliverVertex = R"(
-layout(location = 0) in vec4 aPos;    // x, stacked row, depth, view
-layout(location = 1) in vec4 aFlat;   // side, material
-layout(location = 2) in vec4 aA[NV];
+// What the vertex stage hands the fragment shaders, whether it reads
+// CPU-built vertices or pulls them from the GPU slice table.
+const char* const kSliverOutputs = R"(
 uniform vec2 uScale;
 invariant gl_Position;
 noperspective out float vView;
 flat out vec4 vFlat;
 noperspective out vec4 vA[NV];
+)";
+
+const char* const kExactOutputs = R"(
+uniform vec2 uScale;
+invariant gl_Position;
+noperspective out vec2 vNumDen;
+noperspective out float vView;
+flat out vec4 vEnds;
+flat out vec4 vFlat;
+flat out vec4 vA0[NV];
+flat out vec4 vA1[NV];
+)";
+
+const char* const kSliverVertex = R"(
+layout(location = 0) in vec4 aPos;    // x, stacked row, depth, view
+layout(location = 1) in vec4 aFlat;   // side, material
+layout(location = 2) in vec4 aA[NV];
 void main() {
   gl_Position = vec4(aPos.xy * uScale - 1.0, aPos.z, 1.0);
   vView = aPos.w;
@@ -44,14 +60,6 @@ layout(location = 1) in vec4 aEnds;   // depth0, depth1, 1/w0, 1/w1
 layout(location = 2) in vec4 aFlat;   // view, side, material
 layout(location = 3) in vec4 aA0[NV];
 layout(location = 3 + NV) in vec4 aA1[NV];
-uniform vec2 uScale;
-invariant gl_Position;
-noperspective out vec2 vNumDen;
-noperspective out float vView;
-flat out vec4 vEnds;
-flat out vec4 vFlat;
-flat out vec4 vA0[NV];
-flat out vec4 vA1[NV];
 void main() {
   gl_Position = vec4(aPos.xy * uScale - 1.0, aEnds.x, 1.0);
   vNumDen = aPos.zw;
@@ -84,11 +92,6 @@ float attr(int i) { return mix(vA0[i >> 2][i & 3], vA1[i >> 2][i & 3], gU) / gIn
 // out of the GPU slice table (epi/gpu/pst_geometry.h) instead of vertex
 // attributes; passAttribute() (per pass) reads an endpoint's attribute i.
 const char* const kPulledSliverVertex = R"(
-uniform vec2 uScale;
-invariant gl_Position;
-noperspective out float vView;
-flat out vec4 vFlat;
-noperspective out vec4 vA[NV];
 void main() {
   PstVertex p = pullPstVertex();
   float depth = p.e0.depth + (p.e1.depth - p.e0.depth) * p.u;
@@ -105,14 +108,6 @@ void main() {
 )";
 
 const char* const kPulledExactVertex = R"(
-uniform vec2 uScale;
-invariant gl_Position;
-noperspective out vec2 vNumDen;
-noperspective out float vView;
-flat out vec4 vEnds;
-flat out vec4 vFlat;
-flat out vec4 vA0[NV];
-flat out vec4 vA1[NV];
 void main() {
   PstVertex p = pullPstVertex();
   gl_Position = vec4(vec2(p.x, p.y) * uScale - 1.0, p.e0.depth, 1.0);
@@ -262,11 +257,13 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bo
     else
       fragment += kTextureDirectMain;
   }
-  std::string vertex = header + (exact ? kExactVertex : kSliverVertex);
+  std::string vertex = header + (exact ? kExactOutputs : kSliverOutputs);
   if (pulled)
-    vertex = header + "#define NA " + std::to_string(count_) + "\n" +
-             PstGeometry::glslPull(PstGeometry::kRecordHead + shading.plan.extraCount) +
-             passAttributeGlsl(pass, shading.plan) + (exact ? kPulledExactVertex : kPulledSliverVertex);
+    vertex += "#define NA " + std::to_string(count_) + "\n" +
+              PstGeometry::glslPull(PstGeometry::kRecordHead + shading.plan.extraCount) +
+              passAttributeGlsl(pass, shading.plan) + (exact ? kPulledExactVertex : kPulledSliverVertex);
+  else
+    vertex += exact ? kExactVertex : kSliverVertex;
   program_ = gl::linkProgram(std::string("epi-") + pstModeName(mode) + "-" + shading::passName(pass) +
                                  (pulled ? "-pulled" : ""),
                              {{GL_VERTEX_SHADER, vertex}, {GL_FRAGMENT_SHADER, fragment}});
