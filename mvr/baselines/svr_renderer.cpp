@@ -219,17 +219,11 @@ class SvrRenderer final : public Renderer {
 
 class LayeredSvrRenderer final : public Renderer {
  public:
-  LayeredSvrRenderer(const Scene& scene, PixelType type, bool forceLayers)
+  LayeredSvrRenderer(const Scene& scene, PixelType type)
       : scene_(scene), type_(type),
         buffers_(scene, shading::vertexAlbedo(scene), shading::vertexCullFlags(scene)),
         vsLayer_(gl::hasExtension("GL_ARB_shader_viewport_layer_array")),
         materials_(scene, shading::TextureSet::load(scene), shading::EnvironmentSet::load(scene)) {
-    // Layers amortise per-draw and per-view overheads a GPU has; a GL that
-    // rasterises on the CPU has none to amortise, and its instanced layered
-    // draws cost more per view than single views (llvmpipe, 143K teacup, 64
-    // views: batches of 2 to 64 layers took 1.1x to 2.3x per-view svr's
-    // time per view). There the strongest conventional renderer is svr.
-    if (gl::rendersOnCpu() && !forceLayers) perView_ = std::make_unique<SvrRenderer>(scene, type);
     if (vsLayer_) {
       program_ = gl::linkProgram(
           "svr-layered", {{GL_VERTEX_SHADER, vertexSource(scene, {"LAYERED", "VS_LAYER"})},
@@ -246,11 +240,6 @@ class LayeredSvrRenderer final : public Renderer {
   FrameOrder order() const override { return FrameOrder::View; }
 
   void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
-    if (perView_) {
-      perView_->render(cam, sink, stats);
-      stats.notes["layer_routing"] = "none: one view per draw (GL renders on the CPU)";
-      return;
-    }
     const int batch = batchSize(cam);
     RenderTarget target(cam.width(), cam.height(), type_, batch);
     std::vector<glm::mat4> matrices;
@@ -323,7 +312,26 @@ class LayeredSvrRenderer final : public Renderer {
   bool vsLayer_;
   shading::GpuMaterials materials_;
   gl::Program program_;
-  std::unique_ptr<Renderer> perView_;  // on a CPU GL: per-view svr
+};
+
+// svr-layered where GL rasterises on the CPU. Layers amortise per-draw and
+// per-view overheads a GPU has; llvmpipe has none to amortise, and its
+// instanced layered draws cost more per view than single views (143K
+// teacup, 64 views: batches of 2 to 64 layers took 1.1x to 2.3x per-view
+// svr's time per view). There the strongest conventional renderer is svr,
+// and nothing layered is built.
+class PerViewLayeredSvrRenderer final : public Renderer {
+ public:
+  PerViewLayeredSvrRenderer(const Scene& scene, PixelType type) : svr_(scene, type) {}
+  std::string name() const override { return "svr-layered"; }
+  FrameOrder order() const override { return FrameOrder::View; }
+  void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
+    svr_.render(cam, sink, stats);
+    stats.notes["layer_routing"] = "none: one view per draw (GL renders on the CPU)";
+  }
+
+ private:
+  SvrRenderer svr_;
 };
 
 }  // namespace
@@ -333,7 +341,8 @@ std::unique_ptr<Renderer> makeSvrRenderer(const Scene& scene, PixelType type) {
 }
 
 std::unique_ptr<Renderer> makeLayeredSvrRenderer(const Scene& scene, PixelType type, bool forceLayers) {
-  return std::make_unique<LayeredSvrRenderer>(scene, type, forceLayers);
+  if (gl::rendersOnCpu() && !forceLayers) return std::make_unique<PerViewLayeredSvrRenderer>(scene, type);
+  return std::make_unique<LayeredSvrRenderer>(scene, type);
 }
 
 }  // namespace mvr
