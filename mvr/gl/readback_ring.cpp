@@ -10,8 +10,6 @@ namespace {
 
 constexpr GLbitfield kMapping = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
 
-GLenum pixelType(PixelType t) { return t == PixelType::U8 ? GL_UNSIGNED_BYTE : GL_FLOAT; }
-
 ReadbackStaging gStaging = ReadbackStaging::Auto;
 
 bool stage() {
@@ -61,13 +59,13 @@ void ReadbackRing::read(const RenderTarget& target, GLuint framebuffer, int y, i
   gl::BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
   gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
   if (!staged()) {
-    gl::ReadPixels(0, y, target.width(), h, GL_RGBA, pixelType(target.type()), dst);
+    gl::ReadPixels(0, y, target.width(), h, GL_RGBA, glChannelType(target.type()), dst);
     return;
   }
   Slot& slot = slots_[current_];
   if (slot.used + bytes > slotBytes_) fail("ReadbackRing", "a batch reads more than a slot holds");
   gl::BindBuffer(GL_PIXEL_PACK_BUFFER, slot.buffer.id());
-  gl::ReadPixels(0, y, target.width(), h, GL_RGBA, pixelType(target.type()),
+  gl::ReadPixels(0, y, target.width(), h, GL_RGBA, glChannelType(target.type()),
                  reinterpret_cast<void*>(slot.used));
   gl::BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   slot.copies.push_back({slot.used, bytes, dst});

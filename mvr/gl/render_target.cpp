@@ -6,7 +6,6 @@ namespace mvr {
 namespace {
 
 GLenum colorFormat(PixelType t) { return t == PixelType::U8 ? GL_RGBA8 : GL_RGBA32F; }
-GLenum colorType(PixelType t) { return t == PixelType::U8 ? GL_UNSIGNED_BYTE : GL_FLOAT; }
 
 }  // namespace
 
@@ -57,15 +56,7 @@ Image RenderTarget::read() const {
 void RenderTarget::readRows(int y, int h, Image& out, int outY) const {
   gl::BindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
   gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl::ReadPixels(0, y, width_, h, GL_RGBA, colorType(type_), out.row(outY));
-}
-
-Image RenderTarget::readLayer(int layer) const {
-  Image img(width_, height_, type_);
-  gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl::GetTextureSubImage(color_.id(), 0, 0, 0, layer, width_, height_, 1, GL_RGBA,
-                         colorType(type_), GLsizei(img.bytes.size()), img.bytes.data());
-  return img;
+  gl::ReadPixels(0, y, width_, h, GL_RGBA, glChannelType(type_), out.row(outY));
 }
 
 void setDepthConvention() {

@@ -23,7 +23,6 @@ class RenderTarget {
   void bind() const;           // binds, sets the viewport
   void clear() const;          // colour 0, depth 0 (far in reversed Z)
   Image read() const;          // 2D target: whole image, rows top first
-  Image readLayer(int layer) const;
   // Rows [y, y + h) into an existing image of the target's width.
   void readRows(int y, int h, Image& out, int outY) const;
 
@@ -33,6 +32,9 @@ class RenderTarget {
   gl::Texture color_, depth_;
   gl::Framebuffer fbo_;
 };
+
+// The GL type of a PixelType's channels, for reads and uploads.
+inline GLenum glChannelType(PixelType t) { return t == PixelType::U8 ? GL_UNSIGNED_BYTE : GL_FLOAT; }
 
 // Reversed Z: depth test GREATER, clear to 0, zero-to-one clip depth.
 void setDepthConvention();
