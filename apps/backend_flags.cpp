@@ -19,9 +19,9 @@ void BackendFlags::add(CLI::App& app) {
                                   "the 2D texture with a per-pixel divide (direct)")
                        ->type_name(choices(kTextureModeNames));
   builderOption_ = app.add_option("--pst-builder", builder_,
-                                  "mvr GL modes: slice and build PST geometry on the GPU (gpu) or on the "
-                                  "CPU, uploaded per batch (cpu); auto (default): gpu unless GL renders "
-                                  "on the CPU (llvmpipe)")
+                                  "mvr and interp GL modes: slice and build PST geometry on the GPU (gpu) "
+                                  "or on the CPU, uploaded per batch (cpu); auto (default): gpu unless GL "
+                                  "renders on the CPU (llvmpipe)")
                        ->type_name(choices(kPstBuilderNames));
   interpOptions_ = {
       app.add_option("--acquire", acquire_,
@@ -67,8 +67,8 @@ BackendOptions BackendFlags::resolve() const {
     o.mvr.texture = parseTextureMode(texture_);
   }
   if (builderOption_->count()) {
-    if (o.backend != Backend::Mvr) fail("--pst-builder", "applies to --backend mvr only");
-    o.mvr.builder = parseName(kPstBuilderNames, builder_, "--pst-builder", "builder");
+    if (!o.hasPst()) fail("--pst-builder", "applies to --backend mvr and interp only");
+    o.setBuilder(parseName(kPstBuilderNames, builder_, "--pst-builder", "builder"));
   }
   for (const CLI::Option* option : interpOptions_)
     if (option->count() && o.backend != Backend::Interp)

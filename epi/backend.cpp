@@ -32,9 +32,20 @@ std::vector<std::string> fields(const std::string& s) {
   }
 }
 
+// NAME-psts names a PST builder.
+bool builderOption(const std::string& token, PstBuilder& builder) {
+  for (const auto& b : kPstBuilderNames)
+    if (token == std::string(b.name) + "-psts") {
+      builder = b.value;
+      return true;
+    }
+  return false;
+}
+
 // One interp option token; values are checked where every interp option
 // is (validate(InterpOptions)), not here.
 void interpOption(const std::string& token, InterpOptions& o, const char* where) {
+  if (builderOption(token, o.builder)) return;
   for (const auto& mode : kPstModeNames)
     if (token == mode.name) {
       o.mode = mode.value;
@@ -57,11 +68,7 @@ void interpOption(const std::string& token, InterpOptions& o, const char* where)
 
 // One mvr option token: a texture mode, or NAME-psts for a PST builder.
 void mvrOption(const std::string& token, MvrOptions& o, const char* where) {
-  for (const auto& builder : kPstBuilderNames)
-    if (token == std::string(builder.name) + "-psts") {
-      o.builder = builder.value;
-      return;
-    }
+  if (builderOption(token, o.builder)) return;
   o.texture = parseName(kTextureModeNames, token, where, "mvr option");
 }
 

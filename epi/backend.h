@@ -37,6 +37,7 @@ struct BackendOptions {
   // The chosen back end's accuracy mode (its own default unless set).
   PstMode pst() const { return backend == Backend::Interp ? interp.mode : mvr.mode; }
   void setPst(PstMode mode) { (backend == Backend::Interp ? interp.mode : mvr.mode) = mode; }
+  void setBuilder(PstBuilder b) { (backend == Backend::Interp ? interp.builder : mvr.builder) = b; }
 };
 
 // Throws mvr::Error for options that cannot work (before any GL work where
@@ -48,7 +49,8 @@ std::unique_ptr<Renderer> makeRenderer(const BackendOptions& options, const Scen
 // or a PST builder (auto-psts, gpu-psts, cpu-psts) as options (mvr:exact:direct) or
 // interp[:ACQUIRE[:OPTION...]] with options L (layers), cT (coalesce T
 // pixels), vis (visibility), bB (budget), sK (splits), oP (overlap P
-// pixels) and an accuracy mode, e.g. interp:hierarchical:2:c0.5:vis:b5:exact.
+// pixels), a PST builder and an accuracy mode, e.g.
+// interp:hierarchical:2:c0.5:vis:b5:exact.
 // Throws naming `where` for an unknown name or option.
 BackendOptions parseBackendSpec(const std::string& spec, const char* where = "--backends");
 

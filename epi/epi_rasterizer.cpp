@@ -1,6 +1,13 @@
 #include "epi/epi_rasterizer.h"
 
+#include "mvr/error.h"
+
 namespace mvr {
+
+void EpiRasterizer::rasterize(const GpuVertices&, const GpuSliceTable&, const ShearingCamera&, int,
+                              FrameSink&, RenderStats&) {
+  fail("EPI rasterizer", "this rasterizer reads host vertices and tables only");
+}
 
 std::unique_ptr<EpiRasterizer> makeRasterizer(PstMode mode, PixelType type, const EpiShading& shading,
                                               PstBuilder builder) {

@@ -10,6 +10,7 @@
 #include "shading/shading_plan.h"
 #include "shading/texture_set.h"
 #include "slicing/slice_table.h"
+#include "slicing/gpu/gpu_vertices.h"
 #include "slicing/slice_table_view.h"
 
 namespace mvr {
@@ -68,6 +69,11 @@ class EpiRasterizer {
   virtual void rasterize(const ExtremeVertices& vertices, const SliceTableView& table,
                          const ShearingCamera& camera, int row, FrameSink& sink,
                          RenderStats& stats) = 0;
+  // The same from vertices and a table a GPU pass wrote (the image-based
+  // back end's GPU slicer); only for a rasterizer that readsDeviceTable(),
+  // others throw mvr::Error.
+  virtual void rasterize(const GpuVertices& vertices, const GpuSliceTable& table,
+                         const ShearingCamera& camera, int row, FrameSink& sink, RenderStats& stats);
   // Whether it reads the table from GPU buffers (then a GPU slicer saves
   // the upload) rather than from host memory.
   virtual bool readsDeviceTable() const { return false; }

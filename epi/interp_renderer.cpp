@@ -46,7 +46,7 @@ class InterpRenderer final : public Renderer {
         sources_(makeSourceLayerRenderer(scene, splits_ > 0)) {
     // Every image slice is coloured by its own vector of source pixels.
     const EpiShading shading{.sliceVectors = true, .sliceHighlights = splits_ > 0};
-    rasterizer_ = makeRasterizer(options.mode, type, shading);
+    rasterizer_ = makeRasterizer(options.mode, type, shading, options.builder);
   }
 
   std::string name() const override { return "interp"; }

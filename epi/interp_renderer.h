@@ -30,6 +30,10 @@ struct InterpOptions {
   Acquire acquire = Acquire::Dual;
   int maxLayers = 4;        // depth-peeled layers per source view
   PstMode mode = PstMode::Quad;  // exact for image slices in every mode
+  // GL modes: where image slices and PSTs are built. On the GPU the source
+  // layers stay in GPU memory (center and dual acquisition without
+  // visibility or splits; the rest slice on the CPU, PSTs still pulled).
+  PstBuilder builder = PstBuilder::Auto;
   float overlap = 0.25f;    // footprint widening per side, pixels
   float coalesce = 0.0f;    // pixels a coalesced run may move a pixel; 0: off
   // Drop layer pixels the nearest layer hides from the whole track, and

@@ -25,6 +25,7 @@ class SpanRasterizer final : public EpiRasterizer {
       fail("cpu rasterizer", "reflection needs the reflection maps");
   }
 
+  using EpiRasterizer::rasterize;
   void rasterize(const ExtremeVertices& v, const SliceTableView& slices, const ShearingCamera& cam,
                  int row, FrameSink& sink, RenderStats& stats) override {
     const SliceTable& table = slices.host();  // spans are walked on the CPU

@@ -73,15 +73,15 @@ glm::vec4 TextureVectors::sample(int base, int k, float u, float texelsPerPixel)
 
 const char* glslTextureVector() {
   return R"(
-vec4 textureVectorLevel(samplerBuffer vectors, float base, float k, int l, float u) {
+vec4 textureVectorLevel(samplerBuffer vectors, int base, float k, int l, float u) {
   float len = k / float(1 << l);
-  float start = base + 2.0 * k - 2.0 * len;
+  int start = base + int(2.0 * k - 2.0 * len);
   float s = clamp(u, 0.0, 1.0) * len - 0.5;
   float f0 = floor(s);
   int i0 = int(clamp(f0, 0.0, len - 1.0)), i1 = int(clamp(f0 + 1.0, 0.0, len - 1.0));
-  return mix(texelFetch(vectors, int(start) + i0), texelFetch(vectors, int(start) + i1), s - f0);
+  return mix(texelFetch(vectors, start + i0), texelFetch(vectors, start + i1), s - f0);
 }
-vec4 sampleTextureVector(samplerBuffer vectors, float base, float k, float u, float texelsPerPixel) {
+vec4 sampleTextureVector(samplerBuffer vectors, int base, float k, float u, float texelsPerPixel) {
   float maxLevel = log2(k);
   float lod = clamp(log2(max(texelsPerPixel, 1.0)), 0.0, maxLevel);
   int l0 = int(floor(lod)), l1 = min(l0 + 1, int(maxLevel));

@@ -44,8 +44,10 @@ class TextureVectors {
   std::vector<glm::vec4> texels_;
 };
 
-// GLSL: `vec4 sampleTextureVector(samplerBuffer, float base, float length,
-// float u, float texelsPerPixel)`, the same as TextureVectors::sample.
+// GLSL: `vec4 sampleTextureVector(samplerBuffer, int base, float length,
+// float u, float texelsPerPixel)`, the same as TextureVectors::sample. The
+// base is an int: texel indices of a whole row's vectors pass 2^24, where
+// a float stops counting exactly.
 const char* glslTextureVector();
 
 }  // namespace mvr::shading

@@ -21,6 +21,9 @@ invariant gl_Position;
 noperspective out float vView;
 flat out vec4 vFlat;
 noperspective out vec4 vA[NV];
+#ifdef VECTOR
+flat out int vVectorBase;
+#endif
 )";
 
 const char* const kExactOutputs = R"(
@@ -32,6 +35,9 @@ flat out vec4 vEnds;
 flat out vec4 vFlat;
 flat out vec4 vA0[NV];
 flat out vec4 vA1[NV];
+#ifdef VECTOR
+flat out int vVectorBase;
+#endif
 )";
 
 const char* const kSliverVertex = R"(
@@ -43,6 +49,9 @@ void main() {
   vView = aPos.w;
   vFlat = aFlat;
   for (int i = 0; i < NV; ++i) vA[i] = aA[i];
+#ifdef VECTOR
+  vVectorBase = int(round(aA[0].z));
+#endif
 }
 )";
 
@@ -67,6 +76,9 @@ void main() {
   vEnds = aEnds;
   vFlat = aFlat.yzww;
   for (int i = 0; i < NV; ++i) { vA0[i] = aA0[i]; vA1[i] = aA1[i]; }
+#ifdef VECTOR
+  vVectorBase = int(round(aA0[0].y));
+#endif
 }
 )";
 
@@ -91,13 +103,32 @@ float attr(int i) { return mix(vA0[i >> 2][i & 3], vA1[i >> 2][i & 3], gU) / gIn
 // The same outputs as kSliverVertex and kExactVertex, from vertices pulled
 // out of the GPU slice table (epi/gpu/pst_geometry.h) instead of vertex
 // attributes; passAttribute() (per pass) reads an endpoint's attribute i.
-const char* const kPulledSliverVertex = R"(
-void main() {
+const char* const kPulledSliverHead = R"(
+PstVertex pullSliverVertex() {
   PstVertex p = pullPstVertex();
   float depth = p.e0.depth + (p.e1.depth - p.e0.depth) * p.u;
   gl_Position = vec4(vec2(p.x, p.y) * uScale - 1.0, depth, 1.0);
   vView = p.r - 0.5;
   vFlat = vec4(p.front ? 1.0 : -1.0, p.material, 0.0, 0.0);
+  return p;
+}
+)";
+
+const char* const kPulledExactHead = R"(
+PstVertex pullExactVertex() {
+  PstVertex p = pullPstVertex();
+  gl_Position = vec4(vec2(p.x, p.y) * uScale - 1.0, p.e0.depth, 1.0);
+  vNumDen = vec2(p.x - xAt(p.e0, p.r), widthAt(p.e0, p.e1, p.r));
+  vView = p.r - 0.5;
+  vEnds = vec4(p.e0.depth, p.e1.depth, p.e0.invW, p.e1.invW);
+  vFlat = vec4(p.front ? 1.0 : -1.0, p.material, 0.0, 0.0);
+  return p;
+}
+)";
+
+const char* const kPulledSliverVertex = R"(
+void main() {
+  PstVertex p = pullSliverVertex();
   float invW = p.e0.invW + (p.e1.invW - p.e0.invW) * p.u;
   for (int c = 0; c < NV; ++c) vA[c] = vec4(0.0);
   for (int i = 0; i < NA; ++i) {
@@ -109,12 +140,7 @@ void main() {
 
 const char* const kPulledExactVertex = R"(
 void main() {
-  PstVertex p = pullPstVertex();
-  gl_Position = vec4(vec2(p.x, p.y) * uScale - 1.0, p.e0.depth, 1.0);
-  vNumDen = vec2(p.x - xAt(p.e0, p.r), widthAt(p.e0, p.e1, p.r));
-  vView = p.r - 0.5;
-  vEnds = vec4(p.e0.depth, p.e1.depth, p.e0.invW, p.e1.invW);
-  vFlat = vec4(p.front ? 1.0 : -1.0, p.material, 0.0, 0.0);
+  PstVertex p = pullExactVertex();
   for (int c = 0; c < NV; ++c) vA0[c] = vA1[c] = vec4(0.0);
   for (int i = 0; i < NA; ++i) {
     vA0[i >> 2][i & 3] = passAttribute(p.e0, i, p.front);
@@ -123,10 +149,36 @@ void main() {
 }
 )";
 
+// Slices coloured by their own vectors (the image-based back end): the
+// attributes of EpiPass::linear(), u running from u0 at end 0 to u1 at
+// end 1, the first texel an exact integer.
+const char* const kPulledVectorSliverVertex = R"(
+void main() {
+  PstVertex p = pullSliverVertex();
+  uvec4 vector = uVectors[p.triangle];
+  float u0 = uintBitsToFloat(vector.z), u1 = uintBitsToFloat(vector.w);
+  float width = widthAt(p.e0, p.e1, p.r);
+  for (int c = 0; c < NV; ++c) vA[c] = vec4(0.0);
+  vA[0] = vec4((u0 + (u1 - u0) * p.u) * width, width, 0.0, float(vector.y));
+  vVectorBase = int(vector.x);
+}
+)";
+
+const char* const kPulledVectorExactVertex = R"(
+void main() {
+  PstVertex p = pullExactVertex();
+  uvec4 vector = uVectors[p.triangle];
+  for (int c = 0; c < NV; ++c) vA0[c] = vA1[c] = vec4(0.0);
+  vA0[0] = vec4(uintBitsToFloat(vector.z), 0.0, float(vector.y), 0.0);
+  vA1[0] = vec4(uintBitsToFloat(vector.w), 0.0, float(vector.y), 0.0);
+  vVectorBase = int(vector.x);
+}
+)";
+
 // Where a pass's attributes lie in the endpoint records (the order
 // EpiPass::gather copies them in).
 std::string passAttributeGlsl(shading::Pass pass, const shading::ShadingPlan& plan) {
-  const int head = PstGeometry::kRecordHead;
+  const int head = GpuVertices::kRecordHead;
   std::string body;
   switch (pass) {
     case shading::Pass::Diffuse: body = "endAttribute(e, (front ? 4 : 7) + i)"; break;
@@ -168,17 +220,19 @@ void main() {
 // the slice parameter; the sliver modes divide u times the slice's width
 // by the width (both affine in x and r) so that u is exact there too.
 const char* const kTextureVectorMain = R"(
-layout(binding = 3) uniform samplerBuffer uVectors;
+layout(binding = 3) uniform samplerBuffer uVectorTexels;
+flat in int vVectorBase;
 void main() {
   prepare();
+  int base = vVectorBase;
 #ifdef EXACT
-  float u = mix(vA0[0].x, vA1[0].x, gU), base = vA0[0].y, k = vA0[0].z;
+  float u = mix(vA0[0].x, vA1[0].x, gU), k = vA0[0].z;
   float perPixel = k * abs(vA1[0].x - vA0[0].x) / abs(vNumDen.y);  // du/dx
 #else
-  float u = vA[0].y == 0.0 ? 0.0 : vA[0].x / vA[0].y, base = round(vA[0].z), k = round(vA[0].w);
+  float u = vA[0].y == 0.0 ? 0.0 : vA[0].x / vA[0].y, k = round(vA[0].w);
   float perPixel = abs(dFdx(u)) * k;
 #endif
-  oColor = k == 0.0 ? vec4(1.0) : sampleTextureVector(uVectors, base, k, u, perPixel);
+  oColor = k == 0.0 ? vec4(1.0) : sampleTextureVector(uVectorTexels, base, k, u, perPixel);
 #ifdef HIGHLIGHTS
   // Split track: the highlight at two knots (rgb, row), linear between.
 #ifdef EXACT
@@ -232,8 +286,8 @@ int passAttributeCount(shading::Pass pass, const EpiShading& shading) {
 
 EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bool pulled)
     : mode_(mode), pass_(pass), shading_(shading), count_(passAttributeCount(pass, shading)) {
-  if (pulled && (linear() || shading.sliceVectors))
-    fail("EpiPass", "texture-vector passes take their vertices from the CPU");
+  if (pulled && linear() && (!shading.sliceVectors || shading.sliceHighlights))
+    fail("EpiPass", "only slices' own vectors without highlights are pulled");
   if (shading.sliceVectors && pass != shading::Pass::Texture)
     fail("EpiPass", "slices coloured by vectors take the texture pass only");
   if (pass != shading::Pass::Diffuse && !shading.scene && !shading.sliceVectors)
@@ -245,6 +299,7 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bo
   if (exact) header += "#define EXACT\n";
   if (pass == shading::Pass::ViewDependent && shading.plan.reflect >= 0) header += "#define REFLECT\n";
   if (pass == shading::Pass::Texture && shading.sliceHighlights) header += "#define HIGHLIGHTS\n";
+  if (linear()) header += "#define VECTOR\n";
   std::string fragment = header + (exact ? kExactFragment : kSliverFragment) + kAttributeHelpers;
   if (pass == shading::Pass::Diffuse) {
     fragment += kDiffuseMain;
@@ -258,11 +313,15 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bo
       fragment += kTextureDirectMain;
   }
   std::string vertex = header + (exact ? kExactOutputs : kSliverOutputs);
-  if (pulled)
+  if (pulled) {
     vertex += "#define NA " + std::to_string(count_) + "\n" +
-              PstGeometry::glslPull(PstGeometry::kRecordHead + shading.plan.extraCount) +
-              passAttributeGlsl(pass, shading.plan) + (exact ? kPulledExactVertex : kPulledSliverVertex);
-  else
+              PstGeometry::glslPull(GpuVertices::kRecordHead + shading.plan.extraCount) +
+              (exact ? kPulledExactHead : kPulledSliverHead);
+    if (linear())
+      vertex += exact ? kPulledVectorExactVertex : kPulledVectorSliverVertex;
+    else
+      vertex += passAttributeGlsl(pass, shading.plan) + (exact ? kPulledExactVertex : kPulledSliverVertex);
+  } else
     vertex += exact ? kExactVertex : kSliverVertex;
   program_ = gl::linkProgram(std::string("epi-") + pstModeName(mode) + "-" + shading::passName(pass) +
                                  (pulled ? "-pulled" : ""),

@@ -20,8 +20,9 @@ namespace mvr {
 class EpiPass {
  public:
   // pulled: the vertex shader pulls PST vertices from the GPU slice table
-  // (PstGeometry) instead of reading the CPU-built layouts below; not for
-  // the texture-vector passes.
+  // (PstGeometry) instead of reading the CPU-built layouts below; of the
+  // texture-vector passes only slices' own vectors without highlights (the
+  // image-based back end's) are pulled.
   EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bool pulled = false);
 
   shading::Pass pass() const { return pass_; }

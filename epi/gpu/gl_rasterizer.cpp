@@ -58,12 +58,14 @@ class GlRasterizer final : public EpiRasterizer {
  public:
   GlRasterizer(PstMode mode, PixelType type, const EpiShading& shading, PstBuilder builder)
       : mode_(mode), type_(type), shading_(shading) {
-    const bool vectors = shading_.sliceVectors ||
-                         (shading_.plan.texture && shading_.textureMode == TextureMode::Vector);
+    // Vectors extracted per slice, and highlight knots, are the CPU's.
+    const bool cpuOnly = shading_.sliceHighlights ||
+                         (!shading_.sliceVectors && shading_.plan.texture &&
+                          shading_.textureMode == TextureMode::Vector);
     const bool gpu = builder == PstBuilder::Gpu || (builder == PstBuilder::Auto && !gl::rendersOnCpu());
-    if (gpu && !vectors) geometry_.emplace(mode, shading_.plan.extraCount);
+    if (gpu && !cpuOnly) geometry_.emplace(mode, shading_.plan.extraCount);
     if (shading_.sliceVectors)
-      passes_.emplace_back(mode, shading::Pass::Texture, shading_);
+      passes_.emplace_back(mode, shading::Pass::Texture, shading_, pulled());
     else
       for (shading::Pass p : shading_.plan.passes()) passes_.emplace_back(mode, p, shading_, pulled());
     if (shading_.scene) {
@@ -79,6 +81,25 @@ class GlRasterizer final : public EpiRasterizer {
 
   void rasterize(const ExtremeVertices& v, const SliceTableView& slices, const ShearingCamera& cam,
                  int row, FrameSink& sink, RenderStats& stats) override {
+    if (!pulled()) return fill(&v, nullptr, slices, cam, row, sink, stats);
+    {
+      ScopedStage s(stats.times, "pst");
+      uploaded_ = GpuVertices::upload(v);
+    }
+    fill(&v, &*uploaded_, slices, cam, row, sink, stats);
+  }
+
+  void rasterize(const GpuVertices& v, const GpuSliceTable& slices, const ShearingCamera& cam, int row,
+                 FrameSink& sink, RenderStats& stats) override {
+    if (!pulled()) fail("EPI rasterizer", "this rasterizer builds PSTs on the CPU: it needs host vertices");
+    fill(nullptr, &v, slices, cam, row, sink, stats);
+  }
+
+ private:
+  // Host vertices for the CPU-built PSTs, device vertices for the pulled
+  // ones; the other may be null.
+  void fill(const ExtremeVertices* host, const GpuVertices* device, const SliceTableView& slices,
+            const ShearingCamera& cam, int row, FrameSink& sink, RenderStats& stats) {
     GLint maxSize = 4096;
     gl::GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     const int n = cam.views(), w = cam.width(), h = cam.height();
@@ -100,10 +121,6 @@ class GlRasterizer final : public EpiRasterizer {
     const glm::vec3 eye0(cam.eye(0, row)), eyeStep(cam.eye(1, row) - cam.eye(0, row));
     gl::Enable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
     if (materials_) materials_->bind(EpiPass::kTextureUnit);
-    if (pulled()) {
-      ScopedStage s(stats.times, "pst");
-      geometry_->upload(v);
-    }
     Progress progress("mvr " + std::string(pstModeName(mode_)), h);
     for (int first = 0; first < h; first += batch) {
       const int count = std::min(batch, h - first);
@@ -111,7 +128,7 @@ class GlRasterizer final : public EpiRasterizer {
         // Before the clear: on CPU implementations of GL the build's
         // barriers would otherwise flush the clear of the whole target.
         ScopedStage s(stats.times, "pst");
-        geometry_->build(slices.device(), first, count, n);
+        geometry_->build(*device, slices.device(), first, count, n);
         // The build's compute passes use storage bindings of their own.
         if (materials_) materials_->bind(EpiPass::kTextureUnit);
       }
@@ -122,7 +139,7 @@ class GlRasterizer final : public EpiRasterizer {
         const int view0 = c * chunkRows, views = std::min(chunkRows, n - view0);
         target.clear();
         const Batch b{first, count, n, chunkRows, view0, scale, eye0, eyeStep};
-        for (const EpiPass& pass : passes_) drawPass(pass, v, slices, b, stats);
+        for (const EpiPass& pass : passes_) drawPass(pass, host, slices, b, stats);
         {
           ScopedStage s(stats.times, "readback");
           for (int k = 0; k < count; ++k)
@@ -150,7 +167,6 @@ class GlRasterizer final : public EpiRasterizer {
     verticesEmitted_ = vectorTexels_ = 0;
   }
 
- private:
   // Colour and depth of one batch's framebuffer.
   static constexpr size_t kTargetBudget = size_t(256) << 20;
 
@@ -166,7 +182,7 @@ class GlRasterizer final : public EpiRasterizer {
 
   // One shading pass over the batch: pulled geometry, or geometry emitted
   // here and uploaded.
-  void drawPass(const EpiPass& pass, const ExtremeVertices& v, const SliceTableView& slices,
+  void drawPass(const EpiPass& pass, const ExtremeVertices* v, const SliceTableView& slices,
                 const Batch& b, RenderStats& stats) {
     if (pulled()) {
       ScopedStage s(stats.times, "raster");
@@ -179,7 +195,7 @@ class GlRasterizer final : public EpiRasterizer {
       ScopedStage s(stats.times, "pst");
       clearGeometry();
       for (int k = 0; k < b.count; ++k)
-        emitScanline(pass, v, slices.host(), b.first + k, b.views, float(k * b.chunkRows - b.view0));
+        emitScanline(pass, *v, slices.host(), b.first + k, b.views, float(k * b.chunkRows - b.view0));
     }
     ScopedStage s(stats.times, "raster");
     pass.begin(b.scale, b.eye0, b.eyeStep);
@@ -331,6 +347,7 @@ class GlRasterizer final : public EpiRasterizer {
   shading::TextureVectors vectors_;
   std::optional<shading::GpuMaterials> materials_;  // with a scene
   std::optional<PstGeometry> geometry_;             // PSTs built on the GPU
+  std::optional<GpuVertices> uploaded_;             // host vertices, uploaded for it
   gl::Texture vectorTexture_;
   size_t verticesEmitted_ = 0, vectorTexels_ = 0;
 };

@@ -15,6 +15,7 @@ const char* const kLibrary = R"(
 layout(std430, binding = 2) readonly buffer Records { float uRecords[]; };
 layout(std430, binding = 3) readonly buffer Triangles { uvec4 uTriangles[]; };  // a, b, c, material | cull << 31
 layout(std430, binding = 4) readonly buffer Slices { uvec4 uSlices[]; };  // triangle, tLong, tShort, flags
+layout(std430, binding = 8) readonly buffer Vectors { uvec4 uVectors[]; };  // GpuVertices::vectors
 uniform uint uFirstSlice;  // the batch: slices [uFirstSlice, uFirstSlice + uSliceCount)
 uniform uint uSliceCount;
 uniform float uViews;
@@ -129,6 +130,7 @@ struct PstVertex {
   float u;     // screen-space slice parameter
   bool front;
   float material;
+  uint triangle;
 };
 
 PstVertex pullPstVertex() {
@@ -143,6 +145,7 @@ PstVertex pullPstVertex() {
   PstVertex p;
   uint word;
   sliceEnds(uFirstSlice + lo, p.e0, p.e1, word);
+  p.triangle = uSlices[uFirstSlice + lo].x;
   p.material = float(word & 0x7FFFFFFFu);
   float n = uViews, top = 0.0, bottom = n;
   bool second = local >= 6u * k0;
@@ -178,7 +181,7 @@ std::string PstGeometry::glslPull(int recordStride) {
 }
 
 PstGeometry::PstGeometry(PstMode mode, int extraCount)
-    : mode_(mode), recordStride_(kRecordHead + extraCount) {
+    : mode_(mode), recordStride_(GpuVertices::kRecordHead + extraCount) {
   if (mode == PstMode::Cpu) fail("PstGeometry", "cpu is not a GL mode");
   count_ = gl::linkProgram("pst-count", {{GL_COMPUTE_SHADER, gl::glslHeader() + recordDefine(recordStride_) +
                                                                  kLibrary + kCount}});
@@ -187,30 +190,12 @@ PstGeometry::PstGeometry(PstMode mode, int extraCount)
   vao_ = gl::VertexArray::create();
 }
 
-void PstGeometry::upload(const ExtremeVertices& v) {
-  const int extras = v.extraCount, stride = kRecordHead + extras;
-  if (stride != recordStride_) fail("PstGeometry", "vertices carry another attribute count");
-  std::vector<float> records(v.vertexCount() * size_t(stride));
-  for (size_t i = 0; i < v.vertexCount(); ++i) {
-    float* r = records.data() + i * stride;
-    const float head[kRecordHead] = {v.x0[i], v.dx[i], v.depth[i], v.invW[i],
-                                     v.frontOverW[i].r, v.frontOverW[i].g, v.frontOverW[i].b,
-                                     v.backOverW[i].r, v.backOverW[i].g, v.backOverW[i].b};
-    std::copy_n(head, kRecordHead, r);
-    std::copy_n(v.extrasOverW.data() + i * extras, extras, r + kRecordHead);
-  }
-  std::vector<glm::uvec4> triangles(v.triangles.size());
-  for (size_t t = 0; t < triangles.size(); ++t) {
-    const uint32_t material = v.materials.empty() ? 0 : v.materials[t];
-    const uint32_t cull = v.cullBack.empty() || !v.cullBack[t] ? 0u : 1u << 31;
-    triangles[t] = glm::uvec4(v.triangles[t], material | cull);
-  }
-  records_ = gl::makeBuffer(records.data(), records.size());
-  triangles_ = gl::makeBuffer(triangles.data(), triangles.size());
-}
-
-void PstGeometry::build(const GpuSliceTable& table, int first, int count, int views) {
+void PstGeometry::build(const GpuVertices& vertices, const GpuSliceTable& table, int first, int count,
+                        int views) {
+  if (vertices.recordStride != recordStride_) fail("PstGeometry", "vertices carry another attribute count");
   const auto& offsets = table.offsets();
+  if (vertices.hasVectors()) viewTexels(vertices);
+  vertices_ = &vertices;
   table_ = &table;
   firstSlice_ = offsets[first];
   sliceCount_ = offsets[first + count] - offsets[first];
@@ -241,8 +226,8 @@ void PstGeometry::setSliceUniforms(const gl::Program& p) const {
 }
 
 void PstGeometry::bindBuffers() const {
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kRecords, records_.id());
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTriangles, triangles_.id());
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kRecords, vertices_->records.id());
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTriangles, vertices_->triangles.id());
   gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kSlices, table_->slicesBuffer());
   gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kFirstVertex, firstVertex_.id());
   gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kPieces, pieces_.id());
@@ -253,6 +238,22 @@ void PstGeometry::bind(const gl::Program& program, int chunkRows, int view0) con
   gl::setUniform(program, "uChunkRows", chunkRows);
   gl::setUniform(program, "uView0", view0);
   bindBuffers();
+  if (vertices_->hasVectors()) bindVectors();
+}
+
+void PstGeometry::bindVectors() const {
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kVectors, vertices_->vectors.id());
+  gl::BindTextureUnit(kVectorUnit, texels_.id());
+}
+
+void PstGeometry::viewTexels(const GpuVertices& v) {
+  GLint limit = 0;
+  gl::GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &limit);
+  if (v.texelCount > size_t(limit))
+    fail("PstGeometry", "the row's " + std::to_string(v.texelCount) +
+                            " vector texels pass the GL's texture-buffer limit of " + std::to_string(limit));
+  texels_ = gl::Texture(GL_TEXTURE_BUFFER);
+  gl::TextureBuffer(texels_.id(), GL_RGBA32F, v.texelBuffer);
 }
 
 void PstGeometry::draw() const {

@@ -19,33 +19,30 @@
 #include "mvr/gl/gl_handles.h"
 #include "mvr/gl/prefix_sum.h"
 #include "slicing/gpu/gpu_slice_table.h"
+#include "slicing/gpu/gpu_vertices.h"
 
 namespace mvr {
 
 class PstGeometry {
  public:
-  // Floats per endpoint record before the extras: x0, dx, depth, 1/w,
-  // front colour / w, back colour / w; then ExtremeVertices::extraCount
-  // extras / w.
-  static constexpr int kRecordHead = 10;
   // Storage-buffer bindings the pulling vertex shaders read (the Materials
-  // block of the shading passes is binding 1).
+  // block of the shading passes is binding 1), and the texture unit of the
+  // vector texels (EpiPass::kVectorUnit).
   static constexpr GLuint kRecords = 2, kTriangles = 3, kSlices = 4, kOffsets = 5, kFirstVertex = 6,
-                          kPieces = 7;
+                          kPieces = 7, kVectors = 8, kVectorUnit = 3;
 
   // extraCount: the extras per vertex (ExtremeVertices::extraCount). Needs
   // a current GL context.
   PstGeometry(PstMode mode, int extraCount);
 
-  // Once per row of views: every vertex's endpoint record and the
-  // triangles (index, material, culling). O(vertices), not O(slices).
-  void upload(const ExtremeVertices& v);
   // The geometry of scanlines [first, first + count) of `table` for
-  // `views` views; the slice table stays on the GPU.
-  void build(const GpuSliceTable& table, int first, int count, int views);
+  // `views` views; vertices and slice table stay on the GPU and must
+  // outlive the draws.
+  void build(const GpuVertices& vertices, const GpuSliceTable& table, int first, int count, int views);
   // Binds the buffers and sets the pulling uniforms of a pass's program:
   // EPI row coordinate 0 of batch scanline k lies at framebuffer row
   // k chunkRows - view0.
+  // With vectors, also their buffer and texels (kVectors, kVectorUnit).
   void bind(const gl::Program& program, int chunkRows, int view0) const;
   void draw() const;  // one indirect draw of the batch
 
@@ -56,13 +53,17 @@ class PstGeometry {
  private:
   void setSliceUniforms(const gl::Program& p) const;
   void bindBuffers() const;
+  void bindVectors() const;
+  void viewTexels(const GpuVertices& v);  // texels_ over v's texel buffer
 
   PstMode mode_;
   gl::Program count_;
   gl::PrefixSum prefixSum_;
-  gl::Buffer records_, triangles_, firstVertex_, pieces_, indirect_;
+  gl::Buffer firstVertex_, pieces_, indirect_;
   gl::VertexArray vao_;  // empty: vertices are pulled
+  const GpuVertices* vertices_ = nullptr;
   const GpuSliceTable* table_ = nullptr;
+  gl::Texture texels_;  // buffer texture over vertices_->texelBuffer
   size_t capacity_ = 0;  // slices the per-slice buffers hold
   uint32_t firstSlice_ = 0, sliceCount_ = 0;
   int views_ = 1, recordStride_;
