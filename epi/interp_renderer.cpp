@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <optional>
 
 #include "mvr/baselines/source_layers.h"
 #include "mvr/error.h"
 #include "shading/shading_plan.h"
+#include "slicing/gpu/gpu_image_slicer.h"
 #include "slicing/image_slices.h"
 #include "slicing/source_visibility.h"
 
@@ -47,6 +49,11 @@ class InterpRenderer final : public Renderer {
     // Every image slice is coloured by its own vector of source pixels.
     const EpiShading shading{.sliceVectors = true, .sliceHighlights = splits_ > 0};
     rasterizer_ = makeRasterizer(options.mode, type, shading, options.builder);
+    // Layers stay on the GPU when nothing needs their pixels on the host:
+    // no hole counting, visibility filter or split highlights.
+    if (rasterizer_->readsDeviceTable() && options_.acquire != Acquire::Hierarchical &&
+        !options_.visibility && splits_ == 0)
+      gpuSlicer_.emplace();
   }
 
   std::string name() const override { return "interp"; }
@@ -54,6 +61,10 @@ class InterpRenderer final : public Renderer {
 
   void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
     for (int row = 0; row < cam.rows(); ++row) {
+      if (gpuSlicer_) {
+        renderOnGpu(cam, row, sink, stats);
+        continue;
+      }
       std::vector<SourceLayer> layers;
       for (Source& source : acquire(cam, row, stats))
         for (SourceLayer& l : source.layers) layers.push_back(std::move(l));
@@ -64,14 +75,12 @@ class InterpRenderer final : public Renderer {
         slices = sliceSourceLayers(layers, cam, row,
                                    {options_.overlap, options_.coalesce, &scene_, splits_});
       }
-      stats.counters["slices"] += double(slices.table.sliceCount());
-      stats.counters["slice_pixels"] += double(slices.pixels);
+      countSlices(slices.table.sliceCount(), slices.pixels, stats);
       if (splits_ > 0) stats.counters["highlight_knots"] += double(slices.vertices.knots.size());
-      stats.counters["slice_table_bytes"] =
-          std::max(stats.counters["slice_table_bytes"], double(slices.table.bytes()));
       rasterizer_->rasterize(slices.vertices, slices.table, cam, row, sink, stats);
     }
     stats.notes["acquire"] = acquireName(options_.acquire);
+    stats.notes["image_slicer"] = gpuSlicer_ ? "gpu" : "cpu";
     stats.notes["pst"] = pstModeName(options_.mode);
     stats.counters["max_layers"] = options_.maxLayers;
     stats.counters["coalesce"] = options_.coalesce;
@@ -80,17 +89,48 @@ class InterpRenderer final : public Renderer {
   }
 
  private:
-  std::vector<Source> acquire(const ShearingCamera& cam, int row, RenderStats& stats) {
-    const int n = cam.views();
-    std::vector<Source> sources;
-    auto add = [&](double x) { sources.push_back(render(cam, row, x, stats)); };
-    if (options_.acquire == Acquire::Center || n == 1) {
-      add(0.5 * (cam.viewX(0) + cam.viewX(n - 1)));
-      return sources;
+  // Source views in GPU memory, sliced there: only the EPIs and the slice
+  // table's offsets come back.
+  void renderOnGpu(const ShearingCamera& cam, int row, FrameSink& sink, RenderStats& stats) {
+    const std::vector<double> xs = fixedSources(cam);
+    store_.reset(cam.width(), cam.height(), int(xs.size()) * options_.maxLayers);
+    for (double x : xs) {
+      stats.counters["source_views"] += 1;
+      sources_->render(cam, {x, cam.rowY(row)}, options_.maxLayers, trackWidth(cam), stats, store_);
     }
-    add(cam.viewX(0));
-    add(cam.viewX(n - 1));
-    if (options_.acquire == Acquire::Hierarchical) refine(cam, row, sources, stats);
+    stats.counters["layers"] += double(store_.count());
+    std::optional<GpuImageSlices> slices;
+    {
+      ScopedStage s(stats.times, "slicing");
+      slices.emplace(gpuSlicer_->build(store_, cam, row, {options_.overlap, options_.coalesce}));
+    }
+    countSlices(slices->table.sliceCount(), slices->pixels, stats);
+    rasterizer_->rasterize(slices->vertices, slices->table, cam, row, sink, stats);
+  }
+
+  static void countSlices(size_t slices, size_t pixels, RenderStats& stats) {
+    stats.counters["slices"] += double(slices);
+    stats.counters["slice_pixels"] += double(pixels);
+    const double bytes = double(slices * sizeof(Slice));
+    stats.counters["slice_table_bytes"] = std::max(stats.counters["slice_table_bytes"], bytes);
+  }
+
+  static double trackWidth(const ShearingCamera& cam) {
+    return std::abs(cam.spec().trackRight - cam.spec().trackLeft);
+  }
+
+  // Camera x of the source views center and dual acquisition render (the
+  // pair hierarchical acquisition starts from).
+  std::vector<double> fixedSources(const ShearingCamera& cam) const {
+    const int n = cam.views();
+    if (options_.acquire == Acquire::Center || n == 1) return {0.5 * (cam.viewX(0) + cam.viewX(n - 1))};
+    return {cam.viewX(0), cam.viewX(n - 1)};
+  }
+
+  std::vector<Source> acquire(const ShearingCamera& cam, int row, RenderStats& stats) {
+    std::vector<Source> sources;
+    for (double x : fixedSources(cam)) sources.push_back(render(cam, row, x, stats));
+    if (options_.acquire == Acquire::Hierarchical && sources.size() == 2) refine(cam, row, sources, stats);
     return sources;
   }
 
@@ -122,7 +162,6 @@ class InterpRenderer final : public Renderer {
   }
 
   Source render(const ShearingCamera& cam, int row, double x, RenderStats& stats) {
-    const double trackWidth = std::abs(cam.spec().trackRight - cam.spec().trackLeft);
     stats.counters["source_views"] += 1;
     LayerFilter visible;
     if (options_.visibility)
@@ -134,7 +173,7 @@ class InterpRenderer final : public Renderer {
         stats.counters["hidden_pixels"] += double(before - kept);
         return kept > 0;
       };
-    return {x, sources_->render(cam, {x, cam.rowY(row)}, options_.maxLayers, trackWidth, stats, visible)};
+    return {x, sources_->render(cam, {x, cam.rowY(row)}, options_.maxLayers, trackWidth(cam), stats, visible)};
   }
 
   InterpOptions options_;
@@ -142,6 +181,8 @@ class InterpRenderer final : public Renderer {
   int splits_;  // options_.splits where the scene has highlights, else 0
   std::unique_ptr<SourceLayerRenderer> sources_;
   std::unique_ptr<EpiRasterizer> rasterizer_;
+  std::optional<GpuImageSlicer> gpuSlicer_;  // when layers stay on the GPU
+  DeviceLayers store_;
 };
 
 }  // namespace

@@ -58,9 +58,12 @@ class LayerSlicer {
     if (layer.color.width != w || layer.color.height != h || layer.color.type != PixelType::F32 ||
         layer.depth.size() != size_t(w) * h)
       fail("sliceSourceLayers", "source layers must be float images of the output size");
-    const float tolerance = options_.coalesce > 0.0f
-                                ? coalesceDepthRange(cam_, layer.eye.x, options_.coalesce)
-                                : -1.0f;  // off: even equal depths stay apart
+    // Off: even equal depths stay apart. Never infinite (a track with no
+    // width): a block holding an empty pixel spans an infinite range.
+    const float tolerance =
+        options_.coalesce > 0.0f
+            ? std::min(coalesceDepthRange(cam_, layer.eye.x, options_.coalesce), std::numeric_limits<float>::max())
+            : -1.0f;
     const bool split = highlights_ && layer.normals.size() == layer.depth.size();
     std::vector<uint8_t> alone(split ? w : 0);
     for (int j = 0; j < h; ++j) {

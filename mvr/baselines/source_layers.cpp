@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "mvr/baselines/deferred_pipeline.h"
+#include "mvr/error.h"
 
 namespace mvr {
 namespace {
@@ -18,33 +19,12 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
                                   double trackWidth, RenderStats& stats,
                                   const LayerFilter& filter) override {
     const int w = cam.width(), h = cam.height();
-    Targets& t = targets(w, h);
-    const RenderTarget& target = t.color;
-    const GBuffer* gbuffers = t.gbuffers;
-    pipeline_.begin(w, h);
-    const glm::dmat4 viewProj = cam.viewProjectionAt(eye.x, eye.y);
-    const CameraSpec& spec = cam.spec();
-    const glm::vec4 peel(spec.nearDistance, spec.farDistance,
-                         cam.planeWidth() / (w * spec.distance), trackWidth);
-    GLuint query = 0;
-    gl::CreateQueries(GL_SAMPLES_PASSED, 1, &query);
     std::vector<SourceLayer> layers;
-    for (int k = 0; k < maxLayers; ++k) {
-      const GBuffer& gbuffer = gbuffers[k % 2];
-      GLuint samples = 0;
+    peel(cam, eye, maxLayers, trackWidth, stats, [&](int k, long samples, const GBuffer& gbuffer) {
+      SourceLayer layer{eye, k, Image(), std::vector<float>(size_t(w) * h), samples};
       {
         ScopedStage s(stats.times, "acquire");
-        gl::BeginQuery(GL_SAMPLES_PASSED, query);
-        pipeline_.geometry(viewProj, gbuffer, k ? &gbuffers[(k + 1) % 2] : nullptr, peel);
-        gl::EndQuery(GL_SAMPLES_PASSED);
-        gl::GetQueryObjectuiv(query, GL_QUERY_RESULT, &samples);
-      }
-      if (samples == 0) break;  // an empty layer: nothing lies further back
-      SourceLayer layer{eye, k, Image(), std::vector<float>(size_t(w) * h), long(samples)};
-      {
-        ScopedStage s(stats.times, "acquire");
-        pipeline_.lighting(viewProj, glm::dvec3(eye, spec.distance), gbuffer, target);
-        layer.color = target.read();
+        layer.color = targets_->color.read();
         gl::GetTextureSubImage(gbuffer.depthTexture(), 0, 0, 0, 0, w, h, 1, GL_DEPTH_COMPONENT, GL_FLOAT,
                                GLsizei(layer.depth.size() * sizeof(float)), layer.depth.data());
         if (normals_) {
@@ -53,15 +33,60 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
                                  GLsizei(layer.normals.size() * sizeof(glm::vec4)), layer.normals.data());
         }
       }
-      if (filter && !filter(layers, layer)) break;
+      if (filter && !filter(layers, layer)) return false;
       layers.push_back(std::move(layer));
-    }
-    gl::DeleteQueries(1, &query);
-    gl::checkError("source layers");
+      return true;
+    });
     return layers;
   }
 
+  int render(const ShearingCamera& cam, const glm::dvec2& eye, int maxLayers, double trackWidth,
+             RenderStats& stats, DeviceLayers& store) override {
+    if (normals_) fail("source layers", "highlights kept apart need layers read back");
+    int added = 0;
+    peel(cam, eye, maxLayers, trackWidth, stats, [&](int, long, const GBuffer& gbuffer) {
+      ScopedStage s(stats.times, "acquire");
+      store.append(eye, targets_->color.colorTexture(), gbuffer.depthTexture());
+      ++added;
+      return true;
+    });
+    return added;
+  }
+
  private:
+  // Renders and lights up to maxLayers depth-peeled layers and hands each
+  // (index, samples, its G-buffer; the lit colour in targets_->color) to
+  // `take`, which returns false to stop.
+  template <class Take>
+  void peel(const ShearingCamera& cam, const glm::dvec2& eye, int maxLayers, double trackWidth,
+            RenderStats& stats, Take&& take) {
+    const int w = cam.width(), h = cam.height();
+    Targets& t = targets(w, h);
+    pipeline_.begin(w, h);
+    const glm::dmat4 viewProj = cam.viewProjectionAt(eye.x, eye.y);
+    const CameraSpec& spec = cam.spec();
+    const glm::vec4 peel(spec.nearDistance, spec.farDistance,
+                         cam.planeWidth() / (w * spec.distance), trackWidth);
+    GLuint query = 0;
+    gl::CreateQueries(GL_SAMPLES_PASSED, 1, &query);
+    for (int k = 0; k < maxLayers; ++k) {
+      const GBuffer& gbuffer = t.gbuffers[k % 2];
+      GLuint samples = 0;
+      {
+        ScopedStage s(stats.times, "acquire");
+        gl::BeginQuery(GL_SAMPLES_PASSED, query);
+        pipeline_.geometry(viewProj, gbuffer, k ? &t.gbuffers[(k + 1) % 2] : nullptr, peel);
+        gl::EndQuery(GL_SAMPLES_PASSED);
+        gl::GetQueryObjectuiv(query, GL_QUERY_RESULT, &samples);
+        if (samples == 0) break;  // an empty layer: nothing lies further back
+        pipeline_.lighting(viewProj, glm::dvec3(eye, spec.distance), gbuffer, t.color);
+      }
+      if (!take(k, long(samples), gbuffer)) break;
+    }
+    gl::DeleteQueries(1, &query);
+    gl::checkError("source layers");
+  }
+
   // Kept across calls (every source eye of every row has the same size).
   struct Targets {
     Targets(int w, int h) : color(w, h, PixelType::F32), gbuffers{GBuffer(w, h), GBuffer(w, h)} {}
@@ -79,6 +104,32 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
 };
 
 }  // namespace
+
+void DeviceLayers::reset(int width, int height, int capacity) {
+  eyes_.clear();
+  const size_t pixels = size_t(width) * height;
+  if (width == width_ && height == height_ && capacity <= capacity_) return;
+  width_ = width, height_ = height, capacity_ = capacity;
+  color_ = gl::makeBuffer<glm::vec4>(nullptr, pixels * capacity);
+  depth_ = gl::makeBuffer<float>(nullptr, pixels * capacity);
+  gl::checkError("allocating the layer store");
+}
+
+void DeviceLayers::append(const glm::dvec2& eye, GLuint colorTexture, GLuint depthTexture) {
+  if (count() >= capacity_) fail("layer store", "full: " + std::to_string(capacity_) + " layers");
+  const size_t pixels = pixelsPerLayer(), at = size_t(count()) * pixels;
+  // Into the buffers on the GPU: with a pack buffer bound, the pointer
+  // argument is an offset into it.
+  gl::BindBuffer(GL_PIXEL_PACK_BUFFER, color_.id());
+  gl::GetTextureSubImage(colorTexture, 0, 0, 0, 0, width_, height_, 1, GL_RGBA, GL_FLOAT,
+                         GLsizei(pixels * sizeof(glm::vec4)),
+                         reinterpret_cast<void*>(at * sizeof(glm::vec4)));
+  gl::BindBuffer(GL_PIXEL_PACK_BUFFER, depth_.id());
+  gl::GetTextureSubImage(depthTexture, 0, 0, 0, 0, width_, height_, 1, GL_DEPTH_COMPONENT, GL_FLOAT,
+                         GLsizei(pixels * sizeof(float)), reinterpret_cast<void*>(at * sizeof(float)));
+  gl::BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  eyes_.push_back(eye);
+}
 
 std::unique_ptr<SourceLayerRenderer> makeSourceLayerRenderer(const Scene& scene,
                                                              bool separateHighlights) {

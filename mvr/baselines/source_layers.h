@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "mvr/camera.h"
+#include "mvr/gl/gl_handles.h"
 #include "mvr/image.h"
 #include "mvr/renderer.h"
 #include "mvr/scene.h"
@@ -30,6 +31,31 @@ struct SourceLayer {
 // pixels from it (depth 0); false drops the layer and ends the peeling.
 using LayerFilter = std::function<bool(const std::vector<SourceLayer>& nearer, SourceLayer& layer)>;
 
+// Source layers left in GPU memory for a GPU slicer
+// (slicing/gpu/gpu_image_slicer.h): layer after layer, each width x height
+// pixels in image row order (window row 0 first), never read back.
+class DeviceLayers {
+ public:
+  // Empties the store, with room for `capacity` layers of width x height
+  // (reallocated only when that grows). Needs a current GL context.
+  void reset(int width, int height, int capacity);
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int count() const { return int(eyes_.size()); }
+  const glm::dvec2& eye(int layer) const { return eyes_[layer]; }
+  GLuint colorBuffer() const { return color_.id(); }  // vec4 per pixel, alpha 1 where covered
+  GLuint depthBuffer() const { return depth_.id(); }  // window depth, reversed Z: 0 where empty
+  size_t pixelsPerLayer() const { return size_t(width_) * height_; }
+  // Copies one layer in on the GPU: a colour and a depth texture of the
+  // store's size. Throws mvr::Error when the store is full.
+  void append(const glm::dvec2& eye, GLuint colorTexture, GLuint depthTexture);
+
+ private:
+  int width_ = 0, height_ = 0, capacity_ = 0;
+  std::vector<glm::dvec2> eyes_;
+  gl::Buffer color_, depth_;
+};
+
 class SourceLayerRenderer {
  public:
   virtual ~SourceLayerRenderer() = default;
@@ -39,6 +65,10 @@ class SourceLayerRenderer {
   virtual std::vector<SourceLayer> render(const ShearingCamera& cam, const glm::dvec2& eye,
                                           int maxLayers, double trackWidth, RenderStats& stats,
                                           const LayerFilter& filter = {}) = 0;
+  // The same layers (no filter), appended to a store in GPU memory instead
+  // of read back; returns how many were added.
+  virtual int render(const ShearingCamera& cam, const glm::dvec2& eye, int maxLayers,
+                     double trackWidth, RenderStats& stats, DeviceLayers& store) = 0;
 };
 
 // Needs a current GL context. separateHighlights: the colours leave out

@@ -1,0 +1,292 @@
+#include "slicing/gpu/gpu_image_slicer.h"
+
+#include <algorithm>
+#include <bit>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "mvr/error.h"
+#include "mvr/gl/gl_program.h"
+#include "shading/texture_vector.h"
+
+namespace mvr {
+namespace {
+
+constexpr int kMaxLevel = std::countr_zero(unsigned(shading::TextureVectors::kMaxLength));
+
+// Layer k's pixels are k * height * width + j * width + x; the start flags
+// run in slice-table order, (j * layers + k) * width + x.
+const char* const kCommon = R"(
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) readonly buffer Depth { float uDepth[]; };
+layout(std430, binding = 1) readonly buffer Color { vec4 uColor[]; };
+layout(std430, binding = 2) buffer Mips { vec2 uMips[]; };  // per layer scanline: levels 1.. packed
+layout(std430, binding = 3) buffer Flags { uint uFlags[]; };
+layout(std430, binding = 4) readonly buffer Layers { dvec2 uLayers[]; };  // shift per unit Z/w, depth tolerance
+uniform int uWidth;
+uniform int uHeight;
+uniform int uLayerCount;
+uniform int uLevels;  // of the depth mip, level 0 the pixels; 1: no coalescing
+
+const float kEmpty = 3.0e38;  // an empty pixel's block spans (-kEmpty, kEmpty)
+
+uint pixelIndex(int k, int j, int x) { return (uint(k) * uint(uHeight) + uint(j)) * uint(uWidth) + uint(x); }
+uint flagIndex(int k, int j, int x) { return (uint(j) * uint(uLayerCount) + uint(k)) * uint(uWidth) + uint(x); }
+uint mipIndex(int k, int j, int l, int i) {
+  int start = 0;
+  for (int m = 1; m < l; ++m) start += uWidth >> m;
+  return pixelIndex(k, j, 0) + uint(start + i);
+}
+// Min and max depth of block i of level l.
+vec2 depthRange(int k, int j, int l, int i) {
+  if (l > 0) return uMips[mipIndex(k, j, l, i)];
+  float d = uDepth[pixelIndex(k, j, i)];
+  return d == 0.0 ? vec2(-kEmpty, kEmpty) : vec2(d);
+}
+// The level of the run pixel x starts, or -1: the largest whole, covered
+// block holding x whose depths agree, if it starts at x.
+int runLevel(int k, int j, int x) {
+  if (uDepth[pixelIndex(k, j, x)] == 0.0) return -1;
+  float tolerance = float(uLayers[k].y);
+  int level = 0;
+  for (int l = 1; l < uLevels; ++l) {
+    int i = x >> l;
+    if (((i + 1) << l) > uWidth) break;
+    vec2 r = uMips[mipIndex(k, j, l, i)];
+    if (r.x <= -kEmpty || !(r.y - r.x <= tolerance)) break;
+    level = l;
+  }
+  return ((x >> level) << level) == x ? level : -1;
+}
+)";
+
+const char* const kMip = R"(
+uniform int uLevel;
+void main() {
+  int i = int(gl_GlobalInvocationID.x), j = int(gl_GlobalInvocationID.y), k = int(gl_GlobalInvocationID.z);
+  if (i >= (uWidth >> uLevel)) return;
+  vec2 a = depthRange(k, j, uLevel - 1, 2 * i), b = depthRange(k, j, uLevel - 1, 2 * i + 1);
+  uMips[mipIndex(k, j, uLevel, i)] = vec2(min(a.x, b.x), max(a.y, b.y));
+}
+)";
+
+// Start flags, and the covered pixels counted per work group first.
+const char* const kFlag = R"(
+layout(std430, binding = 5) buffer Covered { uint uCovered; };
+shared uint sCovered;
+void main() {
+  if (gl_LocalInvocationIndex == 0u) sCovered = 0u;
+  barrier();
+  int x = int(gl_GlobalInvocationID.x), j = int(gl_GlobalInvocationID.y), k = int(gl_GlobalInvocationID.z);
+  if (x < uWidth) {
+    uFlags[flagIndex(k, j, x)] = runLevel(k, j, x) >= 0 ? 1u : 0u;
+    if (uDepth[pixelIndex(k, j, x)] != 0.0) atomicAdd(sCovered, 1u);
+  }
+  barrier();
+  if (gl_LocalInvocationIndex == 0u && sCovered > 0u) atomicAdd(uCovered, sCovered);
+}
+)";
+
+// offsets[j]: the slot of scanline j's first run; offsets[height]: the
+// run count (the scan's total).
+const char* const kOffsets = R"(
+layout(std430, binding = 5) readonly buffer Total { uint uTotal; };
+layout(std430, binding = 6) writeonly buffer Offsets { uint uOffsets[]; };
+void main() {
+  int j = int(gl_GlobalInvocationID.x);
+  if (j > uHeight) return;
+  uOffsets[j] = j < uHeight ? uFlags[flagIndex(0, j, 0)] : uTotal;
+}
+)";
+
+// A run's slice (a segment), endpoint records (GpuVertices' layout, no
+// extras), "triangle" and vector, as LayerSlicer::addRun writes them.
+const char* const kFill = R"(
+layout(std430, binding = 6) writeonly buffer Slices { uvec4 uSlices[]; };
+layout(std430, binding = 7) writeonly buffer Records { float uRecords[]; };
+layout(std430, binding = 8) writeonly buffer Triangles { uvec4 uTriangles[]; };
+layout(std430, binding = 9) writeonly buffer Vectors { uvec4 uVectors[]; };
+layout(std430, binding = 10) buffer Texels { vec4 uTexels[]; };
+uniform float uOverlap;
+uniform dvec2 uZOverW;          // Z / w = x d + y at window depth d
+uniform dvec2 uInvW;            // 1 / w = x d + y
+uniform double uStepPerZOverW;  // x step per view per unit of Z / w
+uniform bool uOwnTexels;        // vectors with MIP chains in Texels, else the colour buffer
+
+// In double, rounded once to float, as the CPU's ExtremeTransform: the two
+// back ends then agree to the last bit almost everywhere, and exact mode's
+// depth test settles overlapping slices alike.
+void writeEnd(uint vertex, float x, float d, double shift, vec3 c) {
+  double zOverW = uZOverW.x * double(d) + uZOverW.y;
+  float invW = float(uInvW.x * double(d) + uInvW.y);
+  uint at = vertex * 10u;
+  uRecords[at] = float(double(x) + shift * zOverW);
+  uRecords[at + 1u] = float(uStepPerZOverW * zOverW);
+  uRecords[at + 2u] = d;
+  uRecords[at + 3u] = invW;
+  for (uint c3 = 0u; c3 < 3u; ++c3) uRecords[at + 4u + c3] = uRecords[at + 7u + c3] = c[c3] * invW;
+}
+
+void main() {
+  int x = int(gl_GlobalInvocationID.x), j = int(gl_GlobalInvocationID.y), k = int(gl_GlobalInvocationID.z);
+  if (x >= uWidth) return;
+  int level = runLevel(k, j, x);
+  if (level < 0) return;
+  uint slot = uFlags[flagIndex(k, j, x)], p = pixelIndex(k, j, x);
+  int n = 1 << level;
+  float d0 = uDepth[p], slope = n > 1 ? (uDepth[p + uint(n - 1)] - d0) / float(n - 1) : 0.0;
+  float o = uOverlap;
+  double shift = uLayers[k].x;
+  vec3 c = uColor[p].rgb;
+  writeEnd(2u * slot, float(x) - o, d0 + (-o - 0.5) * slope, shift, c);
+  writeEnd(2u * slot + 1u, float(x + n) + o, d0 + (float(n) + o - 0.5) * slope, shift, c);
+  uSlices[slot] = uvec4(slot, 0u, 0u, 256u);  // a segment
+  uTriangles[slot] = uvec4(2u * slot, 2u * slot + 1u, 2u * slot + 1u, 0u);
+  uint base = uOwnTexels ? 2u * p : p;
+  uVectors[slot] = uvec4(base, uint(n), floatBitsToUint(-o / float(n)), floatBitsToUint(1.0 + o / float(n)));
+  if (!uOwnTexels) return;
+  // Level 0 and its box-filtered MIP chain (TextureVectors::addTexels).
+  for (int i = 0; i < n; ++i) uTexels[base + uint(i)] = vec4(uColor[p + uint(i)].rgb, 1.0);
+  uint from = base, to = base + uint(n);
+  for (uint len = uint(n) / 2u; len >= 1u; len /= 2u) {
+    for (uint i = 0u; i < len; ++i) uTexels[to + i] = 0.5 * (uTexels[from + 2u * i] + uTexels[from + 2u * i + 1u]);
+    from = to;
+    to += len;
+  }
+}
+)";
+
+gl::Program compute(const char* name, const char* main) {
+  return gl::linkProgram(name, {{GL_COMPUTE_SHADER, gl::glslHeader() + kCommon + main}});
+}
+
+uint32_t groups(size_t n) { return uint32_t((n + 63) / 64); }
+
+}  // namespace
+
+GpuImageSlicer::GpuImageSlicer()
+    : mip_(compute("image-slice-mip", kMip)), flag_(compute("image-slice-flag", kFlag)),
+      offsets_(compute("image-slice-offsets", kOffsets)), fill_(compute("image-slice-fill", kFill)) {}
+
+GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingCamera& cam, int row,
+                                     const ImageSliceOptions& options) {
+  (void)row;  // source and target views share the row's camera y: y stays put
+  if (options.scene && options.splits > 0)
+    fail("GpuImageSlicer", "split highlight tracks are built on the CPU");
+  const int w = cam.width(), h = cam.height(), count = layers.count();
+  if (layers.width() != w || layers.height() != h)
+    fail("GpuImageSlicer", "source layers must be of the output size");
+  const bool coalesce = options.coalesce > 0.0f;
+  int levels = 1;
+  while (coalesce && levels <= kMaxLevel && (w >> levels) > 0) ++levels;
+
+  // Per layer: pixels per unit of Z / w from its eye to view 0, and the
+  // depth range a run may span (coalesceDepthRange; never infinite, so
+  // that a block with an empty pixel never passes).
+  const double perPlane = w / cam.planeWidth(), left = cam.viewX(0);
+  std::vector<glm::dvec2> perLayer(std::max(count, 1));
+  for (int k = 0; k < count; ++k) {
+    const double x = layers.eye(k).x;
+    const float tolerance = coalesce ? std::min(coalesceDepthRange(cam, x, options.coalesce),
+                                                std::numeric_limits<float>::max())
+                                     : -1.0f;
+    perLayer[k] = glm::dvec2((x - left) * perPlane, tolerance);
+  }
+  const gl::Buffer layerInfo = gl::makeBuffer(perLayer.data(), perLayer.size());
+  const size_t pixels = layers.pixelsPerLayer() * size_t(count);
+  if (pixels > flagsSize_) {
+    flagsSize_ = pixels;
+    flags_ = gl::makeBuffer<uint32_t>(nullptr, pixels);
+  }
+  if (levels > 1 && pixels > mipsSize_) {
+    mipsSize_ = pixels;
+    mips_ = gl::makeBuffer<glm::vec2>(nullptr, pixels);
+  }
+  const uint32_t zero = 0;
+  const gl::Buffer covered = gl::makeBuffer(&zero, 1, GL_DYNAMIC_STORAGE_BIT);
+  std::vector<uint32_t> hostOffsets(size_t(h) + 1, 0);
+  gl::Buffer offsets = gl::makeBuffer(hostOffsets.data(), hostOffsets.size());  // all 0: no layers
+
+  auto use = [&](const gl::Program& p) {
+    gl::UseProgram(p.id());
+    gl::setUniform(p, "uWidth", w);
+    gl::setUniform(p, "uHeight", h);
+    gl::setUniform(p, "uLayerCount", count);
+    gl::setUniform(p, "uLevels", levels);
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, layers.depthBuffer());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, layers.colorBuffer());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, levels > 1 ? mips_.id() : flags_.id());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, flags_.id());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, layerInfo.id());
+  };
+  auto overPixels = [&](int width) {
+    gl::DispatchCompute(groups(size_t(width)), uint32_t(h), uint32_t(count));
+    gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  };
+  uint32_t coveredPixels = 0;
+  if (count > 0) {
+    use(mip_);
+    for (int l = 1; l < levels; ++l) {
+      gl::setUniform(mip_, "uLevel", l);
+      overPixels(w >> l);
+    }
+    use(flag_);
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, covered.id());
+    overPixels(w);
+    const gl::Buffer total = gl::makeBuffer(&zero, 1, GL_DYNAMIC_STORAGE_BIT);
+    prefixSum_.exclusive(flags_.id(), 0, uint32_t(pixels), total.id(), 0);
+    use(offsets_);
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, total.id());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, offsets.id());
+    gl::DispatchCompute(groups(size_t(h) + 1), 1, 1);
+    gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    // The one readback: the offsets (for the buffers' sizes and the
+    // rasterizer's batches) and the covered pixel count.
+    gl::GetNamedBufferSubData(offsets.id(), 0, GLsizeiptr(hostOffsets.size() * sizeof(uint32_t)),
+                              hostOffsets.data());
+    gl::GetNamedBufferSubData(covered.id(), 0, sizeof(uint32_t), &coveredPixels);
+  }
+
+  const size_t slices = hostOffsets.back();
+  GpuVertices v;
+  v.vertexCount = 2 * slices;
+  v.triangleCount = slices;
+  v.records = gl::makeBuffer<float>(nullptr, 2 * slices * size_t(GpuVertices::kRecordHead));
+  v.triangles = gl::makeBuffer<glm::uvec4>(nullptr, slices);
+  v.vectors = gl::makeBuffer<glm::uvec4>(nullptr, slices);
+  if (levels > 1) {
+    v.ownedTexels = gl::makeBuffer<glm::vec4>(nullptr, 2 * pixels);
+    v.texelBuffer = v.ownedTexels.id();
+    v.texelCount = 2 * pixels;
+  } else {
+    v.texelBuffer = layers.colorBuffer();
+    v.texelCount = pixels;
+  }
+  gl::Buffer table = gl::makeBuffer<Slice>(nullptr, slices);
+  if (slices > 0) {
+    use(fill_);
+    gl::setUniform(fill_, "uOverlap", options.overlap);
+    const CameraSpec& s = cam.spec();
+    const double n = s.nearDistance, f = s.farDistance, D = s.distance;
+    auto at = [&](const char* name) { return gl::GetUniformLocation(fill_.id(), name); };
+    gl::ProgramUniform2d(fill_.id(), at("uZOverW"), D * (f - n) / (n * f), D / f - 1.0);
+    gl::ProgramUniform2d(fill_.id(), at("uInvW"), (f - n) / (n * f), 1.0 / f);
+    const int views = cam.views();
+    gl::ProgramUniform1d(fill_.id(), at("uStepPerZOverW"),
+                         views > 1 ? (left - cam.viewX(views - 1)) * perPlane / (views - 1) : 0.0);
+    gl::setUniform(fill_, "uOwnTexels", levels > 1 ? 1 : 0);
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, table.id());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, v.records.id());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, v.triangles.id());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, v.vectors.id());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, v.texelBuffer);
+    gl::DispatchCompute(groups(size_t(w)), uint32_t(h), uint32_t(count));
+    gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+  }
+  gl::checkError("GPU image slicing");
+  return {std::move(v), GpuSliceTable::adopt(std::move(table), std::move(offsets), std::move(hostOffsets)),
+          coveredPixels};
+}
+
+}  // namespace mvr

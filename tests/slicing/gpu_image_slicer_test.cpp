@@ -1,0 +1,156 @@
+// The image-based slicing on the GPU against its CPU oracle,
+// sliceSourceLayers: the same table (offsets equal), and per slot the same
+// endpoints (within 1e-4 px, depth and 1/w within 1e-6 relative), vector
+// (length, parameter range) and texels, over layers rendered from the
+// default scene and over hand-made layers for the edge cases.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mvr/baselines/source_layers.h"
+#include "mvr/io/scene_io.h"
+#include "slicing/gpu/gpu_image_slicer.h"
+#include "slicing/image_slices.h"
+#include "tests/support/gl_fixture.h"
+
+namespace mvr {
+namespace {
+
+template <class T>
+std::vector<T> download(GLuint buffer, size_t count) {
+  std::vector<T> out(count);
+  if (count) gl::GetNamedBufferSubData(buffer, 0, GLsizeiptr(count * sizeof(T)), out.data());
+  return out;
+}
+
+// Slices the same layers both ways and compares them slot by slot.
+void expectSameSlices(const std::vector<SourceLayer>& host, const DeviceLayers& device,
+                      const ShearingCamera& cam, const ImageSliceOptions& options, const std::string& label) {
+  const ImageSlices cpu = sliceSourceLayers(host, cam, 0, options);
+  GpuImageSlicer slicer;
+  const GpuImageSlices gpu = slicer.build(device, cam, 0, options);
+  const SliceTable table = gpu.table.download();
+  ASSERT_EQ(table.sliceCount(), cpu.table.sliceCount()) << label;
+  ASSERT_TRUE(std::equal(table.offsets().begin(), table.offsets().end(), cpu.table.offsets().begin())) << label;
+  EXPECT_EQ(gpu.pixels, cpu.pixels) << label;
+  const size_t n = table.sliceCount();
+  const auto records = download<float>(gpu.vertices.records.id(), 2 * n * GpuVertices::kRecordHead);
+  const auto vectors = download<glm::uvec4>(gpu.vertices.vectors.id(), n);
+  const auto texels = download<glm::vec4>(gpu.vertices.texelBuffer, gpu.vertices.texelCount);
+  int worst = 0;
+  for (size_t s = 0; s < n && worst < 5; ++s) {
+    const Slice& slice = cpu.table.slices()[s];
+    auto [e0, e1] = sliceEnds(cpu.vertices, slice);
+    for (int end = 0; end < 2; ++end) {
+      const SliceEnd& e = end ? e1 : e0;
+      const float* r = records.data() + (2 * s + end) * GpuVertices::kRecordHead;
+      const bool close = std::abs(r[0] - e.x0) <= 1e-4f && std::abs(r[1] - e.dx) <= 1e-4f &&
+                         std::abs(r[2] - e.depth) <= 1e-6f * e.depth && std::abs(r[3] - e.invW) <= 1e-6f * e.invW;
+      EXPECT_TRUE(close) << label << " slot " << s << " end " << end << ": " << r[0] << " " << r[1] << " "
+                         << r[2] << " " << r[3] << " vs " << e.x0 << " " << e.dx << " " << e.depth << " " << e.invW;
+      worst += !close;
+    }
+    const SliceVector& v = cpu.vertices.vectors[slice.triangle];
+    const glm::uvec4 g = vectors[s];
+    ASSERT_EQ(int(g.y), v.length) << label << " slot " << s;
+    EXPECT_EQ(std::bit_cast<float>(g.z), v.u0) << label;
+    EXPECT_EQ(std::bit_cast<float>(g.w), v.u1) << label;
+    for (int t = 0; t < 2 * v.length - 1; ++t)
+      ASSERT_EQ(texels.at(g.x + t), cpu.vertices.vectorTexels.texels().at(v.base + t)) << label << " slot " << s;
+  }
+}
+
+class GpuImageSlicerTest : public test::GlTest {};
+
+TEST_F(GpuImageSlicerTest, RenderedLayersSliceAsOnTheCpu) {
+  const Scene scene = loadScene(test::assetPath("default.json"));
+  const ShearingCamera cam(*scene.camera, 88, 60, 9);  // 88: not a power of two
+  auto sources = makeSourceLayerRenderer(scene);
+  const double track = cam.spec().trackRight - cam.spec().trackLeft;
+  std::vector<SourceLayer> host;
+  DeviceLayers device;
+  device.reset(cam.width(), cam.height(), 8);
+  RenderStats stats;
+  for (double x : {cam.viewX(0), cam.viewX(8)}) {
+    for (SourceLayer& l : sources->render(cam, {x, 0.0}, 4, track, stats)) host.push_back(std::move(l));
+    sources->render(cam, {x, 0.0}, 4, track, stats, device);
+  }
+  ASSERT_EQ(device.count(), int(host.size()));
+  ASSERT_GE(device.count(), 4);
+  for (float coalesce : {0.0f, 0.5f, 2.0f})
+    for (float overlap : {0.0f, 0.25f})
+      expectSameSlices(host, device, cam, {overlap, coalesce},
+                       "coalesce " + std::to_string(coalesce) + " overlap " + std::to_string(overlap));
+}
+
+// Hand-made layers: textures uploaded, then appended as a renderer would.
+class HandLayers {
+ public:
+  HandLayers(int w, int h) : w_(w), h_(h) { store.reset(w, h, 4); }
+  void add(const SourceLayer& layer) {
+    gl::Texture color(GL_TEXTURE_2D), depth(GL_TEXTURE_2D);
+    gl::TextureStorage2D(color.id(), 1, GL_RGBA32F, w_, h_);
+    gl::TextureStorage2D(depth.id(), 1, GL_DEPTH_COMPONENT32F, w_, h_);
+    gl::TextureSubImage2D(color.id(), 0, 0, 0, w_, h_, GL_RGBA, GL_FLOAT, layer.color.row(0));
+    gl::TextureSubImage2D(depth.id(), 0, 0, 0, w_, h_, GL_DEPTH_COMPONENT, GL_FLOAT, layer.depth.data());
+    gl::checkError("hand layer upload");
+    store.append(layer.eye, color.id(), depth.id());
+    gl::checkError("hand layer append");
+    host.push_back(layer);
+  }
+  DeviceLayers store;
+  std::vector<SourceLayer> host;
+
+ private:
+  int w_, h_;
+};
+
+SourceLayer handLayer(const ShearingCamera& cam, double eyeX, uint32_t seed, float emptyFraction) {
+  SourceLayer l;
+  l.eye = {eyeX, 0.0};
+  l.color = Image(cam.width(), cam.height(), PixelType::F32);
+  l.depth.assign(size_t(cam.width()) * cam.height(), 0.0f);
+  for (int j = 0; j < cam.height(); ++j)
+    for (int x = 0; x < cam.width(); ++x) {
+      seed = seed * 1664525u + 1013904223u;
+      const float r = float(seed >> 8) / float(1 << 24);
+      if (r < emptyFraction) continue;
+      // Gently sloped bands of depth, so that some runs coalesce.
+      const double Z = 0.3 * std::sin(0.2 * x) + 0.05 * ((x / 13 + j) % 3);
+      l.depth[size_t(j) * cam.width() + x] = float(cam.project({0.0, 0.0, Z}, 0).z);
+      float* px = reinterpret_cast<float*>(l.color.row(j)) + 4 * x;
+      px[0] = r, px[1] = 1.0f - r, px[2] = 0.5f, px[3] = 1.0f;
+    }
+  return l;
+}
+
+TEST_F(GpuImageSlicerTest, HandMadeLayersAndEdgeCases) {
+  CameraSpec spec;
+  spec.distance = 4, spec.planeWidth = 2, spec.nearDistance = 1, spec.farDistance = 8;
+  spec.trackLeft = -1, spec.trackRight = 1;
+  const ShearingCamera cam(spec, 37, 5, 4);  // an odd width: partial blocks at the right edge
+  HandLayers layers(cam.width(), cam.height());
+  layers.add(handLayer(cam, -1.0, 1, 0.1f));
+  layers.add(handLayer(cam, 1.0, 2, 0.4f));
+  layers.add(handLayer(cam, 0.3, 3, 1.0f));  // empty
+  for (float coalesce : {0.0f, 0.3f, 3.0f, 1000.0f})
+    expectSameSlices(layers.host, layers.store, cam, {0.25f, coalesce}, "coalesce " + std::to_string(coalesce));
+
+  // One view: a track with no width coalesces every whole covered block,
+  // never across an empty pixel.
+  const ShearingCamera one(spec, 37, 5, 1);
+  HandLayers single(one.width(), one.height());
+  single.add(handLayer(one, 0.0, 4, 0.2f));
+  expectSameSlices(single.host, single.store, one, {0.25f, 1.0f}, "one view");
+
+  // No layers at all: an empty table.
+  DeviceLayers none;
+  none.reset(cam.width(), cam.height(), 2);
+  GpuImageSlicer slicer;
+  const GpuImageSlices empty = slicer.build(none, cam, 0, {});
+  EXPECT_EQ(empty.table.sliceCount(), 0u);
+  EXPECT_EQ(empty.table.offsets().size(), size_t(cam.height()) + 1);
+}
+
+}  // namespace
+}  // namespace mvr
