@@ -6,6 +6,7 @@
 #include "shading/lighting.h"
 #include "slicing/extreme_vertices.h"
 #include "slicing/gpu/gpu_slicer.h"
+#include "slicing/gpu/gpu_transform.h"
 #include "slicing/slice_table.h"
 
 namespace mvr {
@@ -19,12 +20,56 @@ class MvrRenderer final : public Renderer {
         textures_(shading::TextureSet::load(scene)),
         environment_(shading::EnvironmentSet::load(scene)),
         shading_{&scene, shading::planShading(scene), &textures_, &environment_, texture},
-        rasterizer_(makeRasterizer(mode, type, shading_, builder)) {}
+        rasterizer_(makeRasterizer(mode, type, shading_, builder)), bounds_(scene.bounds()) {}
 
   std::string name() const override { return "mvr"; }
   FrameOrder order() const override { return FrameOrder::Epi; }
 
   void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
+    const bool resident =
+        rasterizer_->readsDeviceTable() && GpuExtremeTransform::needsNoClipping(bounds_, cam);
+    if (resident)
+      renderOnGpu(cam, sink, stats);
+    else
+      renderFromHost(cam, sink, stats);
+    stats.notes["transform"] = resident ? "gpu" : "cpu";
+    stats.notes["pst"] = pstModeName(mode_);
+    stats.notes["passes"] = shading_.plan.passNames();
+    if (shading_.plan.texture)
+      stats.notes["texture"] = mode_ == PstMode::Cpu || shading_.textureMode == TextureMode::Direct
+                                   ? "direct" : "vector";
+    stats.counters["passes"] = double(shading_.plan.passes().size());
+  }
+
+ private:
+  // Transform, slicing and PSTs on the GPU: the scene is uploaded (and lit,
+  // view independently) once; per row of views, compute passes and draws.
+  void renderOnGpu(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) {
+    if (!gpuTransform_) {
+      ScopedStage s(stats.times, "lighting");
+      gpuTransform_.emplace(scene_, shading::litVertexColors(scene_), shading::vertexExtras(scene_, shading_.plan),
+                            shading_.plan.extraCount);
+    }
+    if (!gpuSlicer_) gpuSlicer_.emplace();
+    stats.counters["clipped_triangles"] = double(scene_.triangleCount());
+    for (int row = 0; row < cam.rows(); ++row) {
+      const GpuVertices* vertices = nullptr;
+      {
+        ScopedStage s(stats.times, "transform");
+        vertices = &gpuTransform_->transform(cam, row);
+      }
+      std::optional<GpuSliceTable> table;
+      {
+        ScopedStage s(stats.times, "slicing");
+        table.emplace(gpuSlicer_->build(gpuTransform_->yBuffer(), vertices->triangles.id(),
+                                        uint32_t(vertices->triangleCount), cam.height()));
+      }
+      countSlices(table->sliceCount(), stats);
+      rasterizer_->rasterize(*vertices, *table, cam, row, sink, stats);
+    }
+  }
+
+  void renderFromHost(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) {
     shading::VertexColors colors;
     std::vector<float> extras;
     {
@@ -66,15 +111,8 @@ class MvrRenderer final : public Renderer {
       countSlices(table.sliceCount(), stats);
       rasterizer_->rasterize(vertices, table, cam, row, sink, stats);
     }
-    stats.notes["pst"] = pstModeName(mode_);
-    stats.notes["passes"] = shading_.plan.passNames();
-    if (shading_.plan.texture)
-      stats.notes["texture"] = mode_ == PstMode::Cpu || shading_.textureMode == TextureMode::Direct
-                                   ? "direct" : "vector";
-    stats.counters["passes"] = double(shading_.plan.passes().size());
   }
 
- private:
   static void countSlices(size_t slices, RenderStats& stats) {
     stats.counters["slices"] += double(slices);
     stats.counters["slice_table_bytes"] =
@@ -87,7 +125,9 @@ class MvrRenderer final : public Renderer {
   shading::EnvironmentSet environment_;
   EpiShading shading_;
   std::unique_ptr<EpiRasterizer> rasterizer_;
+  Bounds bounds_;
   std::optional<GpuSlicer> gpuSlicer_;  // when the rasterizer reads GPU tables
+  std::optional<GpuExtremeTransform> gpuTransform_;  // when, besides, nothing needs clipping
 };
 
 }  // namespace

@@ -106,16 +106,19 @@ GpuSlicer::GpuSlicer()
       fill_(compute("slice-fill", kFill)) {}
 
 GpuSliceTable GpuSlicer::build(const ExtremeVertices& v, int height) {
+  std::vector<glm::uvec4> indices(v.triangles.size());
+  for (size_t t = 0; t < indices.size(); ++t) indices[t] = glm::uvec4(v.triangles[t], 0u);
+  const gl::Buffer ys = gl::makeBuffer(v.y.data(), v.y.size());
+  const gl::Buffer tris = gl::makeBuffer(indices.data(), indices.size());
+  return build(ys.id(), tris.id(), uint32_t(indices.size()), height);
+}
+
+GpuSliceTable GpuSlicer::build(GLuint ys, GLuint tris, uint32_t triangles, int height) {
   if (height < 1) fail("GpuSlicer", "height must be at least 1");
-  const auto triangles = uint32_t(v.triangles.size());
   const auto blocks = uint32_t(std::clamp<size_t>(triangles / kMinPerBlock, 1, std::max<size_t>(1, kMaxCells / height)));
   const uint32_t perBlock = std::max<uint32_t>(1, (triangles + blocks - 1) / blocks);
   const size_t cellCount = size_t(blocks) * height;
 
-  std::vector<glm::uvec4> indices(triangles);
-  for (uint32_t t = 0; t < triangles; ++t) indices[t] = glm::uvec4(v.triangles[t], 0u);
-  const gl::Buffer ys = gl::makeBuffer(v.y.data(), v.y.size());
-  const gl::Buffer tris = gl::makeBuffer(indices.data(), indices.size());
   gl::Buffer cells = gl::makeBuffer<uint32_t>(nullptr, cellCount, GL_DYNAMIC_STORAGE_BIT);
   const uint32_t zero = 0;
   gl::ClearNamedBufferSubData(cells.id(), GL_R32UI, 0, GLsizeiptr(cellCount * sizeof(uint32_t)), GL_RED_INTEGER,
@@ -129,8 +132,8 @@ GpuSliceTable GpuSlicer::build(const ExtremeVertices& v, int height) {
     gl::ProgramUniform1ui(p.id(), gl::GetUniformLocation(p.id(), "uBlocks"), blocks);
     gl::ProgramUniform1ui(p.id(), gl::GetUniformLocation(p.id(), "uPerBlock"), perBlock);
     gl::setUniform(p, "uHeight", height);
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, ys.id());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, tris.id());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, ys);
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, tris);
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, cells.id());
   };
   gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the clear

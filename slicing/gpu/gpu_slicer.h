@@ -23,6 +23,9 @@ class GpuSlicer {
   // The table of v's triangles over `height` scanlines. Uploads y per
   // vertex and the triangles' indices: O(vertices + triangles).
   GpuSliceTable build(const ExtremeVertices& v, int height);
+  // The same from buffers already on the GPU (GpuExtremeTransform's): y
+  // per vertex, and triangles as uvec4 (a, b, c, anything).
+  GpuSliceTable build(GLuint ys, GLuint triangles, uint32_t triangleCount, int height);
 
  private:
   gl::Program count_, offsets_, fill_;
