@@ -107,16 +107,32 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
 
 void DeviceLayers::reset(int width, int height, int capacity) {
   eyes_.clear();
-  const size_t pixels = size_t(width) * height;
-  if (width == width_ && height == height_ && capacity <= capacity_) return;
-  width_ = width, height_ = height, capacity_ = capacity;
-  color_ = gl::makeBuffer<glm::vec4>(nullptr, pixels * capacity);
-  depth_ = gl::makeBuffer<float>(nullptr, pixels * capacity);
+  limit_ = capacity;
+  if (width == width_ && height == height_) return;
+  width_ = width, height_ = height;
+  allocated_ = 0;
+  color_ = gl::Buffer(), depth_ = gl::Buffer();
+}
+
+// Room for `layers` layers, the ones held copied over on the GPU.
+void DeviceLayers::grow(int layers) {
+  const size_t pixels = pixelsPerLayer(), held = pixels * size_t(count());
+  gl::Buffer color = gl::makeBuffer<glm::vec4>(nullptr, pixels * layers);
+  gl::Buffer depth = gl::makeBuffer<float>(nullptr, pixels * layers);
+  if (held > 0) {
+    gl::CopyNamedBufferSubData(color_.id(), color.id(), 0, 0, GLsizeiptr(held * sizeof(glm::vec4)));
+    gl::CopyNamedBufferSubData(depth_.id(), depth.id(), 0, 0, GLsizeiptr(held * sizeof(float)));
+  }
+  color_ = std::move(color), depth_ = std::move(depth);
+  allocated_ = layers;
   gl::checkError("allocating the layer store");
 }
 
 void DeviceLayers::append(const glm::dvec2& eye, GLuint colorTexture, GLuint depthTexture) {
-  if (count() >= capacity_) fail("layer store", "full: " + std::to_string(capacity_) + " layers");
+  if (count() >= limit_) fail("layer store", "full: " + std::to_string(limit_) + " layers");
+  // Grown by doubling, so that a scene that peels few layers never holds
+  // room for the most it might.
+  if (count() >= allocated_) grow(std::min(limit_, std::max(2, 2 * allocated_)));
   const size_t pixels = pixelsPerLayer(), at = size_t(count()) * pixels;
   // Into the buffers on the GPU: with a pack buffer bound, the pointer
   // argument is an offset into it.

@@ -36,8 +36,9 @@ using LayerFilter = std::function<bool(const std::vector<SourceLayer>& nearer, S
 // pixels in image row order (window row 0 first), never read back.
 class DeviceLayers {
  public:
-  // Empties the store, with room for `capacity` layers of width x height
-  // (reallocated only when that grows). Needs a current GL context.
+  // Empties the store for up to `capacity` layers of width x height; GPU
+  // memory grows with the layers appended and is kept across resets of
+  // the same size. Needs a current GL context.
   void reset(int width, int height, int capacity);
   int width() const { return width_; }
   int height() const { return height_; }
@@ -51,7 +52,9 @@ class DeviceLayers {
   void append(const glm::dvec2& eye, GLuint colorTexture, GLuint depthTexture);
 
  private:
-  int width_ = 0, height_ = 0, capacity_ = 0;
+  void grow(int layers);
+
+  int width_ = 0, height_ = 0, limit_ = 0, allocated_ = 0;
   std::vector<glm::dvec2> eyes_;
   gl::Buffer color_, depth_;
 };
