@@ -1,6 +1,8 @@
 #include "mvr/io/mesh_check.h"
 
+#include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -44,6 +46,21 @@ void checkCorner(const std::string& path, long line, const std::string& corner, 
   }
 }
 
+// A vertex's x, y and z: finite numbers (OpenMesh's reader would drop a
+// "nan" vertex and shift every index after it).
+void checkCoordinates(const std::string& path, long line, std::istringstream& words) {
+  for (int k = 0; k < 3; ++k) {
+    std::string word;
+    words >> word;
+    double value = 0.0;
+    const char* end = word.data() + word.size();
+    const char* first = word.data() + (word.size() > 1 && word[0] == '+');  // from_chars takes no '+'
+    const auto [at, ec] = std::from_chars(first, end, value);
+    if (word.empty() || ec != std::errc() || at != end || !std::isfinite(value))
+      failAt(path, line, "vertex coordinate '" + word + "' is not a finite number");
+  }
+}
+
 void checkObj(const std::string& path) {
   std::ifstream in(path);
   long defined[3] = {0, 0, 0};  // v, vt, vn
@@ -53,8 +70,10 @@ void checkObj(const std::string& path) {
     std::istringstream words(text);
     std::string key;
     words >> key;
-    if (key == "v") ++defined[0];
-    else if (key == "vt") ++defined[1];
+    if (key == "v") {
+      ++defined[0];
+      checkCoordinates(path, line, words);
+    } else if (key == "vt") ++defined[1];
     else if (key == "vn") ++defined[2];
     else if (key == "f") {
       int corners = 0;
@@ -155,6 +174,57 @@ void checkMeshFile(const std::string& path) {
   const std::string ext = lower(std::filesystem::path(path).extension().string());
   if (ext == ".obj") checkObj(path);
   else if (ext == ".ply") checkPly(path);
+}
+
+namespace {
+
+std::string vertexName(size_t v, const glm::vec3& p) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "vertex %zu (%g, %g, %g)", v, p.x, p.y, p.z);
+  return buf;
+}
+
+// Per axis, the 1st and 99th percentile of the coordinates.
+std::pair<glm::dvec3, glm::dvec3> bulk(const std::vector<glm::vec3>& positions) {
+  glm::dvec3 lo, hi;
+  std::vector<float> axis(positions.size());
+  const size_t n = axis.size(), a = (n - 1) / 100, b = (n - 1) - (n - 1) / 100;
+  for (int k = 0; k < 3; ++k) {
+    for (size_t i = 0; i < n; ++i) axis[i] = positions[i][k];
+    std::nth_element(axis.begin(), axis.begin() + a, axis.end());
+    lo[k] = axis[a];
+    std::nth_element(axis.begin(), axis.begin() + b, axis.end());
+    hi[k] = axis[b];
+  }
+  return {lo, hi};
+}
+
+}  // namespace
+
+void checkSceneGeometry(const Scene& scene, const std::string& where) {
+  if (scene.positions.empty()) return;
+  for (size_t v = 0; v < scene.positions.size(); ++v) {
+    const glm::vec3& p = scene.positions[v];
+    for (int k = 0; k < 3; ++k)
+      if (!(std::abs(p[k]) <= kMaxCoordinate))
+        fail(where, vertexName(v, p) + ": coordinates must be finite and within 1e15");
+  }
+  const auto [lo, hi] = bulk(scene.positions);
+  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  const double reach = kMaxOutlier * (extent > 0.0 ? extent : std::max(1.0, glm::length(lo)));
+  for (size_t v = 0; v < scene.positions.size(); ++v) {
+    const glm::dvec3 p(scene.positions[v]);
+    const glm::dvec3 out = glm::max(lo - p, p - hi);  // > 0 where outside the bulk
+    if (std::max({out.x, out.y, out.z}) > reach)
+      fail(where, vertexName(v, scene.positions[v]) +
+                      " strays more than 1e6 times the extent of the other vertices from them");
+  }
+  const bool anyArea = std::any_of(scene.triangles.begin(), scene.triangles.end(), [&](const glm::uvec3& t) {
+    const glm::dvec3 a(scene.positions[t.x]), b(scene.positions[t.y]), c(scene.positions[t.z]);
+    return glm::length(glm::cross(b - a, c - a)) > 0.0;
+  });
+  if (!scene.triangles.empty() && !anyArea)
+    fail(where, "every triangle has zero area (collinear or repeated vertices): nothing to render");
 }
 
 }  // namespace mvr

@@ -8,7 +8,23 @@
 // the file and the line or element.
 #include <string>
 
+#include "mvr/scene.h"
+
 namespace mvr {
+
+// The largest coordinate a scene may hold: products of two coordinates
+// (normals, areas) stay finite in float.
+inline constexpr float kMaxCoordinate = 1e15f;
+// How far beyond the extent of the bulk of the vertices (1st to 99th
+// percentile per axis) one may stray: a vertex farther out would frame the
+// camera so wide that the rest shrinks below a pixel.
+inline constexpr double kMaxOutlier = 1e6;
+
+// Numbers a loaded scene must satisfy, named by `where` (the file):
+// coordinates finite and within kMaxCoordinate, no stray vertex beyond
+// kMaxOutlier times the bulk's extent, and at least one triangle of
+// non-zero area. Throws mvr::Error naming the vertex.
+void checkSceneGeometry(const Scene& scene, const std::string& where);
 
 // OBJ: every v/vt/vn reference of every face in range of the elements
 // defined before it (negative indices count back), at least three corners

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mvr/error.h"
+#include "mvr/io/mesh_check.h"
 #include "mvr/io/mesh_io.h"
 
 #ifndef MVR_ASSET_DIR
@@ -243,12 +244,15 @@ class SceneReader {
 Scene loadScene(const std::string& path) {
   if (fs::path(path).extension() != ".json") {
     Scene mesh = loadMesh(path);
+    checkSceneGeometry(mesh, path);  // before centring: bounds of a stray vertex overflow
     const glm::vec3 c = mesh.bounds().center();
     for (glm::vec3& p : mesh.positions) p -= c;
     mesh.lights = SceneReader::defaultLights();
     return mesh;
   }
-  return SceneReader(path).read();
+  Scene scene = SceneReader(path).read();
+  checkSceneGeometry(scene, path);  // after the meshes' transforms
+  return scene;
 }
 
 std::string defaultScenePath() {

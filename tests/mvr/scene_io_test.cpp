@@ -125,6 +125,26 @@ TEST_F(SceneIo, NonFiniteCoordinates) {
   expectError(write("inf.ply", plyTriangle(INFINITY)), "non-finite");
 }
 
+// Numbers that would render blank or wrong: a coordinate beyond 1e15 or
+// not a number in an OBJ (OpenMesh would drop the vertex and shift every
+// index after it), one vertex straying 1e6 times the bulk's extent away, a
+// scene scaled past the limit, and meshes with no area at all.
+TEST_F(SceneIo, AbsurdCoordinatesAndDegenerateMeshes) {
+  const std::string square = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n";
+  EXPECT_EQ(loadScene(write("square.obj", "v +0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")).triangles.size(), 1u);
+  expectError(write("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n"), "nan.obj:2: vertex coordinate 'nan'");
+  expectError(write("far.obj", square + "v 1e30 0 0\n"), "vertex 4 (1e+30, 0, 0): coordinates must be finite");
+  std::string grid;
+  for (int i = 0; i < 200; ++i) grid += "v " + std::to_string(i % 20) + " " + std::to_string(i / 20) + " 0\n";
+  grid += "f 1 2 21\n";  // a 19 x 9 grid: a vertex may lie up to 1.9e7 beyond it
+  EXPECT_EQ(loadScene(write("grid.obj", grid + "v 0 0 1e7\n")).positions.size(), 201u);
+  expectError(write("stray.obj", grid + "v 0 0 1e9\n"), "vertex 200 (0, 0, 1e+09) strays");
+  expectError(write("line.obj", "v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\nf 1 1 2\n"), "every triangle has zero area");
+  write("square2.obj", square);
+  expectError(write("scaled.json", "{\"meshes\": [{\"file\": \"square2.obj\", \"transform\": {\"scale\": 1e20}}]}"),
+              "coordinates must be finite and within 1e15");
+}
+
 TEST_F(SceneIo, BadJson) {
   expectError(write("bad.json", "{\"meshes\": [}"), "bad JSON");
   expectError(write("huge.json", "{\"meshes\": [], \"camera\": {\"distance\": 1e999}}"), "number overflow");
