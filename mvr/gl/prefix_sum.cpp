@@ -56,6 +56,19 @@ void main() {
 }
 )";
 
+// out[j] = data[j * uStride], the first slot of grid row j after the scan.
+const char* const kRowStarts = R"(
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) readonly buffer Data { uint uData[]; };
+layout(std430, binding = 1) writeonly buffer Out { uint uOut[]; };
+uniform uint uStride;
+uniform uint uRows;
+void main() {
+  uint j = gl_GlobalInvocationID.x;
+  if (j < uRows) uOut[j] = uData[j * uStride];
+}
+)";
+
 // Shader-storage writes made visible to later shaders, to indirect draws
 // and to buffer copies (the total). The copy itself needs no barrier: it
 // is an ordinary GL command.
@@ -71,7 +84,8 @@ void setCounts(const Program& p, uint32_t first, uint32_t count) {
 
 PrefixSum::PrefixSum()
     : scan_(linkProgram("prefix-sum", {{GL_COMPUTE_SHADER, glslHeader() + kScan}})),
-      add_(linkProgram("prefix-sum-add", {{GL_COMPUTE_SHADER, glslHeader() + kAdd}})) {}
+      add_(linkProgram("prefix-sum-add", {{GL_COMPUTE_SHADER, glslHeader() + kAdd}})),
+      rowStarts_(linkProgram("prefix-sum-row-starts", {{GL_COMPUTE_SHADER, glslHeader() + kRowStarts}})) {}
 
 GLuint PrefixSum::scan(GLuint data, uint32_t first, uint32_t count, size_t level) {
   const uint32_t blocks = (count + kBlock - 1) / kBlock;
@@ -112,6 +126,23 @@ void PrefixSum::exclusive(GLuint data, uint32_t first, uint32_t count, GLuint to
     const GLuint total = scan(data, first, count, 0);
     CopyNamedBufferSubData(total, totalBuffer, 0, totalAt, sizeof(uint32_t));
   }
+}
+
+void PrefixSum::exclusiveRows(GLuint data, uint32_t rows, uint32_t stride, GLuint out) {
+  exclusive(data, 0, rows * stride, out, GLintptr(rows) * GLintptr(sizeof(uint32_t)));
+  if (stride == 0) {  // no counts: every row starts at 0
+    const uint32_t zero = 0;
+    ClearNamedBufferSubData(out, GL_R32UI, 0, GLsizeiptr(rows * sizeof(uint32_t)), GL_RED_INTEGER,
+                            GL_UNSIGNED_INT, &zero);
+    return;
+  }
+  UseProgram(rowStarts_.id());
+  ProgramUniform1ui(rowStarts_.id(), GetUniformLocation(rowStarts_.id(), "uStride"), stride);
+  ProgramUniform1ui(rowStarts_.id(), GetUniformLocation(rowStarts_.id(), "uRows"), rows);
+  BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, data);
+  BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out);
+  DispatchCompute((rows + 63) / 64, 1, 1);
+  MemoryBarrier(kBarriers);
 }
 
 }  // namespace mvr::gl

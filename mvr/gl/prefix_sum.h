@@ -23,6 +23,12 @@ class PrefixSum {
   // buffer copies.
   void exclusive(GLuint data, uint32_t first, uint32_t count, GLuint totalBuffer, GLintptr totalAt);
 
+  // A grid of `rows` rows of `stride` counts, row-major from element 0
+  // of `data`: scans it as exclusive() does and writes rows + 1 uints to
+  // `out`, the first slot of each row and then the total (the offsets of
+  // a slice table whose rows are scanlines).
+  void exclusiveRows(GLuint data, uint32_t rows, uint32_t stride, GLuint out);
+
   static constexpr uint32_t kBlock = 1024;
 
  private:
@@ -30,7 +36,7 @@ class PrefixSum {
   // element 0 holds their total.
   GLuint scan(GLuint data, uint32_t first, uint32_t count, size_t level);
 
-  Program scan_, add_;
+  Program scan_, add_, rowStarts_;
   std::vector<Buffer> sums_;  // per level: one uint per block
   std::vector<size_t> sumsSize_;
 };

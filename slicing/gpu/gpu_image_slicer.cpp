@@ -88,18 +88,6 @@ void main() {
 }
 )";
 
-// offsets[j]: the slot of scanline j's first run; offsets[height]: the
-// run count (the scan's total).
-const char* const kOffsets = R"(
-layout(std430, binding = 5) readonly buffer Total { uint uTotal; };
-layout(std430, binding = 6) writeonly buffer Offsets { uint uOffsets[]; };
-void main() {
-  int j = int(gl_GlobalInvocationID.x);
-  if (j > uHeight) return;
-  uOffsets[j] = j < uHeight ? uFlags[flagIndex(0, j, 0)] : uTotal;
-}
-)";
-
 // A run's slice (a segment), endpoint records (GpuVertices' layout, no
 // extras), "triangle" and vector, as LayerSlicer::addRun writes them.
 const char* const kFill = R"(
@@ -167,7 +155,7 @@ uint32_t groups(size_t n) { return uint32_t((n + 63) / 64); }
 
 GpuImageSlicer::GpuImageSlicer()
     : mip_(compute("image-slice-mip", kMip)), flag_(compute("image-slice-flag", kFlag)),
-      offsets_(compute("image-slice-offsets", kOffsets)), fill_(compute("image-slice-fill", kFill)) {}
+      fill_(compute("image-slice-fill", kFill)) {}
 
 GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingCamera& cam, int row,
                                      const ImageSliceOptions& options) {
@@ -205,8 +193,7 @@ GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingC
   }
   const uint32_t zero = 0;
   const gl::Buffer covered = gl::makeBuffer(&zero, 1, GL_DYNAMIC_STORAGE_BIT);
-  std::vector<uint32_t> hostOffsets(size_t(h) + 1, 0);
-  gl::Buffer offsets = gl::makeBuffer(hostOffsets.data(), hostOffsets.size());  // all 0: no layers
+  gl::Buffer offsets = gl::makeBuffer<uint32_t>(nullptr, size_t(h) + 1);
 
   auto use = [&](const gl::Program& p) {
     gl::UseProgram(p.id());
@@ -234,19 +221,16 @@ GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingC
     use(flag_);
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, covered.id());
     overPixels(w);
-    const gl::Buffer total = gl::makeBuffer(&zero, 1, GL_DYNAMIC_STORAGE_BIT);
-    prefixSum_.exclusive(flags_.id(), 0, uint32_t(pixels), total.id(), 0);
-    use(offsets_);
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, total.id());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, offsets.id());
-    gl::DispatchCompute(groups(size_t(h) + 1), 1, 1);
-    gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    // The one readback: the offsets (for the buffers' sizes and the
-    // rasterizer's batches) and the covered pixel count.
-    gl::GetNamedBufferSubData(offsets.id(), 0, GLsizeiptr(hostOffsets.size() * sizeof(uint32_t)),
-                              hostOffsets.data());
-    gl::GetNamedBufferSubData(covered.id(), 0, sizeof(uint32_t), &coveredPixels);
   }
+  // offsets[j]: the slot of scanline j's first run (flags run in
+  // (scanline, layer, x) order); offsets[height]: the run count.
+  prefixSum_.exclusiveRows(flags_.id(), uint32_t(h), uint32_t(count * w), offsets.id());
+  // The one readback: the offsets (for the buffers' sizes and the
+  // rasterizer's batches) and the covered pixel count.
+  std::vector<uint32_t> hostOffsets(size_t(h) + 1);
+  gl::GetNamedBufferSubData(offsets.id(), 0, GLsizeiptr(hostOffsets.size() * sizeof(uint32_t)),
+                            hostOffsets.data());
+  gl::GetNamedBufferSubData(covered.id(), 0, sizeof(uint32_t), &coveredPixels);
 
   const size_t slices = hostOffsets.back();
   GpuVertices v;

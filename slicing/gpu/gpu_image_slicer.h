@@ -48,7 +48,7 @@ class GpuImageSlicer {
                        const ImageSliceOptions& options);
 
  private:
-  gl::Program mip_, flag_, offsets_, fill_;
+  gl::Program mip_, flag_, fill_;
   gl::PrefixSum prefixSum_;
   gl::Buffer flags_, mips_;  // scratch, kept across rows
   size_t flagsSize_ = 0, mipsSize_ = 0;

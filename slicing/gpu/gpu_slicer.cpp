@@ -43,19 +43,6 @@ void main() {
 }
 )";
 
-// offsets[j] = first slot of scanline j's first cell; offsets[height] =
-// the slice count (the scan's total, at word 0 of Total).
-const char* const kOffsets = R"(
-layout(local_size_x = 64) in;
-layout(std430, binding = 3) writeonly buffer Offsets { uint uOffsets[]; };
-layout(std430, binding = 4) readonly buffer Total { uint uTotal; };
-void main() {
-  uint j = gl_GlobalInvocationID.x;
-  if (j > uint(uHeight)) return;
-  uOffsets[j] = j < uint(uHeight) ? uCells[j * uBlocks] : uTotal;
-}
-)";
-
 const char* const kFill = R"(
 layout(local_size_x = 64) in;
 layout(std430, binding = 5) writeonly buffer Slices { uvec4 uSlices[]; };
@@ -102,8 +89,7 @@ uint32_t groups(size_t n) { return uint32_t((n + 63) / 64); }
 }  // namespace
 
 GpuSlicer::GpuSlicer()
-    : count_(compute("slice-count", kCount)), offsets_(compute("slice-offsets", kOffsets)),
-      fill_(compute("slice-fill", kFill)) {}
+    : count_(compute("slice-count", kCount)), fill_(compute("slice-fill", kFill)) {}
 
 GpuSliceTable GpuSlicer::build(const ExtremeVertices& v, int height) {
   std::vector<glm::uvec4> indices(v.triangles.size());
@@ -123,7 +109,6 @@ GpuSliceTable GpuSlicer::build(GLuint ys, GLuint tris, uint32_t triangles, int h
   const uint32_t zero = 0;
   gl::ClearNamedBufferSubData(cells.id(), GL_R32UI, 0, GLsizeiptr(cellCount * sizeof(uint32_t)), GL_RED_INTEGER,
                               GL_UNSIGNED_INT, &zero);
-  const gl::Buffer total = gl::makeBuffer(&zero, 1, GL_DYNAMIC_STORAGE_BIT);
   gl::Buffer offsets = gl::makeBuffer<uint32_t>(nullptr, size_t(height) + 1);
 
   auto use = [&](const gl::Program& p) {
@@ -140,12 +125,9 @@ GpuSliceTable GpuSlicer::build(GLuint ys, GLuint tris, uint32_t triangles, int h
   use(count_);
   gl::DispatchCompute(groups(blocks), 1, 1);
   gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-  prefixSum_.exclusive(cells.id(), 0, uint32_t(cellCount), total.id(), 0);
-  use(offsets_);
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, offsets.id());
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, total.id());
-  gl::DispatchCompute(groups(size_t(height) + 1), 1, 1);
-  gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  // offsets[j]: the first slot of scanline j's first cell; offsets[height]:
+  // the slice count.
+  prefixSum_.exclusiveRows(cells.id(), uint32_t(height), blocks, offsets.id());
 
   // The one readback: height + 1 offsets, for the slices buffer's size and
   // the rasterizer's batches.

@@ -28,7 +28,7 @@ class GpuSlicer {
   GpuSliceTable build(GLuint ys, GLuint triangles, uint32_t triangleCount, int height);
 
  private:
-  gl::Program count_, offsets_, fill_;
+  gl::Program count_, fill_;
   gl::PrefixSum prefixSum_;
 };
 
