@@ -102,7 +102,7 @@ class InterpRenderer final : public Renderer {
     std::optional<GpuImageSlices> slices;
     {
       ScopedStage s(stats.times, "slicing");
-      slices.emplace(gpuSlicer_->build(store_, cam, row, {options_.overlap, options_.coalesce}));
+      slices.emplace(gpuSlicer_->build(store_, cam, {options_.overlap, options_.coalesce}));
     }
     countSlices(slices->table.sliceCount(), slices->pixels, stats);
     rasterizer_->rasterize(slices->vertices, slices->table, cam, row, sink, stats);

@@ -157,9 +157,8 @@ GpuImageSlicer::GpuImageSlicer()
     : mip_(compute("image-slice-mip", kMip)), flag_(compute("image-slice-flag", kFlag)),
       fill_(compute("image-slice-fill", kFill)) {}
 
-GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingCamera& cam, int row,
+GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingCamera& cam,
                                      const ImageSliceOptions& options) {
-  (void)row;  // source and target views share the row's camera y: y stays put
   if (options.scene && options.splits > 0)
     fail("GpuImageSlicer", "split highlight tracks are built on the CPU");
   const int w = cam.width(), h = cam.height(), count = layers.count();

@@ -40,12 +40,12 @@ class GpuImageSlicer {
  public:
   GpuImageSlicer();  // needs a current GL context
 
-  // The slices of every layer in `layers` for row `row` of views.
+  // The slices of every layer in `layers` for the row of views they were
+  // seen from (source and target views share its camera y: y stays put).
   // options.scene and splits are not supported (highlights split on the
   // CPU); throws mvr::Error if set. With coalescing off, the vectors index
   // the layers' colour buffer itself, which must outlive the draws.
-  GpuImageSlices build(const DeviceLayers& layers, const ShearingCamera& cam, int row,
-                       const ImageSliceOptions& options);
+  GpuImageSlices build(const DeviceLayers& layers, const ShearingCamera& cam, const ImageSliceOptions& options);
 
  private:
   gl::Program mip_, flag_, fill_;

@@ -64,8 +64,7 @@ GpuExtremeTransform::GpuExtremeTransform(const Scene& scene, const shading::Vert
   std::vector<glm::uvec4> triangles(scene.triangleCount());
   for (size_t t = 0; t < triangles.size(); ++t) {
     const uint32_t material = scene.materialIds[t];
-    const uint32_t cull = scene.materials[material].twoSided ? 0u : 1u << 31;
-    triangles[t] = glm::uvec4(scene.triangles[t], material | cull);
+    triangles[t] = GpuVertices::packTriangle(scene.triangles[t], material, !scene.materials[material].twoSided);
   }
   vertices_.recordStride = GpuVertices::kRecordHead + extraCount;
   vertices_.vertexCount = n;

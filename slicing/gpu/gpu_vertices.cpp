@@ -24,8 +24,7 @@ GpuVertices GpuVertices::upload(const ExtremeVertices& v) {
   std::vector<glm::uvec4> triangles(out.triangleCount);
   for (size_t t = 0; t < triangles.size(); ++t) {
     const uint32_t material = v.materials.empty() ? 0 : v.materials[t];
-    const uint32_t cull = v.cullBack.empty() || !v.cullBack[t] ? 0u : 1u << 31;
-    triangles[t] = glm::uvec4(v.triangles[t], material | cull);
+    triangles[t] = packTriangle(v.triangles[t], material, !v.cullBack.empty() && v.cullBack[t]);
   }
   out.records = gl::makeBuffer(records.data(), records.size());
   out.triangles = gl::makeBuffer(triangles.data(), triangles.size());

@@ -32,6 +32,11 @@ struct GpuVertices {
 
   bool hasVectors() const { return texelBuffer != 0; }
 
+  // One entry of `triangles`.
+  static glm::uvec4 packTriangle(const glm::uvec3& corners, uint32_t material, bool cullBack) {
+    return glm::uvec4(corners, material | (cullBack ? 1u << 31 : 0u));
+  }
+
   // Needs a current GL context. O(vertices + triangles + texels); the
   // highlight knots are not uploaded (their passes read host vertices).
   static GpuVertices upload(const ExtremeVertices& v);

@@ -16,27 +16,20 @@
 namespace mvr {
 namespace {
 
-template <class T>
-std::vector<T> download(GLuint buffer, size_t count) {
-  std::vector<T> out(count);
-  if (count) gl::GetNamedBufferSubData(buffer, 0, GLsizeiptr(count * sizeof(T)), out.data());
-  return out;
-}
-
 // Slices the same layers both ways and compares them slot by slot.
 void expectSameSlices(const std::vector<SourceLayer>& host, const DeviceLayers& device,
                       const ShearingCamera& cam, const ImageSliceOptions& options, const std::string& label) {
   const ImageSlices cpu = sliceSourceLayers(host, cam, 0, options);
   GpuImageSlicer slicer;
-  const GpuImageSlices gpu = slicer.build(device, cam, 0, options);
+  const GpuImageSlices gpu = slicer.build(device, cam, options);
   const SliceTable table = gpu.table.download();
   ASSERT_EQ(table.sliceCount(), cpu.table.sliceCount()) << label;
   ASSERT_TRUE(std::equal(table.offsets().begin(), table.offsets().end(), cpu.table.offsets().begin())) << label;
   EXPECT_EQ(gpu.pixels, cpu.pixels) << label;
   const size_t n = table.sliceCount();
-  const auto records = download<float>(gpu.vertices.records.id(), 2 * n * GpuVertices::kRecordHead);
-  const auto vectors = download<glm::uvec4>(gpu.vertices.vectors.id(), n);
-  const auto texels = download<glm::vec4>(gpu.vertices.texelBuffer, gpu.vertices.texelCount);
+  const auto records = test::download<float>(gpu.vertices.records.id(), 2 * n * GpuVertices::kRecordHead);
+  const auto vectors = test::download<glm::uvec4>(gpu.vertices.vectors.id(), n);
+  const auto texels = test::download<glm::vec4>(gpu.vertices.texelBuffer, gpu.vertices.texelCount);
   int worst = 0;
   for (size_t s = 0; s < n && worst < 5; ++s) {
     const Slice& slice = cpu.table.slices()[s];
@@ -147,7 +140,7 @@ TEST_F(GpuImageSlicerTest, HandMadeLayersAndEdgeCases) {
   DeviceLayers none;
   none.reset(cam.width(), cam.height(), 2);
   GpuImageSlicer slicer;
-  const GpuImageSlices empty = slicer.build(none, cam, 0, {});
+  const GpuImageSlices empty = slicer.build(none, cam, {});
   EXPECT_EQ(empty.table.sliceCount(), 0u);
   EXPECT_EQ(empty.table.offsets().size(), size_t(cam.height()) + 1);
 }

@@ -21,13 +21,6 @@
 namespace mvr {
 namespace {
 
-template <class T>
-std::vector<T> download(GLuint buffer, size_t count) {
-  std::vector<T> out(count);
-  if (count) gl::GetNamedBufferSubData(buffer, 0, GLsizeiptr(count * sizeof(T)), out.data());
-  return out;
-}
-
 class GpuTransformTest : public test::GlTest {};
 
 TEST_F(GpuTransformTest, RecordsAndTablesMatchTheCpuTransform) {
@@ -49,7 +42,7 @@ TEST_F(GpuTransformTest, RecordsAndTablesMatchTheCpuTransform) {
       ASSERT_EQ(got.vertexCount, expected.vertexCount) << name;
       ASSERT_EQ(got.recordStride, expected.recordStride) << name;
       const size_t floats = got.vertexCount * size_t(got.recordStride);
-      const auto a = download<float>(expected.records.id(), floats), b = download<float>(got.records.id(), floats);
+      const auto a = test::download<float>(expected.records.id(), floats), b = test::download<float>(got.records.id(), floats);
       size_t identical = 0, far = 0;
       for (size_t i = 0; i < floats; ++i) {
         identical += a[i] == b[i];
@@ -59,7 +52,7 @@ TEST_F(GpuTransformTest, RecordsAndTablesMatchTheCpuTransform) {
       }
       EXPECT_EQ(far, 0u) << name << " row " << row;
       EXPECT_GE(double(identical) / double(floats), 0.99) << name << " row " << row;
-      const auto y = download<float>(gpu.yBuffer(), got.vertexCount);
+      const auto y = test::download<float>(gpu.yBuffer(), got.vertexCount);
       for (size_t i = 0; i < y.size(); ++i) ASSERT_NEAR(y[i], cpu.y[i], 1e-4f) << name << " vertex " << i;
       const SliceTable table =
           slicer.build(gpu.yBuffer(), got.triangles.id(), uint32_t(got.triangleCount), cam.height()).download();

@@ -6,7 +6,9 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "mvr/gl/gl_api.h"
 #include "mvr/gl/gl_context.h"
 #include "mvr/progress.h"
 
@@ -35,5 +37,13 @@ inline std::string assetsDir() {
   return dir ? dir : MVR_TEST_ASSETS;
 }
 inline std::string assetPath(const std::string& name) { return assetsDir() + "/" + name; }
+
+// The first `count` elements of a GL buffer, read back.
+template <class T>
+std::vector<T> download(GLuint buffer, size_t count) {
+  std::vector<T> out(count);
+  if (count) gl::GetNamedBufferSubData(buffer, 0, GLsizeiptr(count * sizeof(T)), out.data());
+  return out;
+}
 
 }  // namespace mvr::test
