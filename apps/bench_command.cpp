@@ -258,6 +258,8 @@ int runBench(int argc, char** argv) {
       ->type_name("FILE");
   addGlOption(app, gl);
   addThreadsOption(app);
+  bool strict = false;
+  addStrictOption(app, strict);
   if (auto exit = parseCommandLine(app, argc - 1, argv + 1)) return *exit;
 
   setProgressEnabled(false);
@@ -285,7 +287,7 @@ int runBench(int argc, char** argv) {
     scenes.emplace_back("slender" + std::to_string(n), [n] { return makeSlenderScene(n); });
   } else {
     const std::string path = scenePath.empty() ? defaultScenePath() : scenePath;
-    Scene s = loadScene(path);  // load now: bad input fails before GL
+    Scene s = loadInputScene(path, strict);  // load now: bad input fails before GL
     scenes.emplace_back(std::filesystem::path(path).stem().string(), [s] { return s; });
   }
 

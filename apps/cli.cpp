@@ -5,6 +5,7 @@
 #include "mvr/camera.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_context.h"
+#include "mvr/io/scene_io.h"
 #include "mvr/parallel.h"
 
 namespace mvr::app {
@@ -68,6 +69,19 @@ CLI::Option* addThreadsOption(CLI::App& app) {
                                       "encoding (default 0: every core)")
       ->check(CLI::Range(0, 4096))
       ->type_name("N");
+}
+
+CLI::Option* addStrictOption(CLI::App& app, bool& strict) {
+  return app.add_flag("--strict", strict,
+                      "faces a mesh file holds but that cannot be used (a repeated corner, a "
+                      "missing vertex) are an error instead of a warning");
+}
+
+Scene loadInputScene(const std::string& path, bool strict) {
+  Scene scene = loadScene(path, strict);
+  if (const std::string warning = droppedFacesWarning(scene); !warning.empty())
+    std::fprintf(stderr, "mvr: warning: %s\n", warning.c_str());
+  return scene;
 }
 
 }  // namespace mvr::app

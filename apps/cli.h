@@ -7,6 +7,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "mvr/scene.h"
+
 
 namespace mvr::app {
 
@@ -32,5 +34,13 @@ CLI::Option* addGlOption(CLI::App& app, std::string& platform);
 // rasterizer and image encoding; applied as soon as it is parsed. 0 (the
 // default): every core.
 CLI::Option* addThreadsOption(CLI::App& app);
+
+// --strict: a mesh file's faces that cannot be used are an error instead
+// of a warning.
+CLI::Option* addStrictOption(CLI::App& app, bool& strict);
+
+// The scene a command renders (a .json scene or a bare mesh), with a
+// one-line warning on stderr when faces were dropped.
+Scene loadInputScene(const std::string& path, bool strict);
 
 }  // namespace mvr::app

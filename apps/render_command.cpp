@@ -80,6 +80,7 @@ struct RenderFlags {
   std::pair<int, int> size{320, 240};
   std::string out = "out", format = "png", order = "view", gl = "auto";
   std::string stream, quilt, predistort;
+  bool strict = false;
 
   void addShared(CLI::App& app) {
     app.add_option("SCENE", scene,
@@ -91,6 +92,7 @@ struct RenderFlags {
         ->capture_default_str();
     addGlOption(app, gl);
     addThreadsOption(app);
+    addStrictOption(app, strict);
   }
 
   void addRenderOwn(CLI::App& app) {
@@ -158,7 +160,7 @@ int runRender(int argc, char** argv, bool streamCommand) {
   const GlPlatform platform = parseGlPlatform(f.gl);
 
   // Input problems first, before any GL or file work.
-  Scene scene = loadScene(scenePath);
+  Scene scene = loadInputScene(scenePath, f.strict);
   ShearingCamera camera(cameraFor(scene, width, height), width, height, views, rows);
   auto context = GlContext::create(platform);
   auto renderer = makeRenderer(choice, scene, type);

@@ -268,7 +268,7 @@ int runView(int argc, char** argv) {
     window = GlfwWindow::open(set.width, set.height + std::min(set.views, 512), "mvr view", false);
   } else {  // live: render the scene in this window's context
     const BackendOptions options = backend.resolve();
-    Scene scene = loadScene(source);
+    Scene scene = loadInputScene(source, false);
     const auto [w, h] = size;
     set.views = views;
     set.rows = rows;

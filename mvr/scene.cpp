@@ -39,6 +39,7 @@ void Scene::append(const Scene& other) {
   for (const glm::uvec3& t : other.triangles) triangles.push_back(t + glm::uvec3(base));
   for (uint32_t m : other.materialIds) materialIds.push_back(m + materialBase);
   materials.insert(materials.end(), other.materials.begin(), other.materials.end());
+  droppedFaces += other.droppedFaces;
 }
 
 }  // namespace mvr
@@ -46,16 +47,18 @@ void Scene::append(const Scene& other) {
 namespace mvr {
 
 void computeVertexNormals(Scene& scene) {
-  std::vector<glm::vec3> sum(scene.vertexCount(), glm::vec3(0.0f));
+  // In double: the cross product of float coordinates of 1e10 has a squared
+  // length beyond float's range, and the normal would come out zero.
+  std::vector<glm::dvec3> sum(scene.vertexCount(), glm::dvec3(0.0));
   for (const glm::uvec3& t : scene.triangles) {
-    const glm::vec3 &a = scene.positions[t.x], &b = scene.positions[t.y], &c = scene.positions[t.z];
-    glm::vec3 n = glm::cross(b - a, c - a);  // length = twice the area
+    const glm::dvec3 a(scene.positions[t.x]), b(scene.positions[t.y]), c(scene.positions[t.z]);
+    const glm::dvec3 n = glm::cross(b - a, c - a);  // length = twice the area
     for (int k = 0; k < 3; ++k) sum[t[k]] += n;
   }
   scene.normals.resize(scene.vertexCount());
   for (size_t v = 0; v < sum.size(); ++v) {
-    float len = glm::length(sum[v]);
-    scene.normals[v] = len > 0 ? sum[v] / len : glm::vec3(0, 0, 1);
+    const double len = glm::length(sum[v]);
+    scene.normals[v] = len > 0 ? glm::vec3(sum[v] / len) : glm::vec3(0, 0, 1);
   }
 }
 

@@ -25,6 +25,9 @@ struct Material {
   bool twoSided = true;       // false: back faces are culled
 };
 
+// Lights a scene may have: the shading passes' fixed arrays.
+inline constexpr int kMaxLights = 8;
+
 struct Light {
   enum class Type { Directional, Point };
   Type type = Type::Directional;
@@ -52,6 +55,9 @@ struct Scene {
   glm::vec3 ambient{0.15f};
   std::optional<CameraSpec> camera;  // from the scene file, if it had one
   std::string source;                // file it came from, for manifests
+  // Faces of the files that could not be used (a repeated corner or one
+  // naming a vertex that does not exist): dropped, and counted here.
+  size_t droppedFaces = 0;
 
   size_t vertexCount() const { return positions.size(); }
   size_t triangleCount() const { return triangles.size(); }

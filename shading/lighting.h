@@ -13,7 +13,7 @@
 
 namespace mvr::shading {
 
-constexpr int kMaxLights = 8;
+using mvr::kMaxLights;
 
 // Per vertex: material diffuse times vertex colour.
 std::vector<glm::vec3> vertexAlbedo(const Scene& scene);

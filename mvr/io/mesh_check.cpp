@@ -23,9 +23,11 @@ std::string lower(std::string s) {
   return s;
 }
 
-// One face corner "v", "v/vt", "v//vn" or "v/vt/vn" against the counts so far.
-void checkCorner(const std::string& path, long line, const std::string& corner, const long (&defined)[3]) {
+// One face corner "v", "v/vt", "v//vn" or "v/vt/vn" against the counts so
+// far; returns its vertex, counted from 1.
+long checkCorner(const std::string& path, long line, const std::string& corner, const long (&defined)[3]) {
   static const char* const kWhat[3] = {"vertex", "texture coordinate", "normal"};
+  long vertex = 0;
   size_t at = 0;
   for (int k = 0; k < 3 && at <= corner.size(); ++k) {
     const size_t slash = corner.find('/', at);
@@ -43,7 +45,9 @@ void checkCorner(const std::string& path, long line, const std::string& corner, 
     if (resolved < 1 || resolved > defined[k])
       failAt(path, line, "face refers to " + std::string(kWhat[k]) + " " + std::to_string(index) + " but " +
                              std::to_string(defined[k]) + " are defined before it");
+    if (k == 0) vertex = resolved;
   }
+  return vertex;
 }
 
 // A vertex's x, y and z: finite numbers (OpenMesh's reader would drop a
@@ -61,8 +65,12 @@ void checkCoordinates(const std::string& path, long line, std::istringstream& wo
   }
 }
 
-void checkObj(const std::string& path) {
+// Returns the faces with fewer than three distinct corners, which
+// OpenMesh's reader drops without telling.
+size_t checkObj(const std::string& path) {
   std::ifstream in(path);
+  size_t degenerate = 0;
+  std::vector<long> corners;
   long defined[3] = {0, 0, 0};  // v, vt, vn
   long line = 0;
   for (std::string text; std::getline(in, text);) {
@@ -76,11 +84,15 @@ void checkObj(const std::string& path) {
     } else if (key == "vt") ++defined[1];
     else if (key == "vn") ++defined[2];
     else if (key == "f") {
-      int corners = 0;
-      for (std::string corner; words >> corner; ++corners) checkCorner(path, line, corner, defined);
-      if (corners < 3) failAt(path, line, "face with " + std::to_string(corners) + " corners (needs 3)");
+      corners.clear();
+      for (std::string corner; words >> corner;) corners.push_back(checkCorner(path, line, corner, defined));
+      if (corners.size() < 3)
+        failAt(path, line, "face with " + std::to_string(corners.size()) + " corners (needs 3)");
+      std::sort(corners.begin(), corners.end());
+      if (std::unique(corners.begin(), corners.end()) - corners.begin() < 3) ++degenerate;
     }
   }
+  return degenerate;
 }
 
 int plyTypeBytes(const std::string& type) {
@@ -170,10 +182,11 @@ void checkPly(const std::string& path) {
 
 }  // namespace
 
-void checkMeshFile(const std::string& path) {
+size_t checkMeshFile(const std::string& path) {
   const std::string ext = lower(std::filesystem::path(path).extension().string());
-  if (ext == ".obj") checkObj(path);
-  else if (ext == ".ply") checkPly(path);
+  if (ext == ".obj") return checkObj(path);
+  if (ext == ".ply") checkPly(path);
+  return 0;
 }
 
 namespace {

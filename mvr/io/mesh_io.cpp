@@ -1,6 +1,14 @@
 #include "mvr/io/mesh_io.h"
 
+// GCC's middle end warns inside the library code OpenMesh's importer
+// template instantiates here (std::construct_at of its colour vectors,
+// memcpy in std::string); neither is ours to fix.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wrestrict"
+
+#include <OpenMesh/Core/IO/IOManager.hh>
 #include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/IO/importer/ImporterT.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 
@@ -20,6 +28,19 @@ struct Traits : OpenMesh::DefaultTraits {
 };
 using TriMesh = OpenMesh::TriMesh_ArrayKernelT<Traits>;
 
+// OpenMesh's importer, counting the faces it refuses (a repeated corner, a
+// vertex index out of range) instead of dropping them without a word.
+class CountingImporter final : public OpenMesh::IO::ImporterT<TriMesh> {
+ public:
+  using ImporterT::ImporterT;
+  OpenMesh::FaceHandle add_face(const VHandles& corners) override {
+    OpenMesh::FaceHandle f = ImporterT::add_face(corners);
+    if (!f.is_valid()) ++dropped;
+    return f;
+  }
+  size_t dropped = 0;
+};
+
 void silenceOpenMesh() {
   // OpenMesh reports read problems on its own streams; ours are one line.
   omerr().disable();
@@ -33,30 +54,34 @@ Scene loadMesh(const std::string& path) {
   silenceOpenMesh();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such mesh file");
-  checkMeshFile(path);  // OpenMesh trusts its input; this does not
+  const size_t degenerate = checkMeshFile(path);  // OpenMesh trusts its input; this does not
   TriMesh mesh;
   OpenMesh::IO::Options opt = OpenMesh::IO::Options::VertexNormal |
                               OpenMesh::IO::Options::VertexColor |
                               OpenMesh::IO::Options::VertexTexCoord;
-  if (!OpenMesh::IO::read_mesh(mesh, path, opt))
+  CountingImporter importer(mesh);
+  if (!OpenMesh::IO::IOManager().read(path, importer, opt))
     fail(path, "cannot read mesh (unsupported format or broken file)");
-  if (mesh.n_faces() == 0) fail(path, "mesh has no triangles");
-  if (!opt.vertex_has_normal()) {
-    mesh.update_face_normals();
-    mesh.update_vertex_normals();
-  }
+  const size_t dropped = importer.dropped + degenerate;
+  if (mesh.n_faces() == 0)
+    fail(path, dropped ? "mesh has no usable triangles (" + std::to_string(dropped) +
+                             " faces with repeated or missing corners)"
+                       : std::string("mesh has no triangles"));
   Scene s;
   s.source = path;
+  s.droppedFaces = dropped;
   s.positions.reserve(mesh.n_vertices());
   for (auto v : mesh.vertices()) {
     auto p = mesh.point(v);
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
       fail(path, "vertex " + std::to_string(v.idx()) + " has a non-finite coordinate");
-    auto n = mesh.normal(v);
-    glm::vec3 normal(n[0], n[1], n[2]);
-    float len = glm::length(normal);
     s.positions.emplace_back(p[0], p[1], p[2]);
-    s.normals.push_back(std::isfinite(len) && len > 0 ? normal / len : glm::vec3(0, 0, 1));
+    if (opt.vertex_has_normal()) {
+      auto n = mesh.normal(v);
+      const glm::dvec3 normal(n[0], n[1], n[2]);  // double: the length of 1e20 squared overflows float
+      const double len = glm::length(normal);
+      s.normals.push_back(std::isfinite(len) && len > 0 ? glm::vec3(normal / len) : glm::vec3(0, 0, 1));
+    }
     if (opt.vertex_has_color()) {
       auto c = mesh.color(v);
       s.colors.push_back(glm::vec3(c[0], c[1], c[2]) / 255.0f);
@@ -76,6 +101,7 @@ Scene loadMesh(const std::string& path) {
   }
   s.materialIds.assign(s.triangles.size(), 0);
   s.materials.emplace_back();
+  if (!opt.vertex_has_normal()) computeVertexNormals(s);
   return s;
 }
 

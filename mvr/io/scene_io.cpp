@@ -23,6 +23,10 @@ namespace {
 using Json = nlohmann::json;
 namespace fs = std::filesystem;
 
+std::string droppedFaces(const Scene& scene) {
+  return std::to_string(scene.droppedFaces) + " faces dropped (a repeated corner or a vertex that does not exist)";
+}
+
 // Reads one scene file, remembering the file name for every error.
 class SceneReader {
  public:
@@ -41,7 +45,7 @@ class SceneReader {
       scene.append(readMesh(meshes[i], "meshes[" + std::to_string(i) + "]"));
     if (root.contains("lights")) readLights(root["lights"], scene);
     else scene.lights = defaultLights();
-    if (root.contains("ambient")) scene.ambient = vec3(root["ambient"], "ambient");
+    if (root.contains("ambient")) scene.ambient = color(root["ambient"], "ambient");
     if (root.contains("camera")) scene.camera = readCamera(root["camera"]);
     return scene;
   }
@@ -82,6 +86,14 @@ class SceneReader {
     return {float(number(j[0], where)), float(number(j[1], where)), float(number(j[2], where))};
   }
 
+  // A reflectance or light colour: each channel in [0, 1].
+  glm::vec3 color(const Json& j, const std::string& where) const {
+    const glm::vec3 c = vec3(j, where);
+    if (glm::any(glm::lessThan(c, glm::vec3(0.0f))) || glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
+      bad(where, "colour channels must be in [0, 1]");
+    return c;
+  }
+
   std::string relative(const Json& j, const std::string& where) const {
     if (!j.is_string() || j.get<std::string>().empty()) bad(where, "must be a file name");
     fs::path p(j.get<std::string>());
@@ -93,9 +105,9 @@ class SceneReader {
                  {"diffuse", "texture", "specular", "shininess", "specular_model",
                   "reflection_map", "reflectivity", "two_sided"});
     Material m;
-    if (j.contains("diffuse")) m.diffuse = vec3(j["diffuse"], where + ".diffuse");
+    if (j.contains("diffuse")) m.diffuse = color(j["diffuse"], where + ".diffuse");
     if (j.contains("texture")) m.texture = relative(j["texture"], where + ".texture");
-    if (j.contains("specular")) m.specular = vec3(j["specular"], where + ".specular");
+    if (j.contains("specular")) m.specular = color(j["specular"], where + ".specular");
     if (j.contains("shininess")) m.shininess = float(number(j["shininess"], where + ".shininess"));
     if (j.contains("specular_model")) {
       const Json& model = j["specular_model"];
@@ -106,7 +118,7 @@ class SceneReader {
     if (m.shininess < 0 || m.shininess > 10000) bad(where + ".shininess", "must be in [0, 10000]");
     if (j.contains("reflection_map"))
       m.reflectionMap = relative(j["reflection_map"], where + ".reflection_map");
-    if (j.contains("reflectivity")) m.reflectivity = vec3(j["reflectivity"], where + ".reflectivity");
+    if (j.contains("reflectivity")) m.reflectivity = color(j["reflectivity"], where + ".reflectivity");
     if (j.contains("two_sided")) {
       if (!j["two_sided"].is_boolean()) bad(where + ".two_sided", "must be true or false");
       m.twoSided = j["two_sided"].get<bool>();
@@ -169,13 +181,16 @@ class SceneReader {
   }
 
   static void applyTransform(Scene& mesh, const glm::mat4& m) {
-    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
+    // In double: the inverse of a scale of 1e-20 is 1e20, and the squared
+    // length of a normal times that overflows float (the normal came out 0).
+    const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(glm::mat3(m))));
     for (glm::vec3& p : mesh.positions) p = glm::vec3(m * glm::vec4(p, 1.0f));
-    for (glm::vec3& n : mesh.normals) n = glm::normalize(normalMatrix * n);
+    for (glm::vec3& n : mesh.normals) n = glm::vec3(glm::normalize(normalMatrix * glm::dvec3(n)));
   }
 
   void readLights(const Json& j, Scene& scene) const {
     if (!j.is_array()) bad("lights", "must be an array");
+    if (j.size() > size_t(kMaxLights)) bad("lights", "more than " + std::to_string(kMaxLights) + " lights");
     for (size_t i = 0; i < j.size(); ++i) {
       const std::string where = "lights[" + std::to_string(i) + "]";
       expectObject(j[i], where, {"type", "direction", "position", "color"});
@@ -194,7 +209,7 @@ class SceneReader {
       } else {
         bad(where + ".type", "must be \"directional\" or \"point\"");
       }
-      if (j[i].contains("color")) light.color = vec3(j[i]["color"], where + ".color");
+      if (j[i].contains("color")) light.color = color(j[i]["color"], where + ".color");
       scene.lights.push_back(light);
     }
   }
@@ -212,8 +227,13 @@ class SceneReader {
       if (!j.contains(key)) bad("camera", std::string("no \"") + key + "\"");
     c.distance = number(j["distance"], "camera.distance");
     const Json& plane = j["image_plane"];
-    if (plane.is_number()) c.planeWidth = number(plane, "camera.image_plane");
-    else pair("image_plane", c.planeWidth, c.planeHeight);
+    if (plane.is_number()) {
+      c.planeWidth = number(plane, "camera.image_plane");
+    } else {
+      pair("image_plane", c.planeWidth, c.planeHeight);
+      // A height of 0 would silently mean "from the aspect ratio".
+      if (!(c.planeHeight > 0)) bad("camera.image_plane", "height must be positive");
+    }
     pair("track", c.trackLeft, c.trackRight);
     if (j.contains("rows")) pair("rows", c.rowTop, c.rowBottom);
     c.nearDistance = number(j["near"], "camera.near");
@@ -241,18 +261,24 @@ class SceneReader {
 
 }  // namespace
 
-Scene loadScene(const std::string& path) {
+Scene loadScene(const std::string& path, bool strict) {
+  Scene scene;
   if (fs::path(path).extension() != ".json") {
-    Scene mesh = loadMesh(path);
-    checkSceneGeometry(mesh, path);  // before centring: bounds of a stray vertex overflow
-    const glm::vec3 c = mesh.bounds().center();
-    for (glm::vec3& p : mesh.positions) p -= c;
-    mesh.lights = SceneReader::defaultLights();
-    return mesh;
+    scene = loadMesh(path);
+    checkSceneGeometry(scene, path);  // before centring: bounds of a stray vertex overflow
+    const glm::vec3 c = scene.bounds().center();
+    for (glm::vec3& p : scene.positions) p -= c;
+    scene.lights = SceneReader::defaultLights();
+  } else {
+    scene = SceneReader(path).read();
+    checkSceneGeometry(scene, path);  // after the meshes' transforms
   }
-  Scene scene = SceneReader(path).read();
-  checkSceneGeometry(scene, path);  // after the meshes' transforms
+  if (strict && scene.droppedFaces) fail(path, droppedFaces(scene) + " (--strict)");
   return scene;
+}
+
+std::string droppedFacesWarning(const Scene& scene) {
+  return scene.droppedFaces ? scene.source + ": " + droppedFaces(scene) : "";
 }
 
 std::string defaultScenePath() {

@@ -133,6 +133,26 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
   }
 }
 
+TEST(Cli, DroppedFacesWarnAndStrictRefuses) {
+  const fs::path d = outDir("dropped");
+  const fs::path ply = outDir("dropped_scene") / "bad_index.ply";
+  fs::create_directories(ply.parent_path());
+  std::ofstream(ply) << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                        "property float z\nelement face 3\nproperty list uchar int vertex_indices\nend_header\n"
+                        "0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 2\n3 0 1 7\n";
+  const std::string args = "render " + ply.string() + " --views 2 --size 32x24 --out " + d.string();
+  Result r = run(args);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("mvr: warning: " + ply.string() + ": 1 faces dropped"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(d / "manifest.json"));
+  fs::remove_all(d);
+  r = run(args + " --strict");
+  EXPECT_NE(r.status, 0);
+  EXPECT_EQ(r.err, "mvr: " + ply.string() +
+                       ": 1 faces dropped (a repeated corner or a vertex that does not exist) (--strict)\n");
+  EXPECT_FALSE(fs::exists(d / "manifest.json"));
+}
+
 TEST(Cli, RendersUnderGlfwWithAVirtualDisplay) {
   if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "no xvfb-run";
   fs::path d = outDir("glfw");

@@ -27,9 +27,9 @@ class SceneIo : public ::testing::Test {
     return (dir_ / name).string();
   }
   // Expects loadScene to fail with a message naming the file and containing `what`.
-  void expectError(const std::string& path, const std::string& what) {
+  void expectError(const std::string& path, const std::string& what, bool strict = false) {
     try {
-      loadScene(path);
+      loadScene(path, strict);
       FAIL() << "no error for " << path;
     } catch (const Error& e) {
       std::string msg = e.what();
@@ -168,6 +168,58 @@ TEST_F(SceneIo, ImpossibleCamera) {
   expectError(cubeJson(", \"camera\": {\"distance\": -4, \"image_plane\": 2, \"track\": [-1, 1],"
                        " \"near\": 1, \"far\": 3}"),
               "distance must be positive");
+}
+
+TEST_F(SceneIo, ColoursLightsAndImagePlaneOutOfRange) {
+  const std::string camera = ", \"camera\": {\"distance\": 4, \"track\": [-1, 1], \"near\": 1, \"far\": 9, ";
+  expectError(cubeJson(camera + "\"image_plane\": [3.2, 0]}"), "camera.image_plane: height must be positive");
+  expectError(cubeJson(", \"ambient\": [0.2, 0.2, 1.5]"), "ambient: colour channels must be in [0, 1]");
+  expectError(cubeJson(", \"lights\": [{\"direction\": [0, 0, -1], \"color\": [-0.1, 0, 0]}]"),
+              "lights[0].color: colour channels must be in [0, 1]");
+  expectError(write("m.json", "{\"meshes\": [{\"file\": \"cube.obj\", \"material\": {\"diffuse\": [2, 0, 0]}}]}"),
+              "meshes[0].material.diffuse: colour channels must be in [0, 1]");
+  std::string nine = ", \"lights\": [";
+  for (int i = 0; i < 9; ++i) nine += std::string(i ? ", " : "") + "{\"direction\": [0, 0, -1]}";
+  expectError(cubeJson(nine + "]"), "lights: more than 8 lights");
+}
+
+TEST_F(SceneIo, DroppedFacesAreCountedAndStrictRefusesThem) {
+  // Two usable triangles and two with a repeated corner, which OpenMesh drops.
+  const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\nf 1 1 2\nf 3 3 3\n";
+  const std::string path = write("dropped.obj", obj);
+  const Scene scene = loadScene(path);
+  EXPECT_EQ(scene.triangleCount(), 2u);
+  EXPECT_EQ(scene.droppedFaces, 2u);
+  EXPECT_EQ(droppedFacesWarning(scene), path + ": 2 faces dropped (a repeated corner or a vertex that does not exist)");
+  expectError(path, "2 faces dropped (a repeated corner or a vertex that does not exist) (--strict)", true);
+  // Counted through a scene file too; a clean mesh has nothing to say.
+  EXPECT_EQ(loadScene(write("d.json", "{\"meshes\": [{\"file\": \"dropped.obj\"}]}")).droppedFaces, 2u);
+  EXPECT_EQ(droppedFacesWarning(loadScene(test::assetPath("cube.json"))), "");
+  expectError(write("none.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 1 2\n"),
+              "mesh has no usable triangles (1 faces with repeated or missing corners)");
+}
+
+TEST_F(SceneIo, NormalsSurviveExtremeScales) {
+  // A tilted square without normals: its computed normal must not depend on
+  // the scale (the squared length of a cross product of 1e10 coordinates
+  // overflows float).
+  auto square = [&](const std::string& name, double s) {
+    char text[256];
+    std::snprintf(text, sizeof text, "v 0 0 0\nv %g 0 %g\nv 0 %g 0\nv %g %g %g\nf 1 2 3\nf 2 4 3\n", s, s, s, s, s, s);
+    return loadScene(write(name, text));
+  };
+  const glm::vec3 expected = glm::normalize(glm::vec3(-1, 0, 1));
+  for (double s : {1e-12, 1.0, 1e10, 1e14}) {
+    const Scene scene = square("s.obj", s);
+    for (const glm::vec3& n : scene.normals) {
+      EXPECT_NEAR(n.x, expected.x, 1e-6) << "scale " << s;
+      EXPECT_NEAR(n.z, expected.z, 1e-6) << "scale " << s;
+    }
+  }
+  // A scene's transform scaling by 1e-20 keeps the file's normals unit length.
+  fs::copy_file(test::assetPath("cube.obj"), dir_ / "cube.obj");
+  const Scene tiny = loadScene(write("tiny.json", "{\"meshes\": [{\"file\": \"cube.obj\", \"transform\": {\"scale\": 1e-20}}]}"));
+  for (const glm::vec3& n : tiny.normals) EXPECT_NEAR(glm::length(n), 1.0f, 1e-6);
 }
 
 TEST_F(SceneIo, WrongTypes) {
