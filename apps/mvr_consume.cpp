@@ -8,6 +8,7 @@
 #include <new>
 
 #include "apps/cli.h"
+#include "apps/memory_check.h"
 #include "epi/epi_stream.h"
 #include "epi/volume.h"
 #include "mvr/error.h"
@@ -35,6 +36,8 @@ int consume(int argc, char** argv) {
   const mvr::EpiStreamHeader& h = reader.header();
   const mvr::PixelType type = h.bytesPerChannel == 1 ? mvr::PixelType::U8 : mvr::PixelType::F32;
   if (format.empty()) format = type == mvr::PixelType::U8 ? "png" : "exr";
+  mvr::app::checkHeldFramesFit({.reorderBytes = h.epiBytes() * h.height}, mvr::app::availableMemory(),
+                               "the stream's views do not fit; render fewer views or a smaller size");
   mvr::ImageSetWriter writer(out, mvr::Manifest{.views = int(h.views), .rows = int(h.rows),
                                                 .width = int(h.width), .height = int(h.height),
                                                 .format = format});

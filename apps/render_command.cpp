@@ -9,6 +9,7 @@
 
 #include "apps/backend_flags.h"
 #include "apps/cli.h"
+#include "apps/memory_check.h"
 #include "epi/epi_stream.h"
 #include "epi/backend.h"
 #include "epi/stream_queue.h"
@@ -34,6 +35,7 @@ int streamTo(Renderer& renderer, const ShearingCamera& cam, const std::string& e
              PixelType type, int queue) {
   namespace fs = std::filesystem;
   std::signal(SIGPIPE, SIG_IGN);  // a vanished consumer is an error, not a kill
+  std::signal(SIGXFSZ, SIG_IGN);  // so is a file-size limit
   const bool file = isPlainFile(endpoint);
   const std::string target = file ? endpoint + ".part" : endpoint;
   EpiStreamHeader header{uint32_t(cam.width()), uint32_t(cam.height()), uint32_t(cam.views()),
@@ -164,6 +166,18 @@ int runRender(int argc, char** argv, bool streamCommand) {
   ShearingCamera camera(cameraFor(scene, width, height), width, height, views, rows);
   auto context = GlContext::create(platform);
   auto renderer = makeRenderer(choice, scene, type);
+  {
+    // The frames a reordering sink and a quilt hold, before rendering starts.
+    const size_t rowBytes = size_t(width) * height * views * 4 * Image::channelBytes(type);
+    const bool reorders = streaming ? renderer->order() == FrameOrder::View
+                                    : (renderer->order() == FrameOrder::Epi) == (order == "view");
+    checkHeldFramesFit({.reorderBytes = reorders ? rowBytes : 0,
+                        .quiltBytes = !streaming && !f.quilt.empty() ? rowBytes * rows : 0},
+                       availableMemory(),
+                       streaming ? "render fewer views or a smaller size"
+                                 : "use --order " + std::string(order == "view" ? "epi" : "view") +
+                                       ", mvr stream, fewer views or a smaller size");
+  }
 
   if (streaming) return streamTo(*renderer, camera, f.stream, type, f.queue);
 

@@ -1,5 +1,6 @@
 #include "epi/epi_stream.h"
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 
@@ -95,11 +96,22 @@ std::optional<EpiStreamReader::Frame> EpiStreamReader::next() {
                        " scanline " + std::to_string(getU32(tag + 4)) + ", expected row " +
                        std::to_string(row) + " scanline " + std::to_string(scanline));
   ++read_;
-  Frame f{int(getU32(tag)), int(getU32(tag + 4)),
-          Image(int(header_.width), int(header_.views),
-                header_.bytesPerChannel == 1 ? PixelType::U8 : PixelType::F32)};
-  in_.read(reinterpret_cast<char*>(f.epi.bytes.data()), std::streamsize(f.epi.bytes.size()));
-  if (size_t(in_.gcount()) != f.epi.bytes.size()) fail("stream", "truncated EPI data");
+  Frame f{int(getU32(tag)), int(getU32(tag + 4)), Image()};
+  f.epi.width = int(header_.width);
+  f.epi.height = int(header_.views);
+  f.epi.type = header_.bytesPerChannel == 1 ? PixelType::U8 : PixelType::F32;
+  // In pieces, the buffer growing with the data that arrived: a hostile
+  // header promising gigabytes must not allocate them before the stream
+  // shows it has them.
+  constexpr size_t kPiece = size_t(16) << 20;
+  const size_t bytes = header_.epiBytes();
+  for (size_t have = 0; have < bytes;) {
+    const size_t piece = std::min(kPiece, bytes - have);
+    f.epi.bytes.resize(have + piece);
+    in_.read(reinterpret_cast<char*>(f.epi.bytes.data() + have), std::streamsize(piece));
+    if (size_t(in_.gcount()) != piece) fail("stream", "truncated EPI data");
+    have += piece;
+  }
   return f;
 }
 

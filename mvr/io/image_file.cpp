@@ -1,5 +1,6 @@
 #include "mvr/io/image_file.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -7,13 +8,13 @@
 #include <filesystem>
 
 #include "mvr/error.h"
+#include "mvr/io/atomic_file.h"
 
 namespace mvr {
 
 void writeImage(const Image& image, const std::string& path, int bits, int pngCompression) {
   namespace fs = std::filesystem;
   const std::string ext = fs::path(path).extension().string();
-  const std::string tmp = path + ".part" + ext;
   auto out = OIIO::ImageOutput::create(path);
   if (!out) fail(path, "no image writer for this extension");
   const bool wantsFloat = ext == ".exr";
@@ -24,14 +25,14 @@ void writeImage(const Image& image, const std::string& path, int bits, int pngCo
   if (ext == ".png") spec.attribute("png:compressionLevel", std::clamp(pngCompression, 0, 9));
   const OIIO::TypeDesc memType = image.type == PixelType::U8 ? OIIO::TypeDesc::UINT8
                                                              : OIIO::TypeDesc::FLOAT;
-  if (!out->open(tmp, spec) || !out->write_image(memType, image.bytes.data()) || !out->close()) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    fail(path, "cannot write image: " + out->geterror());
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) fail(path, "cannot rename finished image: " + ec.message());
+  // Encoded in memory, then written by us: OpenImageIO's writers do not
+  // report a failed write (a full disk gave a truncated file and success).
+  std::vector<unsigned char> encoded;
+  OIIO::Filesystem::IOVecOutput proxy(encoded);
+  if (!out->supports("ioproxy") || !out->set_ioproxy(&proxy)) fail(path, "image writer cannot encode to memory");
+  if (!out->open(path, spec) || !out->write_image(memType, image.bytes.data()) || !out->close())
+    fail(path, "cannot encode image: " + out->geterror());
+  writeFileAtomically(path, std::as_bytes(std::span(encoded)));
 }
 
 Image readImage(const std::string& path) {

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "mvr/error.h"
+#include "mvr/io/atomic_file.h"
 
 namespace mvr {
 namespace fs = std::filesystem;
@@ -121,16 +122,8 @@ Manifest Manifest::read(const std::string& dir) {
 }
 
 void Manifest::write(const std::string& dir) const {
-  const fs::path path = fs::path(dir) / "manifest.json";
-  const fs::path tmp = fs::path(dir) / "manifest.json.part";
-  {
-    std::ofstream out(tmp);
-    out << toJson().dump(2) << "\n";
-    if (!out) fail(tmp.string(), "cannot write manifest");
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) fail(path.string(), "cannot write manifest: " + ec.message());
+  const std::string text = toJson().dump(2) + "\n";
+  writeFileAtomically((fs::path(dir) / "manifest.json").string(), std::as_bytes(std::span(text)));
 }
 
 }  // namespace mvr

@@ -50,18 +50,20 @@ long checkCorner(const std::string& path, long line, const std::string& corner, 
   return vertex;
 }
 
-// A vertex's x, y and z: finite numbers (OpenMesh's reader would drop a
-// "nan" vertex and shift every index after it).
-void checkCoordinates(const std::string& path, long line, std::istringstream& words) {
-  for (int k = 0; k < 3; ++k) {
+// The first `count` numbers of a v, vt or vn line: finite, and within
+// kMaxCoordinate so that float holds them. OpenMesh's reader drops a line
+// whose number does not parse as a float ("nan", "1e300") and so shifts
+// every index after it: faces then name elements out of range.
+void checkNumbers(const std::string& path, long line, std::istringstream& words, int count, const char* what) {
+  for (int k = 0; k < count; ++k) {
     std::string word;
     words >> word;
     double value = 0.0;
     const char* end = word.data() + word.size();
     const char* first = word.data() + (word.size() > 1 && word[0] == '+');  // from_chars takes no '+'
     const auto [at, ec] = std::from_chars(first, end, value);
-    if (word.empty() || ec != std::errc() || at != end || !std::isfinite(value))
-      failAt(path, line, "vertex coordinate '" + word + "' is not a finite number");
+    if (word.empty() || ec != std::errc() || at != end || !(std::abs(value) <= kMaxCoordinate))
+      failAt(path, line, std::string(what) + " '" + word + "' is not a finite number within 1e15");
   }
 }
 
@@ -80,10 +82,14 @@ size_t checkObj(const std::string& path) {
     words >> key;
     if (key == "v") {
       ++defined[0];
-      checkCoordinates(path, line, words);
-    } else if (key == "vt") ++defined[1];
-    else if (key == "vn") ++defined[2];
-    else if (key == "f") {
+      checkNumbers(path, line, words, 3, "vertex coordinate");
+    } else if (key == "vt") {
+      ++defined[1];
+      checkNumbers(path, line, words, 2, "texture coordinate");
+    } else if (key == "vn") {
+      ++defined[2];
+      checkNumbers(path, line, words, 3, "normal component");
+    } else if (key == "f") {
       corners.clear();
       for (std::string corner; words >> corner;) corners.push_back(checkCorner(path, line, corner, defined));
       if (corners.size() < 3)
@@ -133,6 +139,11 @@ void checkPly(const std::string& path) {
       words >> format >> version;
       if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
         failAt(path, line, "unknown PLY format '" + format + "'");
+      // OpenMesh's probe reads the version as a number and spins on anything else.
+      double number = 0.0;
+      const auto [end, ec] = std::from_chars(version.data(), version.data() + version.size(), number);
+      if (version.empty() || ec != std::errc() || end != version.data() + version.size())
+        failAt(path, line, "bad PLY version '" + version + "'");
     } else if (key == "element") {
       Element e;
       std::string count;
@@ -161,6 +172,8 @@ void checkPly(const std::string& path) {
     }
   }
   if (!ended) fail(path, "PLY header has no end_header (file cut short)");
+  for (const Element& e : elements)
+    if (e.fixedBytes == 0 && e.count > 0) fail(path, "PLY element '" + e.name + "' has no properties");
   if (format.empty()) fail(path, "PLY header has no format line");
   const std::streamoff dataStart = in.tellg();
   const auto size = std::streamoff(std::filesystem::file_size(path));
@@ -180,12 +193,70 @@ void checkPly(const std::string& path) {
                    std::to_string(size - dataStart));
 }
 
+// The next line that is neither blank nor a comment; false at the end.
+bool nextDataLine(std::istream& in, std::string& text, long& line) {
+  while (std::getline(in, text)) {
+    ++line;
+    const size_t first = text.find_first_not_of(" \t\r");
+    if (first != std::string::npos && text[first] != '#') return true;
+  }
+  return false;
+}
+
+// OFF (ASCII, 3D, optionally with colours, normals or texture coordinates
+// per vertex): counts, then a line per vertex whose first three numbers are
+// finite, then a line per face whose corner count is at least 3 and whose
+// corners exist. OpenMesh's reader trusts the counts: a corner count of 1e9
+// allocates gigabytes, a vertex count of 4e8 reserves them.
+void checkOff(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string text;
+  long line = 0;
+  if (!nextDataLine(in, text, line)) fail(path, "empty OFF file");
+  std::istringstream header(text);
+  std::string magic;
+  header >> magic;
+  if (magic.size() < 3 || magic.compare(magic.size() - 3, 3, "OFF") != 0) fail(path, "not an OFF file (no 'OFF' first)");
+  if (magic.find_first_of("4n") != std::string::npos || text.find("BINARY") != std::string::npos)
+    failAt(path, line, "'" + text + "': only ASCII OFF of 3D vertices is read");
+  // The counts come on a line of their own, as OpenMesh reads them.
+  unsigned long long vertices = 0, faces = 0;
+  if (!nextDataLine(in, text, line)) fail(path, "OFF header has no vertex and face counts");
+  std::istringstream counts(text);
+  if (!(counts >> vertices >> faces)) failAt(path, line, "bad OFF counts '" + text + "'");
+  const auto size = std::filesystem::file_size(path);
+  if (vertices > size || faces > size)  // a line each
+    failAt(path, line, "OFF counts " + std::to_string(vertices) + " and " + std::to_string(faces) +
+                           " exceed what a file of " + std::to_string(size) + " bytes holds");
+  for (unsigned long long v = 0; v < vertices; ++v) {
+    if (!nextDataLine(in, text, line))
+      fail(path, "OFF data is cut: " + std::to_string(v) + " of " + std::to_string(vertices) + " vertices");
+    std::istringstream words(text);
+    checkNumbers(path, line, words, 3, "vertex coordinate");
+  }
+  for (unsigned long long f = 0; f < faces; ++f) {
+    if (!nextDataLine(in, text, line))
+      fail(path, "OFF data is cut: " + std::to_string(f) + " of " + std::to_string(faces) + " faces");
+    std::istringstream words(text);
+    long corners = 0;
+    if (!(words >> corners) || corners < 3 || corners > 1024)
+      failAt(path, line, "face corner count must be 3..1024");
+    for (long k = 0; k < corners; ++k) {
+      long long index = -1;
+      if (!(words >> index) || index < 0 || (unsigned long long)index >= vertices)
+        failAt(path, line, "face corner " + std::to_string(k) + " is not a vertex index below " +
+                               std::to_string(vertices));
+    }
+  }
+}
+
 }  // namespace
 
 size_t checkMeshFile(const std::string& path) {
   const std::string ext = lower(std::filesystem::path(path).extension().string());
   if (ext == ".obj") return checkObj(path);
   if (ext == ".ply") checkPly(path);
+  if (ext == ".off") checkOff(path);
   return 0;
 }
 

@@ -31,7 +31,8 @@ void checkSceneGeometry(const Scene& scene, const std::string& where);
 // per face. PLY: a complete header (ply, one format line, elements with
 // counts, properties of known types, end_header), and data long enough for
 // every element (binary: at least each element's fixed bytes; ASCII: a
-// line per element). Other formats pass. Throws mvr::Error. Returns the
+// line per element). OFF: its vertex and face counts within what the data
+// after them can hold. STL passes. Throws mvr::Error. Returns the
 // OBJ faces with fewer than three distinct corners, which OpenMesh's OBJ
 // reader drops before its importer sees them (its other readers hand them
 // on, and loadMesh counts them there).

@@ -3,8 +3,10 @@
 // GCC's middle end warns inside the library code OpenMesh's importer
 // template instantiates here (std::construct_at of its colour vectors,
 // memcpy in std::string); neither is ours to fix.
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #pragma GCC diagnostic ignored "-Wrestrict"
+#endif
 
 #include <OpenMesh/Core/IO/IOManager.hh>
 #include <OpenMesh/Core/IO/MeshIO.hh>

@@ -120,7 +120,9 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
                            "render --views 0 --out " + d.string(),
                            "render --size 10 --out " + d.string(),
                            "render --backend nope --out " + d.string(),
-                           "render --gl vulkan --out " + d.string(), "frobnicate"}) {
+                           "render --gl vulkan --out " + d.string(),
+                           // 64 TiB of views to reorder: refused before rendering.
+                           "render --views 65536 --size 16384x16384 --out " + d.string(), "frobnicate"}) {
     Result r = run(args);
     EXPECT_NE(r.status, 0) << args;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
@@ -130,6 +132,8 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
       EXPECT_NE(r.err.find("nothere.png"), std::string::npos) << r.err;
     if (args.find(squareMap.string()) != std::string::npos)
       EXPECT_NE(r.err.find("checker.png: a reflection map must be"), std::string::npos) << r.err;
+    if (args.find("65536") != std::string::npos)
+      EXPECT_NE(r.err.find("mvr: memory: the job needs about 65536.0 GiB"), std::string::npos) << r.err;
   }
 }
 
@@ -151,6 +155,26 @@ TEST(Cli, DroppedFacesWarnAndStrictRefuses) {
   EXPECT_EQ(r.err, "mvr: " + ply.string() +
                        ": 1 faces dropped (a repeated corner or a vertex that does not exist) (--strict)\n");
   EXPECT_FALSE(fs::exists(d / "manifest.json"));
+}
+
+// A file-size limit (as a full disk would) fails the write: one line naming
+// the file and the system's reason, non-zero status, and no set left that
+// looks complete (before, truncated PNGs and a manifest were committed).
+TEST(Cli, FailedWritesLeaveNoSet) {
+  const fs::path d = outDir("efbig");
+  const fs::path stream = outDir("efbig_stream") / "s.bin";
+  fs::create_directories(stream.parent_path());
+  for (const std::string& args : {"render --views 4 --size 320x240 --out " + d.string(),
+                                  "render --views 4 --size 320x240 --format exr --out " + d.string(),
+                                  "stream --views 4 --size 320x240 --to " + stream.string()}) {
+    const test::CliResult r = test::shell("ulimit -f 16; " + test::mvrBinary() + " " + args + " >/dev/null");
+    EXPECT_NE(r.status, 0) << args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+    if (args.rfind("render", 0) == 0) EXPECT_NE(r.err.find(": cannot write: File too large"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(d / "manifest.json")) << args;
+    EXPECT_TRUE(!fs::exists(d) || fs::is_empty(d)) << args << ": files left behind";
+    EXPECT_FALSE(fs::exists(stream)) << args;
+  }
 }
 
 TEST(Cli, RendersUnderGlfwWithAVirtualDisplay) {

@@ -37,6 +37,12 @@ inline std::string assetsDir() {
   return dir ? dir : MVR_TEST_ASSETS;
 }
 inline std::string assetPath(const std::string& name) { return assetsDir() + "/" + name; }
+// A file of the checkout: MVR_TEST_SOURCE from the environment (the
+// checkout on another machine), else the one compiled in.
+inline std::string sourcePath(const std::string& relative) {
+  const char* dir = std::getenv("MVR_TEST_SOURCE");
+  return std::string(dir ? dir : MVR_TEST_SOURCE) + "/" + relative;
+}
 
 // The first `count` elements of a GL buffer, read back.
 template <class T>

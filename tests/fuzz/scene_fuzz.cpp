@@ -1,0 +1,52 @@
+// libFuzzer target: the scene loader (issue 16). The first byte picks the
+// file's kind (JSON scene, PLY, OBJ, STL, OFF), the rest is its content.
+// A rejection (mvr::Error) is the expected answer to bad input; anything
+// else (a crash, a sanitizer report, another exception, a hang) is a
+// defect. Scene files may name "m.obj", a valid mesh beside them.
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "mvr/error.h"
+#include "mvr/io/scene_io.h"
+
+namespace {
+
+std::filesystem::path dir;
+
+void removeDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(dir, ec);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  char pattern[] = "/tmp/mvr_scene_fuzz_XXXXXX";
+  if (!mkdtemp(pattern)) std::abort();
+  dir = pattern;
+  std::atexit(removeDir);
+  std::ofstream(dir / "m.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n";
+  return 0;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  static const char* const kExtensions[] = {".json", ".ply", ".obj", ".stl", ".off"};
+  if (size == 0) return 0;
+  const std::filesystem::path path = dir / (std::string("input") + kExtensions[data[0] % 5]);
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(data + 1), std::streamsize(size - 1));
+  }
+  try {
+    mvr::loadScene(path.string(), size % 2 == 0);
+  } catch (const mvr::Error&) {
+  }
+  std::error_code ec;
+  std::filesystem::remove(path, ec);
+  return 0;
+}
