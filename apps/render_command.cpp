@@ -1,6 +1,8 @@
 #include "apps/render_command.h"
 
 #include <csignal>
+#include <cstring>
+#include <optional>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -42,9 +44,10 @@ int streamTo(Renderer& renderer, const ShearingCamera& cam, const std::string& e
                          uint32_t(cam.rows()), 4, uint32_t(Image::channelBytes(type))};
   Stopwatch watch;
   size_t highWater = 0;
+  std::optional<FdStreamBuf> buffer;
   try {
-    FdStreamBuf buffer(openForWriting(target));
-    std::ostream out(&buffer);
+    buffer.emplace(openForWriting(target));
+    std::ostream out(&*buffer);
     QueuedEpiStream stream(out, header, size_t(queue));
     std::unique_ptr<FrameSink> adaptor;
     if (renderer.order() == FrameOrder::View)
@@ -54,9 +57,12 @@ int streamTo(Renderer& renderer, const ShearingCamera& cam, const std::string& e
     renderer.render(cam, sink, stats);
     sink.finish();
     highWater = stream.highWater();
+    buffer.reset();  // closed before the rename
   } catch (...) {
     std::error_code ec;
     if (file) fs::remove(target, ec);
+    if (buffer && buffer->writeError())  // the system's reason, not the writer's guess
+      fail(endpoint, std::string("cannot write stream: ") + std::strerror(buffer->writeError()));
     throw;
   }
   if (file) {

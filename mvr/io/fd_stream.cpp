@@ -72,7 +72,10 @@ bool FdStreamBuf::flushOut() {
   while (p < pptr()) {
     const ssize_t n = write(fd_, p, size_t(pptr() - p));
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
+    if (n <= 0) {
+      writeError_ = n < 0 ? errno : EIO;
+      return false;
+    }
     p += n;
   }
   setp(out_.data(), out_.data() + out_.size());

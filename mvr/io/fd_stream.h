@@ -14,6 +14,8 @@ class FdStreamBuf final : public std::streambuf {
   ~FdStreamBuf() override;
   FdStreamBuf(const FdStreamBuf&) = delete;
   FdStreamBuf& operator=(const FdStreamBuf&) = delete;
+  // errno of the write that failed, 0 while none has.
+  int writeError() const { return writeError_; }
 
  protected:
   int_type overflow(int_type c) override;
@@ -26,6 +28,7 @@ class FdStreamBuf final : public std::streambuf {
   bool flushOut();
   int fd_;
   bool owns_;
+  int writeError_ = 0;
   std::vector<char> out_, in_;
 };
 
