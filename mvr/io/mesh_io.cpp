@@ -28,19 +28,52 @@ struct Traits : OpenMesh::DefaultTraits {
                    OpenMesh::Attributes::TexCoord2D);
   FaceAttributes(OpenMesh::Attributes::Normal);
 };
-using TriMesh = OpenMesh::TriMesh_ArrayKernelT<Traits>;
+using TriMesh = OpenMesh::TriMesh_ArrayKernelT<Traits>;  // written: 8-bit colours
+
+// Read with float colours: OpenMesh casts a float colour read from a file
+// (OBJ "v x y z r g b", PLY float red) to 8 bits without clamping, which is
+// undefined behaviour for 2.0 (found by fuzzing). As floats nothing is cast,
+// and loadMesh checks the range itself.
+struct ReadTraits : Traits {
+  typedef OpenMesh::Vec3f Color;
+};
+using ReadMesh = OpenMesh::TriMesh_ArrayKernelT<ReadTraits>;
 
 // OpenMesh's importer, counting the faces it refuses (a repeated corner, a
-// vertex index out of range) instead of dropping them without a word.
-class CountingImporter final : public OpenMesh::IO::ImporterT<TriMesh> {
+// vertex index out of range) instead of dropping them without a word, and
+// noting which vertices the file gave a normal, colour or texture
+// coordinate: the others hold whatever the property's memory held (an OBJ
+// colouring only some vertices; the copies made for non-manifold faces).
+class CheckedImporter final : public OpenMesh::IO::ImporterT<ReadMesh> {
  public:
   using ImporterT::ImporterT;
+  using VertexHandle = OpenMesh::VertexHandle;
   OpenMesh::FaceHandle add_face(const VHandles& corners) override {
     OpenMesh::FaceHandle f = ImporterT::add_face(corners);
     if (!f.is_valid()) ++dropped;
     return f;
   }
+  void set_normal(VertexHandle v, const OpenMesh::Vec3f& n) override { note(normals, v), ImporterT::set_normal(v, n); }
+  void set_normal(VertexHandle v, const OpenMesh::Vec3d& n) override { note(normals, v), ImporterT::set_normal(v, n); }
+  void set_color(VertexHandle v, const OpenMesh::Vec3uc& c) override { note(colors, v), ImporterT::set_color(v, c); }
+  void set_color(VertexHandle v, const OpenMesh::Vec4uc& c) override { note(colors, v), ImporterT::set_color(v, c); }
+  void set_color(VertexHandle v, const OpenMesh::Vec3f& c) override { note(colors, v), ImporterT::set_color(v, c); }
+  void set_color(VertexHandle v, const OpenMesh::Vec4f& c) override { note(colors, v), ImporterT::set_color(v, c); }
+  void set_texcoord(VertexHandle v, const OpenMesh::Vec2f& t) override { note(uvs, v), ImporterT::set_texcoord(v, t); }
+
   size_t dropped = 0;
+  std::vector<bool> normals, colors, uvs;  // per vertex: given by the file
+
+  static bool given(const std::vector<bool>& set, VertexHandle v) {
+    return size_t(v.idx()) < set.size() && set[size_t(v.idx())];
+  }
+
+ private:
+  static void note(std::vector<bool>& set, VertexHandle v) {
+    if (!v.is_valid()) return;
+    if (size_t(v.idx()) >= set.size()) set.resize(size_t(v.idx()) + 1, false);
+    set[size_t(v.idx())] = true;
+  }
 };
 
 void silenceOpenMesh() {
@@ -57,11 +90,11 @@ Scene loadMesh(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such mesh file");
   const size_t degenerate = checkMeshFile(path);  // OpenMesh trusts its input; this does not
-  TriMesh mesh;
+  ReadMesh mesh;
   OpenMesh::IO::Options opt = OpenMesh::IO::Options::VertexNormal |
                               OpenMesh::IO::Options::VertexColor |
                               OpenMesh::IO::Options::VertexTexCoord;
-  CountingImporter importer(mesh);
+  CheckedImporter importer(mesh);
   if (!OpenMesh::IO::IOManager().read(path, importer, opt))
     fail(path, "cannot read mesh (unsupported format or broken file)");
   const size_t dropped = importer.dropped + degenerate;
@@ -73,24 +106,34 @@ Scene loadMesh(const std::string& path) {
   s.source = path;
   s.droppedFaces = dropped;
   s.positions.reserve(mesh.n_vertices());
+  // A vertex the file gave no normal (or texture coordinate) means none for
+  // the mesh: normals are then computed for all; no colour means white.
+  bool fileNormals = opt.vertex_has_normal(), fileUvs = opt.vertex_has_texcoord();
+  for (auto v : mesh.vertices()) {
+    fileNormals = fileNormals && CheckedImporter::given(importer.normals, v);
+    fileUvs = fileUvs && CheckedImporter::given(importer.uvs, v);
+  }
   for (auto v : mesh.vertices()) {
     auto p = mesh.point(v);
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
       fail(path, "vertex " + std::to_string(v.idx()) + " has a non-finite coordinate");
     s.positions.emplace_back(p[0], p[1], p[2]);
-    if (opt.vertex_has_normal()) {
+    if (fileNormals) {
       auto n = mesh.normal(v);
       const glm::dvec3 normal(n[0], n[1], n[2]);  // double: the length of 1e20 squared overflows float
       const double len = glm::length(normal);
       s.normals.push_back(std::isfinite(len) && len > 0 ? glm::vec3(normal / len) : glm::vec3(0, 0, 1));
     }
-    if (opt.vertex_has_color()) {
+    glm::vec3 color(1.0f);
+    if (opt.vertex_has_color() && CheckedImporter::given(importer.colors, v)) {
       auto c = mesh.color(v);
-      s.colors.push_back(glm::vec3(c[0], c[1], c[2]) / 255.0f);
-    } else {
-      s.colors.emplace_back(1.0f);
+      color = glm::vec3(c[0], c[1], c[2]);  // 8-bit sources arrive divided by 255
+      if (!glm::all(glm::greaterThanEqual(color, glm::vec3(0.0f))) ||
+          !glm::all(glm::lessThanEqual(color, glm::vec3(1.0f))))
+        fail(path, "vertex " + std::to_string(v.idx()) + " has a colour outside [0, 1]");
     }
-    if (opt.vertex_has_texcoord()) {
+    s.colors.push_back(color);
+    if (fileUvs) {
       auto t = mesh.texcoord2D(v);
       s.uvs.emplace_back(t[0], t[1]);
     }
@@ -103,7 +146,7 @@ Scene loadMesh(const std::string& path) {
   }
   s.materialIds.assign(s.triangles.size(), 0);
   s.materials.emplace_back();
-  if (!opt.vertex_has_normal()) computeVertexNormals(s);
+  if (!fileNormals) computeVertexNormals(s);
   return s;
 }
 

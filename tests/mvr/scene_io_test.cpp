@@ -110,6 +110,21 @@ TEST_F(SceneIo, BrokenPlyHeadersAndCutData) {
               "PLY element 'vertex' has no properties");
 }
 
+TEST_F(SceneIo, VertexColoursAreReadAsFloatsAndChecked) {
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n0 0 0 255 128 0\n1 0 0 0 0 0\n0 1 0 0 0 0\n3 0 1 2\n";
+  const Scene scene = loadScene(write("colours.ply", ply));
+  EXPECT_NEAR(scene.colors[0].r, 1.0f, 1e-6);
+  EXPECT_NEAR(scene.colors[0].g, 128.0f / 255.0f, 1e-6);
+  EXPECT_NEAR(scene.colors[0].b, 0.0f, 1e-6);
+  const Scene obj = loadScene(write("colours.obj", "v 0 0 0 0.25 0.5 1\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"));
+  EXPECT_NEAR(obj.colors[0].g, 0.5f, 1e-6);
+  // 2.0 was cast to 8 bits by OpenMesh: undefined behaviour, found by fuzzing.
+  expectError(write("bright.obj", "v 0 0 0 1 2 0.5\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), "vertex 0 has a colour outside [0, 1]");
+}
+
 TEST_F(SceneIo, OffCountsAndCornersAreChecked) {
   const std::string head = "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n";
   EXPECT_EQ(loadScene(write("square.off", head + "3 0 1 2\n3 1 3 2\n")).triangles.size(), 2u);
