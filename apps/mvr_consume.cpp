@@ -40,7 +40,7 @@ int consume(int argc, char** argv) {
                                "the stream's views do not fit; render fewer views or a smaller size");
   mvr::ImageSetWriter writer(out, mvr::Manifest{.views = int(h.views), .rows = int(h.rows),
                                                 .width = int(h.width), .height = int(h.height),
-                                                .format = format});
+                                                .format = format, .bits = format == "exr" ? 32 : 8});
   mvr::EpisToViews views(writer, int(h.width), int(h.height), int(h.views), type);
   size_t frames = 0;
   while (auto f = reader.next()) {  // in order, all of them, nothing after (or it throws)

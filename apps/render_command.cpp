@@ -84,10 +84,11 @@ namespace {
 struct RenderFlags {
   BackendFlags backend;
   std::string scene;
-  int views = 16, rows = 1, bits = 8, queue = 8, compression = kDefaultPngCompression;
+  int views = 16, rows = 1, queue = 8, compression = kDefaultPngCompression;
+  std::optional<int> bits;  // unset: 8 for png and tiff, 32 (float) for exr
   std::pair<int, int> size{320, 240};
   std::string out = "out", format = "png", order = "view", gl = "auto";
-  std::string stream, quilt, predistort;
+  std::string stream, quilt, predistort, codec;
   bool strict = false;
 
   void addShared(CLI::App& app) {
@@ -108,14 +109,19 @@ struct RenderFlags {
     app.add_option("--order", order, "write views (view_*) or EPIs (epi_*)")
         ->check(CLI::IsMember({"view", "epi"}))
         ->capture_default_str();
-    app.add_option("--bits", bits, "bits per channel for png and tiff (16 renders in float)")
-        ->check(CLI::IsMember({8, 16}))
-        ->capture_default_str();
+    app.add_option("--bits", bits,
+                   "bits per channel: png and tiff 8 (default) or 16, exr 16 (half) or 32 (float, "
+                   "default); anything but 8 renders in float")
+        ->check(CLI::IsMember({8, 16, 32}));
     app.add_option("--compression", compression,
                    "zlib level of png files, 0 (none, fastest) to 9 (smallest); 1 deflates 4x "
                    "faster than 6 for files 25% larger")
         ->check(CLI::Range(0, 9))
         ->capture_default_str();
+    app.add_option("--codec", codec,
+                   "codec of exr files (none, rle, zip, zips, piz, pxr24, b44, dwaa, dwab) or tiff "
+                   "files (none, lzw, zip); default zip")
+        ->type_name("NAME");
     app.add_option("--quilt", quilt,
                    "also write all views tiled in one quilt image, "
                    "quilt_qs{C}x{R}a{aspect}.{format} (auto: near square)")
@@ -160,7 +166,7 @@ int runRender(int argc, char** argv, bool streamCommand) {
   const BackendOptions choice = f.backend.resolve();
   const bool streaming = !f.stream.empty();
   const std::string scenePath = f.scene.empty() ? defaultScenePath() : f.scene;
-  const int views = f.views, rows = f.rows, bits = f.bits;
+  const int views = f.views, rows = f.rows, bits = f.bits.value_or(f.format == "exr" ? 32 : 8);
   const auto [width, height] = f.size;
   const std::string &out = f.out, &format = f.format, &order = f.order;
   // 8-bit PNG renders into 8-bit targets; everything else renders in float.
@@ -189,7 +195,7 @@ int runRender(int argc, char** argv, bool streamCommand) {
 
   ImageSetWriter writer(out, Manifest{.views = views, .rows = rows, .width = width, .height = height,
                                      .format = format, .order = order, .bits = bits,
-                                     .compression = f.compression});
+                                     .compression = f.compression, .codec = f.codec});
   // Sink chain: [predistort] -> [reorder] -> writer (+ quilt).
   std::vector<float> lut;
   if (!f.predistort.empty()) lut = loadPredistortionTable(f.predistort, width);

@@ -6,23 +6,57 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
+#include <vector>
 
 #include "mvr/error.h"
 #include "mvr/io/atomic_file.h"
 
 namespace mvr {
 
-void writeImage(const Image& image, const std::string& path, int bits, int pngCompression) {
-  namespace fs = std::filesystem;
-  const std::string ext = fs::path(path).extension().string();
+namespace {
+
+const std::vector<std::string>& codecs(const std::string& format) {
+  static const std::vector<std::string> none, tiff{"none", "lzw", "zip"},
+      exr{"none", "rle", "zip", "zips", "piz", "pxr24", "b44", "dwaa", "dwab"};
+  return format == "tiff" ? tiff : format == "exr" ? exr : none;
+}
+
+std::string formatOf(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  if (!ext.empty()) ext.erase(0, 1);
+  return ext == "tif" ? "tiff" : ext;
+}
+
+}  // namespace
+
+std::string defaultCodec(const std::string& format) { return format == "png" ? "" : "zip"; }
+
+void checkEncoding(const std::string& format, const ImageEncoding& e) {
+  if (format == "exr") {
+    if (e.bits != 16 && e.bits != 32) fail("--bits", "exr stores 16 (half) or 32 (float) bits");
+  } else if (e.bits != 8 && e.bits != 16) {
+    fail("--bits", format + " stores 8 or 16 bits");
+  }
+  if (e.pngLevel < 0 || e.pngLevel > 9) fail("--compression", "expected 0..9");
+  const auto& allowed = codecs(format);
+  if (e.codec.empty() || std::find(allowed.begin(), allowed.end(), e.codec) != allowed.end()) return;
+  if (allowed.empty()) fail("--codec", format + " has no codec choice (its level is --compression)");
+  std::string list;
+  for (const std::string& c : allowed) list += (list.empty() ? "" : ", ") + c;
+  fail("--codec", "'" + e.codec + "' is not a " + format + " codec (" + list + ")");
+}
+
+void writeImage(const Image& image, const std::string& path, const ImageEncoding& encoding) {
+  const std::string format = formatOf(path);
   auto out = OIIO::ImageOutput::create(path);
   if (!out) fail(path, "no image writer for this extension");
-  const bool wantsFloat = ext == ".exr";
-  OIIO::TypeDesc fileType = wantsFloat   ? OIIO::TypeDesc::FLOAT
-                            : bits == 16 ? OIIO::TypeDesc::UINT16
-                                         : OIIO::TypeDesc::UINT8;
+  checkEncoding(format, encoding);
+  const OIIO::TypeDesc fileType = format == "exr" ? (encoding.bits == 16 ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT)
+                                  : encoding.bits == 16 ? OIIO::TypeDesc::UINT16
+                                                        : OIIO::TypeDesc::UINT8;
   OIIO::ImageSpec spec(image.width, image.height, 4, fileType);
-  if (ext == ".png") spec.attribute("png:compressionLevel", std::clamp(pngCompression, 0, 9));
+  if (format == "png") spec.attribute("png:compressionLevel", encoding.pngLevel);
+  else spec.attribute("compression", encoding.codec.empty() ? defaultCodec(format) : encoding.codec);
   const OIIO::TypeDesc memType = image.type == PixelType::U8 ? OIIO::TypeDesc::UINT8
                                                              : OIIO::TypeDesc::FLOAT;
   // Encoded in memory, then written by us: OpenImageIO's writers do not
@@ -33,6 +67,16 @@ void writeImage(const Image& image, const std::string& path, int bits, int pngCo
   if (!out->open(path, spec) || !out->write_image(memType, image.bytes.data()) || !out->close())
     fail(path, "cannot encode image: " + out->geterror());
   writeFileAtomically(path, std::as_bytes(std::span(encoded)));
+}
+
+ImageEncoding readImageEncoding(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) fail(path, "cannot read image: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  ImageEncoding e;
+  e.bits = int(spec.format.size()) * 8;
+  if (formatOf(path) != "png") e.codec = spec.get_string_attribute("compression");
+  return e;
 }
 
 Image readImage(const std::string& path) {

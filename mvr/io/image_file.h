@@ -12,12 +12,31 @@ namespace mvr {
 // encoding is what a whole render waits for.
 inline constexpr int kDefaultPngCompression = 1;
 
-// Writes png or tiff (8 or 16 bits per channel; float images are
-// quantised) or exr (32-bit float; bits is ignored); pngCompression: zlib
-// level 0-9 of png files. Writes to a temporary name and renames, so a
-// failed write leaves nothing behind.
-void writeImage(const Image& image, const std::string& path, int bits = 8,
-                int pngCompression = kDefaultPngCompression);
+// How a file stores its pixels. png: 8 or 16 bits, zlib level pngLevel.
+// tiff: 8 or 16 bits, codec none, lzw or zip. exr: 16 (half) or 32 (float)
+// bits, codec none, rle, zip, zips, piz, pxr24, b44, dwaa or dwab. Float
+// images are quantised for 8 and 16-bit integer files. An empty codec is
+// the format's default (defaultCodec).
+struct ImageEncoding {
+  int bits = 8;
+  int pngLevel = kDefaultPngCompression;
+  std::string codec;
+};
+
+// "" for png, "zip" for tiff and exr.
+std::string defaultCodec(const std::string& format);
+// Throws mvr::Error naming the option (--bits, --codec, --compression)
+// when the encoding is not one `format` (png, exr, tiff) can store.
+void checkEncoding(const std::string& format, const ImageEncoding& encoding);
+
+// Writes an image with the format its extension names. Encodes in memory,
+// then writes through writeFileAtomically: a failed write leaves nothing
+// behind and names the system's reason.
+void writeImage(const Image& image, const std::string& path, const ImageEncoding& encoding = {});
 Image readImage(const std::string& path);  // 4 channels, U8 or F32
+
+// What a file stores, as writeImage describes it (bits per channel and the
+// codec OpenImageIO reports; "" for png).
+ImageEncoding readImageEncoding(const std::string& path);
 
 }  // namespace mvr

@@ -17,9 +17,7 @@ ImageSetWriter::ImageSetWriter(std::string dir, Manifest manifest)
   const std::string& format = manifest_.format;
   if (format != "png" && format != "exr" && format != "tiff")
     fail("--format", "unknown format '" + format + "' (expected png, exr or tiff)");
-  if (manifest_.bits != 8 && manifest_.bits != 16) fail("--bits", "expected 8 or 16");
-  if (manifest_.bits == 16 && format == "exr") fail("--bits", "exr is always 32-bit float");
-  if (manifest_.compression < 0 || manifest_.compression > 9) fail("--compression", "expected 0..9");
+  checkEncoding(format, manifest_.encoding());
   std::error_code ec;
   fs::create_directories(dir_, ec);
   if (ec) fail(dir_, "cannot create output folder: " + ec.message());
@@ -48,7 +46,7 @@ ImageSetWriter::~ImageSetWriter() {
 void ImageSetWriter::put(const std::string& name, const Image& image) {
   auto copy = std::make_shared<const Image>(image);  // the caller's image is gone after return
   encoder_.submit([this, path = (fs::path(dir_) / name).string(), copy] {
-    writeImage(*copy, path, manifest_.bits, manifest_.compression);
+    writeImage(*copy, path, manifest_.encoding());
     std::lock_guard lock(writtenMutex_);
     written_.push_back(path);
   });
@@ -66,7 +64,6 @@ void ImageSetWriter::putEpi(int row, int scanline, const Image& epi) {
 
 void ImageSetWriter::commit() {
   flush();
-  if (manifest_.format == "exr") manifest_.bits = 32;
   manifest_.info["files"] = written_.size();
   manifest_.write(dir_);
   committed_ = true;

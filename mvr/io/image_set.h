@@ -18,8 +18,8 @@ namespace mvr {
 
 class ImageSetWriter final : public FrameSink {
  public:
-  // The manifest's layout names the files (format png, exr or tiff; bits 8
-  // or 16 for png and tiff). Creates dir if needed.
+  // The manifest's layout names the files and its encoding says how they
+  // store pixels (checkEncoding). Creates dir if needed.
   ImageSetWriter(std::string dir, Manifest manifest);
   ~ImageSetWriter() override;
 

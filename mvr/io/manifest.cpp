@@ -72,6 +72,7 @@ nlohmann::json Manifest::toJson() const {
   j["order"] = order;
   j["bits"] = bits;
   if (format == "png") j["png_compression"] = compression;
+  else j["codec"] = codec.empty() ? defaultCodec(format) : codec;
   j["naming"] = order == "view" ? viewPattern() : epiPattern() + " (rows: views)";
   return j;
 }
@@ -98,13 +99,14 @@ Manifest Manifest::fromJson(const nlohmann::json& j, const std::string& where) {
   m.bits = number("bits", 8, 8, 32);
   m.compression = number("png_compression", kDefaultPngCompression, 0, 9);
   m.format = text("format", "png");
+  m.codec = text("codec", "");
   m.order = text("order", "view");
   if (m.format != "png" && m.format != "exr" && m.format != "tiff")
     fail(where, "unknown format '" + m.format + "'");
   if (m.order != "view" && m.order != "epi") fail(where, "unknown order '" + m.order + "'");
   m.info = j;
   for (const char* key : {"views", "rows", "width", "height", "format", "order", "bits", "png_compression",
-                          "naming"})
+                          "codec", "naming"})
     m.info.erase(key);
   return m;
 }

@@ -18,8 +18,9 @@ class Manifest {
   int width = 0, height = 0;
   std::string format = "png";  // png | exr | tiff
   std::string order = "view";  // view: view_* files; epi: epi_* files (rows are views)
-  int bits = 8;                // per channel in the files (exr: 32)
+  int bits = 8;                // per channel in the files (exr: 16 half or 32 float)
   int compression = kDefaultPngCompression;  // png files: zlib level 0-9
+  std::string codec;           // exr and tiff files: their codec ("": the format's default)
   // Everything else the writer records (scene, back end, camera, timings,
   // files, ...), written beside the layout and kept when read back.
   nlohmann::json info = nlohmann::json::object();
@@ -31,6 +32,9 @@ class Manifest {
   // The names as a printf pattern, e.g. "view_%05d" or "view_r%03d_c%04d".
   std::string viewPattern() const;
   std::string epiPattern() const;
+
+  // How the set's files store their pixels.
+  ImageEncoding encoding() const { return {bits, compression, codec}; }
 
   // The camera as the manifest records it (distance, image plane, track).
   void setCamera(const ShearingCamera& camera);

@@ -110,6 +110,44 @@ int plyTypeBytes(const std::string& type) {
   return it == kBytes.end() ? 0 : it->second;
 }
 
+// One property of a PLY element: a scalar of `type`, or a list whose count
+// has `type` and whose items have itemBytes each.
+struct PlyProperty {
+  bool list;
+  std::string type;
+  int itemBytes;
+};
+
+// A binary list count of its type (1, 2 or 4 bytes; signed or not).
+long long plyListCount(const unsigned char* raw, int bytes, const std::string& type, bool bigEndian) {
+  unsigned long value = 0;
+  for (int k = 0; k < bytes; ++k) value |= static_cast<unsigned long>(raw[bigEndian ? bytes - 1 - k : k]) << (8 * k);
+  const bool isSigned = type == "char" || type == "int8" || type == "short" || type == "int16" || type == "int" ||
+                        type == "int32";
+  if (isSigned && (value >> (8 * bytes - 1)) & 1) return -1;
+  return static_cast<long long>(value);
+}
+
+// One ASCII element line: a token per scalar; per list a count (an integer
+// its count type holds) and that many items, all on the line.
+void checkPlyAsciiElement(const std::string& path, long line, const std::string& text,
+                          const std::vector<PlyProperty>& properties) {
+  std::istringstream words(text);
+  std::string word;
+  for (const PlyProperty& p : properties) {
+    if (!(words >> word)) failAt(path, line, "element line has fewer values than its properties");
+    if (!p.list) continue;
+    unsigned long long items = 0;
+    const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), items);
+    const int bytes = plyTypeBytes(p.type);
+    const unsigned long long most = bytes >= 4 ? (1ull << 31) - 1 : (1ull << (8 * bytes)) - 1;
+    if (ec != std::errc() || end != word.data() + word.size() || items > most)
+      failAt(path, line, "bad list count '" + word + "'");
+    for (unsigned long long k = 0; k < items; ++k)
+      if (!(words >> word)) failAt(path, line, "list of " + std::to_string(items) + " items does not fit its line");
+  }
+}
+
 void checkPly(const std::string& path) {
   constexpr size_t kMaxHeader = 1 << 16;
   std::ifstream in(path, std::ios::binary);
@@ -117,6 +155,7 @@ void checkPly(const std::string& path) {
     std::string name;
     unsigned long long count;
     unsigned long long fixedBytes = 0;  // per element, list items not counted
+    std::vector<PlyProperty> properties;
   };
   std::vector<Element> elements;
   std::string format;
@@ -158,12 +197,15 @@ void checkPly(const std::string& path) {
       words >> type;
       if (type == "list") {
         words >> countType >> itemType;
-        if (!plyTypeBytes(countType) || !plyTypeBytes(itemType))
+        if (!plyTypeBytes(countType) || !plyTypeBytes(itemType) || countType == "float" ||
+            countType == "float32" || countType == "double" || countType == "float64")
           failAt(path, line, "bad list property '" + text + "'");
         elements.back().fixedBytes += plyTypeBytes(countType);
+        elements.back().properties.push_back({true, countType, plyTypeBytes(itemType)});
       } else {
         if (!plyTypeBytes(type)) failAt(path, line, "unknown property type '" + type + "'");
         elements.back().fixedBytes += plyTypeBytes(type);
+        elements.back().properties.push_back({false, type, 0});
       }
     } else if (key == "end_header") {
       ended = true;
@@ -177,13 +219,25 @@ void checkPly(const std::string& path) {
   if (format.empty()) fail(path, "PLY header has no format line");
   const std::streamoff dataStart = in.tellg();
   const auto size = std::streamoff(std::filesystem::file_size(path));
+  // Walk the data as OpenMesh will, so that no list count can make it read
+  // or allocate past what the file holds (a count of 1e18 in an ASCII face
+  // line spun forever; found by fuzzing).
   if (format == "ascii") {
     unsigned long long needed = 0, have = 0;
     for (const Element& e : elements) needed += e.count;
-    for (std::string text; have < needed && std::getline(in, text);)
-      if (text.find_first_not_of(" \t\r") != std::string::npos) ++have;
-    if (have < needed)
-      fail(path, "PLY data is cut: " + std::to_string(have) + " of " + std::to_string(needed) + " element lines");
+    for (const Element& e : elements) {
+      for (unsigned long long i = 0; i < e.count; ++i) {
+        std::string text;
+        do {
+          if (!std::getline(in, text))
+            fail(path, "PLY data is cut: " + std::to_string(have) + " of " + std::to_string(needed) +
+                           " element lines");
+          ++line;
+        } while (text.find_first_not_of(" \t\r") == std::string::npos);
+        ++have;
+        checkPlyAsciiElement(path, line, text, e.properties);
+      }
+    }
     return;
   }
   unsigned long long needed = 0;
@@ -191,6 +245,40 @@ void checkPly(const std::string& path) {
   if (static_cast<unsigned long long>(size - dataStart) < needed)
     fail(path, "PLY data is cut: its elements need at least " + std::to_string(needed) + " bytes, the file has " +
                    std::to_string(size - dataStart));
+  // Sequentially from the data's start: a seek per face would cost seconds
+  // for meshes of millions of faces.
+  unsigned long long at = static_cast<unsigned long long>(dataStart);
+  const auto end = static_cast<unsigned long long>(size);
+  const bool bigEndian = format == "binary_big_endian";
+  in.clear();
+  in.seekg(dataStart);
+  for (const Element& e : elements) {
+    const bool hasList = std::any_of(e.properties.begin(), e.properties.end(), [](const PlyProperty& p) { return p.list; });
+    if (!hasList) {  // fixed size, within the file: checked above
+      in.ignore(std::streamsize(e.count * e.fixedBytes));
+      at += e.count * e.fixedBytes;
+      continue;
+    }
+    for (unsigned long long i = 0; i < e.count; ++i)
+      for (const PlyProperty& p : e.properties) {
+        const unsigned bytes = unsigned(plyTypeBytes(p.type));
+        if (at + bytes > end) fail(path, "PLY data is cut in " + e.name + " " + std::to_string(i));
+        at += bytes;
+        if (!p.list) {
+          in.ignore(bytes);
+          continue;
+        }
+        unsigned char raw[4] = {0, 0, 0, 0};
+        in.read(reinterpret_cast<char*>(raw), bytes);
+        const long long items = plyListCount(raw, int(bytes), p.type, bigEndian);
+        const unsigned long long itemBytes = static_cast<unsigned long long>(items) * unsigned(p.itemBytes);
+        if (items < 0 || at + itemBytes > end)
+          fail(path, "PLY " + e.name + " " + std::to_string(i) + " has a list of " + std::to_string(items) +
+                         " items beyond the end of the file");
+        in.ignore(std::streamsize(itemBytes));
+        at += itemBytes;
+      }
+  }
 }
 
 // The next line that is neither blank nor a comment; false at the end.

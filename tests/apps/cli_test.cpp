@@ -11,6 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mvr/io/image_file.h"
+#include "mvr/io/manifest.h"
 #include "tests/support/cli.h"
 #include "tests/support/gl_fixture.h"
 
@@ -134,6 +136,41 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
       EXPECT_NE(r.err.find("checker.png: a reflection map must be"), std::string::npos) << r.err;
     if (args.find("65536") != std::string::npos)
       EXPECT_NE(r.err.find("mvr: memory: the job needs about 65536.0 GiB"), std::string::npos) << r.err;
+  }
+}
+
+// Each format stores what was asked for, the manifest says so, and an
+// encoding the format cannot store is one line naming the option.
+TEST(Cli, EncodingsEveryFormatOffers) {
+  struct Case {
+    std::string flags, file;
+    int bits;
+    std::string codec;
+  };
+  for (const Case& c : {Case{"--format exr", "view_0000.exr", 32, "zip"},
+                        Case{"--format exr --bits 16 --codec piz", "view_0000.exr", 16, "piz"},
+                        Case{"--format tiff --codec lzw", "view_0000.tiff", 8, "lzw"},
+                        Case{"--format tiff --bits 16 --codec none", "view_0000.tiff", 16, "none"},
+                        Case{"--bits 16", "view_0000.png", 16, ""}}) {
+    const fs::path d = outDir("encoding");
+    const Result r = run("render --views 2 --size 32x24 " + c.flags + " --out " + d.string());
+    ASSERT_EQ(r.status, 0) << c.flags << ": " << r.err;
+    const mvr::ImageEncoding e = mvr::readImageEncoding((d / c.file).string());
+    EXPECT_EQ(e.bits, c.bits) << c.flags;
+    EXPECT_EQ(e.codec, c.codec) << c.flags;
+    const mvr::Manifest m = mvr::Manifest::read(d.string());
+    EXPECT_EQ(m.bits, c.bits) << c.flags;
+    EXPECT_EQ(m.codec, c.codec) << c.flags;
+    fs::remove_all(d);
+  }
+  for (const std::string flags : {"--format exr --bits 8", "--format png --bits 32", "--format png --codec zip",
+                                  "--format tiff --codec piz"}) {
+    const fs::path d = outDir("encoding_bad");
+    const Result r = run("render --views 2 --size 32x24 " + flags + " --out " + d.string());
+    EXPECT_NE(r.status, 0) << flags;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << flags << ": " << r.err;
+    EXPECT_NE(r.err.find(flags.find("codec") != std::string::npos ? "--codec" : "--bits"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(d / "manifest.json")) << flags;
   }
 }
 

@@ -108,6 +108,22 @@ TEST_F(SceneIo, BrokenPlyHeadersAndCutData) {
   expectError(write("version.ply", version), "version.ply:2: bad PLY version");
   expectError(write("bare.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\nend_header\n"),
               "PLY element 'vertex' has no properties");
+  // List counts are walked as OpenMesh reads them: a count of 1e18 in an
+  // ASCII face line made it spin (found by fuzzing).
+  std::string hugeList = ascii + "3 0 2 1\n";
+  hugeList.replace(hugeList.rfind("3 0 2 1"), 7, "1489168555965 0 2 1");
+  expectError(write("hugelist.ply", hugeList), "hugelist.ply:14: bad list count '1489168555965'");
+  std::string shortList = ascii + "4 0 2 1\n";
+  expectError(write("shortlist.ply", shortList), "shortlist.ply:14: list of 4 items does not fit its line");
+  // Binary: a face whose int count runs past the end of the file.
+  std::string binary = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                       "property float z\nelement face 1\nproperty list int int vertex_indices\nend_header\n";
+  const std::string zero(4, '\0'), one("\0\0\x80\x3f", 4);  // floats, little-endian
+  binary += zero + zero + zero + one + zero + zero + zero + one + zero;
+  const std::string count("\xff\xff\xff\x0f", 4);  // 268 million corners
+  expectError(write("binlist.ply", binary + count + std::string(12, '\0')), "PLY face 0 has a list of 268435455 items beyond");
+  binary += std::string("\x03\0\0\0", 4) + std::string("\0\0\0\0\x01\0\0\0\x02\0\0\0", 12);
+  EXPECT_EQ(loadScene(write("binok.ply", binary)).triangles.size(), 1u);
 }
 
 TEST_F(SceneIo, VertexColoursAreReadAsFloatsAndChecked) {
