@@ -77,7 +77,13 @@ size_t checkObj(const std::string& path) {
   long line = 0;
   for (std::string text; std::getline(in, text);) {
     ++line;
-    std::istringstream words(text);
+    // As OpenMesh's reader: trim blanks, then skip a line that is empty, a
+    // comment, or starts with other white space (a form feed): counting
+    // such a "v" line would shift every relative index against OpenMesh's.
+    const size_t first = text.find_first_not_of(" \t\r\n");
+    if (first == std::string::npos || text[first] == '#' || std::isspace(static_cast<unsigned char>(text[first])))
+      continue;
+    std::istringstream words(text.substr(first));
     std::string key;
     words >> key;
     if (key == "v") {
@@ -108,6 +114,13 @@ int plyTypeBytes(const std::string& type) {
       {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
   const auto it = kBytes.find(type);
   return it == kBytes.end() ? 0 : it->second;
+}
+
+size_t countWords(const std::string& text) {
+  std::istringstream words(text);
+  size_t n = 0;
+  for (std::string word; words >> word;) ++n;
+  return n;
 }
 
 // One property of a PLY element: a scalar of `type`, or a list whose count
@@ -173,6 +186,19 @@ void checkPly(const std::string& path) {
       if (key != "ply") fail(path, "not a PLY file (no 'ply' on the first line)");
       continue;
     }
+    // OpenMesh reads the header word by word, not line by line: a line with
+    // more words than its keyword takes would be read differently there
+    // (an element count taken from the next line's words: gigabytes).
+    const size_t wordCount = countWords(text);
+    std::string second;
+    std::istringstream(text) >> second >> second;
+    const size_t expected = key == "format" || key == "element" ? 3
+                            : key == "property"                 ? (second == "list" ? 5 : 3)
+                            : key == "end_header"               ? 1
+                                                                : wordCount;
+    if (wordCount != expected)
+      failAt(path, line, "PLY header line '" + key + "' has " + std::to_string(wordCount) + " words, expected " +
+                             std::to_string(expected));
     if (key == "format") {
       std::string version;
       words >> format >> version;

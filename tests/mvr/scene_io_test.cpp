@@ -82,6 +82,8 @@ TEST_F(SceneIo, ObjFaceNamingAMissingVertex) {
   // Negative indices count back from the last vertex defined.
   EXPECT_EQ(loadScene(write("relative.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n")).triangles.size(), 1u);
   expectError(write("back.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 -2 -1\n"), "face refers to vertex -4");
+  // OpenMesh skips a line starting with a form feed; so must the count.
+  expectError(write("ff.obj", "v 0 0 0\nv 1 0 0\n\fv 0 1 0\nv 1 1 0\nf -4 1 2\n"), "ff.obj:5: face refers to vertex -4 but 3");
 }
 
 TEST_F(SceneIo, BrokenPlyHeadersAndCutData) {
@@ -106,6 +108,9 @@ TEST_F(SceneIo, BrokenPlyHeadersAndCutData) {
   std::string version = ascii;
   version.replace(version.find("1.0"), 3, "\x1b1.0");
   expectError(write("version.ply", version), "version.ply:2: bad PLY version");
+  std::string words = ascii;
+  words.replace(words.find("property float z"), 16, "property float z element face 9");
+  expectError(write("words.ply", words), "words.ply:6: PLY header line 'property' has 6 words, expected 3");
   expectError(write("bare.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\nend_header\n"),
               "PLY element 'vertex' has no properties");
   // List counts are walked as OpenMesh reads them: a count of 1e18 in an
