@@ -100,7 +100,10 @@ std::streamsize FdStreamBuf::xsputn(const char* s, std::streamsize n) {
     while (done < n) {
       const ssize_t w = write(fd_, s + done, size_t(n - done));
       if (w < 0 && errno == EINTR) continue;
-      if (w <= 0) return done;
+      if (w <= 0) {
+        writeError_ = w < 0 ? errno : EIO;
+        return done;
+      }
       done += w;
     }
     return done;
