@@ -6,7 +6,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
-#include <cstring>
+#include <system_error>
 
 #include "mvr/error.h"
 
@@ -36,13 +36,13 @@ void writeFileAtomically(const std::string& path, std::span<const std::byte> byt
   (void)ignoreSizeSignal;
   const std::string tmp = path + ".part";
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  if (fd < 0) fail(path, std::string("cannot write: ") + std::strerror(errno));
+  if (fd < 0) fail(path, "cannot write: " + std::generic_category().message(errno));
   int error = writeAll(fd, bytes) ? 0 : errno;
   if (::close(fd) != 0 && error == 0) error = errno;  // NFS and quotas report at close
   if (error == 0 && std::rename(tmp.c_str(), path.c_str()) != 0) error = errno;
   if (error != 0) {
     ::unlink(tmp.c_str());
-    fail(path, std::string("cannot write: ") + std::strerror(error));
+    fail(path, "cannot write: " + std::generic_category().message(error));  // thread-safe, unlike strerror
   }
 }
 
