@@ -13,6 +13,7 @@
 #include "epi/volume.h"
 #include "mvr/error.h"
 #include "mvr/io/fd_stream.h"
+#include "mvr/io/image_file.h"
 #include "mvr/io/image_set.h"
 #include "mvr/timer.h"
 
@@ -37,10 +38,10 @@ int consume(int argc, char** argv) {
   const mvr::PixelType type = h.bytesPerChannel == 1 ? mvr::PixelType::U8 : mvr::PixelType::F32;
   if (format.empty()) format = type == mvr::PixelType::U8 ? "png" : "exr";
   mvr::app::checkHeldFramesFit({.reorderBytes = h.epiBytes() * h.height}, mvr::app::availableMemory(),
-                               "the stream's views do not fit; render fewer views or a smaller size");
+                               "render the stream with fewer views or a smaller size");
   mvr::ImageSetWriter writer(out, mvr::Manifest{.views = int(h.views), .rows = int(h.rows),
                                                 .width = int(h.width), .height = int(h.height),
-                                                .format = format, .bits = format == "exr" ? 32 : 8});
+                                                .format = format, .bits = mvr::defaultBits(format)});
   mvr::EpisToViews views(writer, int(h.width), int(h.height), int(h.views), type);
   size_t frames = 0;
   while (auto f = reader.next()) {  // in order, all of them, nothing after (or it throws)

@@ -1,11 +1,11 @@
 #include "apps/render_command.h"
 
 #include <csignal>
-#include <cstring>
-#include <optional>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -166,7 +166,7 @@ int runRender(int argc, char** argv, bool streamCommand) {
   const BackendOptions choice = f.backend.resolve();
   const bool streaming = !f.stream.empty();
   const std::string scenePath = f.scene.empty() ? defaultScenePath() : f.scene;
-  const int views = f.views, rows = f.rows, bits = f.bits.value_or(f.format == "exr" ? 32 : 8);
+  const int views = f.views, rows = f.rows, bits = f.bits.value_or(defaultBits(f.format));
   const auto [width, height] = f.size;
   const std::string &out = f.out, &format = f.format, &order = f.order;
   // 8-bit PNG renders into 8-bit targets; everything else renders in float.

@@ -25,6 +25,12 @@ struct Material {
   bool twoSided = true;       // false: back faces are culled
 };
 
+// A reflectance, vertex or light colour: every channel in [0, 1] (NaN is
+// not). Scene files and mesh files are held to it.
+inline bool isUnitColor(const glm::vec3& c) {
+  return glm::all(glm::greaterThanEqual(c, glm::vec3(0.0f))) && glm::all(glm::lessThanEqual(c, glm::vec3(1.0f)));
+}
+
 // Lights a scene may have: the shading passes' fixed arrays.
 inline constexpr int kMaxLights = 8;
 

@@ -25,6 +25,8 @@ struct ImageEncoding {
 
 // "" for png, "zip" for tiff and exr.
 std::string defaultCodec(const std::string& format);
+// 32 (float) for exr, 8 for png and tiff.
+inline int defaultBits(const std::string& format) { return format == "exr" ? 32 : 8; }
 // Throws mvr::Error naming the option (--bits, --codec, --compression)
 // when the encoding is not one `format` (png, exr, tiff) can store.
 void checkEncoding(const std::string& format, const ImageEncoding& encoding);

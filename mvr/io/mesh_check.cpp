@@ -7,6 +7,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <string_view>
 #include <vector>
 
 #include "mvr/error.h"
@@ -16,6 +17,14 @@ namespace {
 
 [[noreturn]] void failAt(const std::string& path, long line, const std::string& what) {
   fail(path + ":" + std::to_string(line), what);
+}
+
+// The whole word as a number of type T; false for an empty word, junk, a
+// value out of T's range, or trailing characters.
+template <class T>
+bool parseWhole(std::string_view word, T& value) {
+  const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
+  return !word.empty() && ec == std::errc() && end == word.data() + word.size();
 }
 
 std::string lower(std::string s) {
@@ -38,8 +47,7 @@ long checkCorner(const std::string& path, long line, const std::string& corner, 
       continue;
     }
     long index = 0;
-    const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), index);
-    if (ec != std::errc() || end != field.data() + field.size() || index == 0)
+    if (!parseWhole(field, index) || index == 0)
       failAt(path, line, "bad face index '" + field + "'");
     const long resolved = index > 0 ? index : defined[k] + 1 + index;
     if (resolved < 1 || resolved > defined[k])
@@ -59,10 +67,8 @@ void checkNumbers(const std::string& path, long line, std::istringstream& words,
     std::string word;
     words >> word;
     double value = 0.0;
-    const char* end = word.data() + word.size();
-    const char* first = word.data() + (word.size() > 1 && word[0] == '+');  // from_chars takes no '+'
-    const auto [at, ec] = std::from_chars(first, end, value);
-    if (word.empty() || ec != std::errc() || at != end || !(std::abs(value) <= kMaxCoordinate))
+    const std::string_view digits = std::string_view(word).substr(word.size() > 1 && word[0] == '+');  // from_chars takes no '+'
+    if (!parseWhole(digits, value) || !(std::abs(value) <= kMaxCoordinate))
       failAt(path, line, std::string(what) + " '" + word + "' is not a finite number within 1e15");
   }
 }
@@ -151,10 +157,9 @@ void checkPlyAsciiElement(const std::string& path, long line, const std::string&
     if (!(words >> word)) failAt(path, line, "element line has fewer values than its properties");
     if (!p.list) continue;
     unsigned long long items = 0;
-    const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), items);
     const int bytes = plyTypeBytes(p.type);
     const unsigned long long most = bytes >= 4 ? (1ull << 31) - 1 : (1ull << (8 * bytes)) - 1;
-    if (ec != std::errc() || end != word.data() + word.size() || items > most)
+    if (!parseWhole(word, items) || items > most)
       failAt(path, line, "bad list count '" + word + "'");
     for (unsigned long long k = 0; k < items; ++k)
       if (!(words >> word)) failAt(path, line, "list of " + std::to_string(items) + " items does not fit its line");
@@ -206,15 +211,13 @@ void checkPly(const std::string& path) {
         failAt(path, line, "unknown PLY format '" + format + "'");
       // OpenMesh's probe reads the version as a number and spins on anything else.
       double number = 0.0;
-      const auto [end, ec] = std::from_chars(version.data(), version.data() + version.size(), number);
-      if (version.empty() || ec != std::errc() || end != version.data() + version.size())
+      if (!parseWhole(version, number))
         failAt(path, line, "bad PLY version '" + version + "'");
     } else if (key == "element") {
       Element e;
       std::string count;
       words >> e.name >> count;
-      const auto [end, ec] = std::from_chars(count.data(), count.data() + count.size(), e.count);
-      if (e.name.empty() || ec != std::errc() || end != count.data() + count.size() || e.count > (1ull << 31))
+      if (e.name.empty() || !parseWhole(count, e.count) || e.count > (1ull << 31))
         failAt(path, line, "bad element line '" + text + "'");
       elements.push_back(e);
     } else if (key == "property") {

@@ -128,9 +128,7 @@ Scene loadMesh(const std::string& path) {
     if (opt.vertex_has_color() && CheckedImporter::given(importer.colors, v)) {
       auto c = mesh.color(v);
       color = glm::vec3(c[0], c[1], c[2]);  // 8-bit sources arrive divided by 255
-      if (!glm::all(glm::greaterThanEqual(color, glm::vec3(0.0f))) ||
-          !glm::all(glm::lessThanEqual(color, glm::vec3(1.0f))))
-        fail(path, "vertex " + std::to_string(v.idx()) + " has a colour outside [0, 1]");
+      if (!isUnitColor(color)) fail(path, "vertex " + std::to_string(v.idx()) + " has a colour outside [0, 1]");
     }
     s.colors.push_back(color);
     if (fileUvs) {

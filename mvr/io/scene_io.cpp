@@ -89,8 +89,7 @@ class SceneReader {
   // A reflectance or light colour: each channel in [0, 1].
   glm::vec3 color(const Json& j, const std::string& where) const {
     const glm::vec3 c = vec3(j, where);
-    if (glm::any(glm::lessThan(c, glm::vec3(0.0f))) || glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
-      bad(where, "colour channels must be in [0, 1]");
+    if (!isUnitColor(c)) bad(where, "colour channels must be in [0, 1]");
     return c;
   }
 

@@ -106,7 +106,7 @@ TEST_F(SceneIo, BrokenPlyHeadersAndCutData) {
   // OpenMesh's probe spins on a version that is not a number; an element
   // without properties would let a huge count through the size check.
   std::string version = ascii;
-  version.replace(version.find("1.0"), 3, "\x1b1.0");
+  version.replace(version.find("1.0"), 3, "\x1b" "1.0");
   expectError(write("version.ply", version), "version.ply:2: bad PLY version");
   std::string words = ascii;
   words.replace(words.find("property float z"), 16, "property float z element face 9");
