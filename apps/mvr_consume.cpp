@@ -15,6 +15,7 @@
 #include "mvr/io/fd_stream.h"
 #include "mvr/io/image_file.h"
 #include "mvr/io/image_set.h"
+#include "mvr/parallel.h"
 #include "mvr/timer.h"
 
 namespace {
@@ -29,6 +30,9 @@ int consume(int argc, char** argv) {
       ->required();
   app.add_option("--out", out, "output folder")->required();
   app.add_option("--format", format, "png, exr or tiff (default: png for 8-bit streams, else exr)");
+  mvr::app::addThreadsOption(app);
+  mvr::app::MemoryFlags memory;
+  memory.add(app, "the output folder");
   if (auto exit = mvr::app::parseCommandLine(app, argc, argv)) return *exit;
   mvr::Stopwatch watch;
   mvr::FdStreamBuf buffer(mvr::openForReading(from));
@@ -37,12 +41,17 @@ int consume(int argc, char** argv) {
   const mvr::EpiStreamHeader& h = reader.header();
   const mvr::PixelType type = h.bytesPerChannel == 1 ? mvr::PixelType::U8 : mvr::PixelType::F32;
   if (format.empty()) format = type == mvr::PixelType::U8 ? "png" : "exr";
-  mvr::app::checkHeldFramesFit({.reorderBytes = h.epiBytes() * h.height}, mvr::app::availableMemory(),
-                               "render the stream with fewer views or a smaller size");
+  const size_t viewBytes = h.epiBytes() / h.views * h.height, rowBytes = h.epiBytes() * h.height;
+  const mvr::ReorderMemory reorder =
+      memory.reorder(viewBytes, mvr::BoundedTasks::defaultLimit(), out);
+  const bool scratch = reorder.budget != 0 && rowBytes > reorder.budget;
+  mvr::app::checkHeldFramesFit({.reorderBytes = scratch ? reorder.budget : rowBytes},
+                               mvr::app::availableMemory(), "give a smaller --memory");
   mvr::ImageSetWriter writer(out, mvr::Manifest{.views = int(h.views), .rows = int(h.rows),
                                                 .width = int(h.width), .height = int(h.height),
                                                 .format = format, .bits = mvr::defaultBits(format)});
-  mvr::EpisToViews views(writer, int(h.width), int(h.height), int(h.views), type);
+  if (scratch) mvr::app::checkScratchFits(rowBytes, reorder.scratchDir);
+  mvr::EpisToViews views(writer, int(h.width), int(h.height), int(h.views), type, reorder);
   size_t frames = 0;
   while (auto f = reader.next()) {  // in order, all of them, nothing after (or it throws)
     views.putEpi(f->row, f->scanline, f->epi);
@@ -51,8 +60,8 @@ int consume(int argc, char** argv) {
   writer.manifest().info = {{"source", "stream " + from},
                             {"timings_s", {{"total", watch.seconds()}}}};
   writer.commit();
-  std::fprintf(stderr, "mvr-consume: %zu EPIs -> %u views in %s\n", frames, h.views * h.rows,
-               out.c_str());
+  std::fprintf(stderr, "mvr-consume: %zu EPIs -> %u views in %s%s\n", frames, h.views * h.rows,
+               out.c_str(), views.transpose().scratchNote().c_str());
   return 0;
 }
 

@@ -22,6 +22,7 @@
 #include "mvr/io/fd_stream.h"
 #include "mvr/io/image_set.h"
 #include "mvr/io/scene_io.h"
+#include "mvr/parallel.h"
 
 namespace mvr::app {
 
@@ -34,7 +35,7 @@ bool isPlainFile(const std::string& endpoint) {
 // EPIs to a file, stdout or socket as they complete, through a bounded
 // queue. A file is written under a temporary name and renamed when done.
 int streamTo(Renderer& renderer, const ShearingCamera& cam, const std::string& endpoint,
-             PixelType type, int queue) {
+             PixelType type, int queue, const ReorderMemory& memory) {
   namespace fs = std::filesystem;
   std::signal(SIGPIPE, SIG_IGN);  // a vanished consumer is an error, not a kill
   std::signal(SIGXFSZ, SIG_IGN);  // so is a file-size limit
@@ -44,19 +45,22 @@ int streamTo(Renderer& renderer, const ShearingCamera& cam, const std::string& e
                          uint32_t(cam.rows()), 4, uint32_t(Image::channelBytes(type))};
   Stopwatch watch;
   size_t highWater = 0;
+  std::string note;
   std::optional<FdStreamBuf> buffer;
   try {
     buffer.emplace(openForWriting(target));
     std::ostream out(&*buffer);
     QueuedEpiStream stream(out, header, size_t(queue));
-    std::unique_ptr<FrameSink> adaptor;
+    std::unique_ptr<ViewsToEpis> adaptor;
     if (renderer.order() == FrameOrder::View)
-      adaptor = std::make_unique<ViewsToEpis>(stream, cam.width(), cam.height(), cam.views(), type);
-    FrameSink& sink = adaptor ? *adaptor : stream;
+      adaptor = std::make_unique<ViewsToEpis>(stream, cam.width(), cam.height(), cam.views(), type,
+                                              memory);
+    FrameSink& sink = adaptor ? static_cast<FrameSink&>(*adaptor) : stream;
     RenderStats stats;
     renderer.render(cam, sink, stats);
     sink.finish();
     highWater = stream.highWater();
+    if (adaptor) note = adaptor->transpose().scratchNote();
     buffer.reset();  // closed before the rename
   } catch (...) {
     std::error_code ec;
@@ -70,9 +74,9 @@ int streamTo(Renderer& renderer, const ShearingCamera& cam, const std::string& e
     fs::rename(target, endpoint, ec);
     if (ec) fail(endpoint, "cannot finish stream file: " + ec.message());
   }
-  std::fprintf(stderr, "mvr: streamed %d EPIs of %dx%d to %s in %.3f s (queue high water %zu of %d)\n",
+  std::fprintf(stderr, "mvr: streamed %d EPIs of %dx%d to %s in %.3f s (queue high water %zu of %d%s)\n",
                cam.height() * cam.rows(), cam.width(), cam.views(), endpoint.c_str(), watch.seconds(),
-               highWater, queue);
+               highWater, queue, note.c_str());
   return 0;
 }
 
@@ -90,6 +94,7 @@ struct RenderFlags {
   std::string out = "out", format = "png", order = "view", gl = "auto";
   std::string stream, quilt, predistort, codec;
   bool strict = false;
+  MemoryFlags memory;
 
   void addShared(CLI::App& app) {
     app.add_option("SCENE", scene,
@@ -133,6 +138,7 @@ struct RenderFlags {
                    "write the raw EPI-major stream (docs/EPI_STREAM.md) to a file or stdout "
                    "instead of an image set (see mvr stream)")
         ->type_name("PATH|-");
+    memory.add(app, "the output folder; the current folder with --stream");
   }
 
   void addStreamOwn(CLI::App& app) {
@@ -142,6 +148,7 @@ struct RenderFlags {
     app.add_option("--queue", queue, "EPIs held at most")
         ->check(CLI::Range(1, 4096))
         ->capture_default_str();
+    memory.add(app, "the current folder");
   }
 };
 
@@ -178,25 +185,35 @@ int runRender(int argc, char** argv, bool streamCommand) {
   ShearingCamera camera(cameraFor(scene, width, height), width, height, views, rows);
   auto context = GlContext::create(platform);
   auto renderer = makeRenderer(choice, scene, type);
-  {
-    // The frames a reordering sink and a quilt hold, before rendering starts.
-    const size_t rowBytes = size_t(width) * height * views * 4 * Image::channelBytes(type);
-    const bool reorders = streaming ? renderer->order() == FrameOrder::View
-                                    : (renderer->order() == FrameOrder::Epi) == (order == "view");
-    checkHeldFramesFit({.reorderBytes = reorders ? rowBytes : 0,
-                        .quiltBytes = !streaming && !f.quilt.empty() ? rowBytes * rows : 0},
-                       availableMemory(),
-                       streaming ? "render fewer views or a smaller size"
-                                 : "use --order " + std::string(order == "view" ? "epi" : "view") +
-                                       ", mvr stream, fewer views or a smaller size");
+  // Frames held, decided before rendering starts: a reordering sink's row
+  // within the memory budget (beyond it, a scratch file), a quilt whole.
+  const size_t pixelBytes = 4 * Image::channelBytes(type);
+  const size_t viewBytes = size_t(width) * height * pixelBytes, rowBytes = viewBytes * views;
+  const bool reorders = streaming ? renderer->order() == FrameOrder::View
+                                  : (renderer->order() == FrameOrder::Epi) == (order == "view");
+  ReorderMemory reorder;
+  if (reorders) {
+    // The frames the sink hands on, and how many its consumer holds in flight.
+    const bool toViews = !streaming && order == "view";
+    reorder = f.memory.reorder(toViews ? viewBytes : size_t(width) * views * pixelBytes,
+                               streaming ? f.queue : BoundedTasks::defaultLimit(),
+                               streaming ? "." : out);
   }
+  const bool scratch = reorders && reorder.budget != 0 && rowBytes > reorder.budget;
+  checkHeldFramesFit({.reorderBytes = reorders ? (scratch ? reorder.budget : rowBytes) : 0,
+                      .quiltBytes = !streaming && !f.quilt.empty() ? rowBytes * rows : 0},
+                     availableMemory(),
+                     std::string("give a smaller --memory") + (f.quilt.empty() ? "" : ", drop --quilt") +
+                         ", fewer views or a smaller size");
+  if (scratch && streaming) checkScratchFits(rowBytes, reorder.scratchDir);
 
-  if (streaming) return streamTo(*renderer, camera, f.stream, type, f.queue);
+  if (streaming) return streamTo(*renderer, camera, f.stream, type, f.queue, reorder);
 
   ImageSetWriter writer(out, Manifest{.views = views, .rows = rows, .width = width, .height = height,
                                      .format = format, .order = order, .bits = bits,
                                      .compression = f.compression, .codec = f.codec});
   // Sink chain: [predistort] -> [reorder] -> writer (+ quilt).
+  if (scratch) checkScratchFits(rowBytes, reorder.scratchDir);  // the output folder exists now
   std::vector<float> lut;
   if (!f.predistort.empty()) lut = loadPredistortionTable(f.predistort, width);
   std::unique_ptr<QuiltSink> quilt;
@@ -212,10 +229,16 @@ int runRender(int argc, char** argv, bool streamCommand) {
   FrameSink* sink = &writer;
   if (quilt) sink = chain.emplace_back(std::make_unique<TeeSink>(std::vector<FrameSink*>{&writer, quilt.get()})).get();
   // Reorder only when the renderer's natural order is not the one asked for.
-  if (renderer->order() == FrameOrder::Epi && order == "view")
-    sink = chain.emplace_back(std::make_unique<EpisToViews>(*sink, width, height, views, type)).get();
-  else if (renderer->order() == FrameOrder::View && order == "epi")
-    sink = chain.emplace_back(std::make_unique<ViewsToEpis>(*sink, width, height, views, type)).get();
+  const FrameTranspose* transpose = nullptr;
+  if (renderer->order() == FrameOrder::Epi && order == "view") {
+    auto reorderer = std::make_unique<EpisToViews>(*sink, width, height, views, type, reorder);
+    transpose = &reorderer->transpose();
+    sink = chain.emplace_back(std::move(reorderer)).get();
+  } else if (renderer->order() == FrameOrder::View && order == "epi") {
+    auto reorderer = std::make_unique<ViewsToEpis>(*sink, width, height, views, type, reorder);
+    transpose = &reorderer->transpose();
+    sink = chain.emplace_back(std::move(reorderer)).get();
+  }
   if (!lut.empty()) sink = chain.emplace_back(std::make_unique<PredistortSink>(*sink, lut)).get();
   RenderStats stats;
   Stopwatch total;
@@ -239,11 +262,15 @@ int runRender(int argc, char** argv, bool streamCommand) {
   m["notes"] = stats.notes;
   m["pixel_origin"] = "top-left; view i at camera x = track[0] + i * view_spacing";
   if (quilt) m["quilt"] = quilt->fileName(format);
+  if (transpose)
+    m["reorder"] = {{"budget_bytes", reorder.budget},
+                    {"scratch_file", transpose->usesScratch()},
+                    {"frames_per_pass", transpose->outputsPerPass()}};
   if (!lut.empty()) m["predistortion"] = f.predistort;
   writer.commit();
-  std::fprintf(stderr, "mvr: %s rendered %d view(s) of %dx%d to %s in %.3f s\n",
+  std::fprintf(stderr, "mvr: %s rendered %d view(s) of %dx%d to %s in %.3f s%s\n",
                renderer->name().c_str(), views * rows, width, height, out.c_str(),
-               total.seconds());
+               total.seconds(), transpose ? transpose->scratchNote().c_str() : "");
   return 0;
 }
 

@@ -1,38 +1,95 @@
 #include "epi/volume.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "mvr/error.h"
 
 namespace mvr {
+namespace {
 
-EpisToViews::EpisToViews(FrameSink& inner, int width, int height, int views, PixelType type)
-    : inner_(inner), height_(height), views_(views), frames_(views, Image(width, height, type)) {}
+std::span<const std::byte> bytesOf(const Image& image) {
+  return std::as_bytes(std::span(image.bytes));
+}
+
+}  // namespace
+
+FrameTranspose::FrameTranspose(int inputs, int rowsPerInput, int width, PixelType type,
+                               const ReorderMemory& memory)
+    : inputs_(inputs), rowsPerInput_(rowsPerInput) {
+  const Image probe(width, 1, type);
+  rowBytes_ = probe.rowBytes();
+  inputBytes_ = rowBytes_ * size_t(rowsPerInput);
+  const size_t outputBytes = rowBytes_ * size_t(inputs);
+  int held = rowsPerInput;
+  if (memory.budget != 0 && outputBytes * size_t(rowsPerInput) > memory.budget) {
+    // At least one output frame, however small the budget.
+    held = int(std::clamp<size_t>(memory.budget / outputBytes, 1, size_t(rowsPerInput)));
+    scratch_ = std::make_unique<ScratchFile>(memory.scratchDir);
+  }
+  outputs_.assign(size_t(held), Image(width, inputs, type));
+}
+
+bool FrameTranspose::put(int index, const Image& frame) {
+  if (index < 0 || index >= inputs_ || frame.bytes.size() != inputBytes_)
+    fail("reordering sink", "a frame of the wrong shape or index");
+  if (scratch_) {
+    scratch_->write(uint64_t(index) * inputBytes_, bytesOf(frame));
+  } else {
+    for (int j = 0; j < rowsPerInput_; ++j)
+      std::memcpy(outputs_[size_t(j)].row(index), frame.row(j), rowBytes_);
+  }
+  return ++received_ == inputs_;
+}
+
+void FrameTranspose::emit(const std::function<void(int, const Image&)>& out) {
+  received_ = 0;
+  if (scratch_) return emitFromScratch(out);
+  for (int j = 0; j < rowsPerInput_; ++j) out(j, outputs_[size_t(j)]);
+}
+
+// A pass fills a group of outputs: from every input, the run of rows the
+// group needs, read in one call straight into the outputs' rows.
+void FrameTranspose::emitFromScratch(const std::function<void(int, const Image&)>& out) {
+  const int group = int(outputs_.size());
+  std::vector<std::span<std::byte>> pieces;
+  for (int first = 0; first < rowsPerInput_; first += group) {
+    const int n = std::min(group, rowsPerInput_ - first);
+    for (int i = 0; i < inputs_; ++i) {
+      pieces.clear();
+      for (int k = 0; k < n; ++k)
+        pieces.push_back(std::as_writable_bytes(std::span(outputs_[size_t(k)].row(i), rowBytes_)));
+      scratch_->read(uint64_t(i) * inputBytes_ + uint64_t(first) * rowBytes_, pieces);
+    }
+    for (int k = 0; k < n; ++k) out(first + k, outputs_[size_t(k)]);
+  }
+}
+
+std::string FrameTranspose::scratchNote() const {
+  if (!scratch_) return "";
+  return "; reordered through a scratch file, " + std::to_string(outputs_.size()) + " frames per pass";
+}
+
+EpisToViews::EpisToViews(FrameSink& inner, int width, int height, int views, PixelType type,
+                         const ReorderMemory& memory)
+    : inner_(inner), height_(height), views_(views), volume_(height, views, width, type, memory) {}
 
 void EpisToViews::putEpi(int row, int scanline, const Image& epi) {
   if (epi.height != views_ || scanline < 0 || scanline >= height_) fail("EPI sink", "EPI of the wrong shape");
-  if (received_ == 0) row_ = row;
-  for (int i = 0; i < views_; ++i)
-    std::memcpy(frames_[i].row(scanline), epi.row(i), epi.rowBytes());
-  if (++received_ < height_) return;
-  for (int i = 0; i < views_; ++i) inner_.putView(row_, i, frames_[i]);
-  received_ = 0;
+  row_ = row;
+  if (!volume_.put(scanline, epi)) return;
+  volume_.emit([&](int view, const Image& image) { inner_.putView(row_, view, image); });
 }
 
-ViewsToEpis::ViewsToEpis(FrameSink& inner, int width, int height, int views, PixelType type)
-    : inner_(inner), width_(width), height_(height), views_(views), type_(type),
-      views_held_(views) {}
+ViewsToEpis::ViewsToEpis(FrameSink& inner, int width, int height, int views, PixelType type,
+                         const ReorderMemory& memory)
+    : inner_(inner), height_(height), views_(views), volume_(views, height, width, type, memory) {}
 
 void ViewsToEpis::putView(int row, int view, const Image& image) {
-  views_held_[view] = image;
-  if (++received_ < views_) return;
-  Image epi(width_, views_, type_);
-  for (int j = 0; j < height_; ++j) {
-    for (int i = 0; i < views_; ++i)
-      std::memcpy(epi.row(i), views_held_[i].row(j), epi.rowBytes());
-    inner_.putEpi(row, j, epi);
-  }
-  received_ = 0;
+  if (image.height != height_ || view < 0 || view >= views_) fail("view sink", "view of the wrong shape");
+  row_ = row;
+  if (!volume_.put(view, image)) return;
+  volume_.emit([&](int scanline, const Image& epi) { inner_.putEpi(row_, scanline, epi); });
 }
 
 }  // namespace mvr

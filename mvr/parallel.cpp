@@ -51,8 +51,10 @@ struct BoundedTasks::State {
   }
 };
 
+int BoundedTasks::defaultLimit() { return 2 * threadCount(); }
+
 BoundedTasks::BoundedTasks(int limit) : state_(std::make_unique<State>()) {
-  state_->limit = limit > 0 ? limit : 2 * threadCount();
+  state_->limit = limit > 0 ? limit : defaultLimit();
 }
 
 BoundedTasks::~BoundedTasks() { state_->group.wait(); }

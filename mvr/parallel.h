@@ -22,7 +22,8 @@ void parallelFor(int begin, int end, const std::function<void(int)>& body);
 // task's exception; so does the next submit() once a task has failed.
 class BoundedTasks {
  public:
-  explicit BoundedTasks(int limit = 0);  // 0: twice the pool's workers
+  explicit BoundedTasks(int limit = 0);  // 0: defaultLimit()
+  static int defaultLimit();             // twice the pool's workers
   ~BoundedTasks();                       // waits; errors are dropped
   BoundedTasks(const BoundedTasks&) = delete;
   BoundedTasks& operator=(const BoundedTasks&) = delete;

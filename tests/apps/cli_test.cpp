@@ -123,8 +123,12 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
                            "render --size 10 --out " + d.string(),
                            "render --backend nope --out " + d.string(),
                            "render --gl vulkan --out " + d.string(),
-                           // 64 TiB of views to reorder: refused before rendering.
-                           "render --views 65536 --size 16384x16384 --out " + d.string(), "frobnicate"}) {
+                           // 4 TiB of views: in a quilt, in memory, refused; to reorder, more
+                           // than the scratch disk holds; a budget below one frame.
+                           "render --views 65536 --size 4096x4096 --quilt auto --out " + d.string(),
+                           "render --views 65536 --size 4096x4096 --memory 1G --threads 1 --out " + d.string(),
+                           "render --views 8 --size 4096x4096 --memory 100M --out " + d.string(),
+                           "render --memory 12X --out " + d.string(), "frobnicate"}) {
     Result r = run(args);
     EXPECT_NE(r.status, 0) << args;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
@@ -134,8 +138,14 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
       EXPECT_NE(r.err.find("nothere.png"), std::string::npos) << r.err;
     if (args.find(squareMap.string()) != std::string::npos)
       EXPECT_NE(r.err.find("checker.png: a reflection map must be"), std::string::npos) << r.err;
-    if (args.find("65536") != std::string::npos)
-      EXPECT_NE(r.err.find("mvr: memory: the job needs about 65536.0 GiB"), std::string::npos) << r.err;
+    if (args.find("--quilt auto") != std::string::npos)
+      EXPECT_NE(r.err.find("GiB for the quilt) but"), std::string::npos) << r.err;
+    if (args.find("--memory 1G") != std::string::npos)
+      EXPECT_NE(r.err.find("the scratch file needs 4096.0 GiB but the disk has"), std::string::npos) << r.err;
+    if (args.find("--memory 100M") != std::string::npos)
+      EXPECT_NE(r.err.find("mvr: --memory: 100.0 MiB cannot hold one frame (64.0 MiB)"), std::string::npos) << r.err;
+    if (args.find("12X") != std::string::npos)
+      EXPECT_NE(r.err.find("mvr: --memory: '12X' is not a size"), std::string::npos) << r.err;
   }
 }
 
