@@ -39,8 +39,8 @@ int consume(int argc, char** argv) {
   std::istream in(&buffer);
   mvr::EpiStreamReader reader(in);
   const mvr::EpiStreamHeader& h = reader.header();
-  const mvr::PixelType type = h.bytesPerChannel == 1 ? mvr::PixelType::U8 : mvr::PixelType::F32;
-  if (format.empty()) format = type == mvr::PixelType::U8 ? "png" : "exr";
+  const mvr::PixelType type = h.pixelType();
+  if (format.empty()) format = mvr::isByteType(type) ? "png" : "exr";
   const size_t viewBytes = h.epiBytes() / h.views * h.height, rowBytes = h.epiBytes() * h.height;
   const mvr::ReorderMemory reorder =
       memory.reorder(viewBytes, mvr::BoundedTasks::defaultLimit(), out);
@@ -49,7 +49,8 @@ int consume(int argc, char** argv) {
                                mvr::app::availableMemory(), "give a smaller --memory");
   mvr::ImageSetWriter writer(out, mvr::Manifest{.views = int(h.views), .rows = int(h.rows),
                                                 .width = int(h.width), .height = int(h.height),
-                                                .format = format, .bits = mvr::defaultBits(format)});
+                                                .format = format, .bits = mvr::defaultBits(format),
+                                                .srgb = type != mvr::PixelType::U8});
   if (scratch) mvr::app::checkScratchFits(rowBytes, reorder.scratchDir);
   mvr::EpisToViews views(writer, int(h.width), int(h.height), int(h.views), type, reorder);
   size_t frames = 0;

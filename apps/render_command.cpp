@@ -42,7 +42,8 @@ int streamTo(Renderer& renderer, const ShearingCamera& cam, const std::string& e
   const bool file = isPlainFile(endpoint);
   const std::string target = file ? endpoint + ".part" : endpoint;
   EpiStreamHeader header{uint32_t(cam.width()), uint32_t(cam.height()), uint32_t(cam.views()),
-                         uint32_t(cam.rows()), 4, uint32_t(Image::channelBytes(type))};
+                         uint32_t(cam.rows()), 4, uint32_t(Image::channelBytes(type)),
+                         type == PixelType::Srgb8};
   Stopwatch watch;
   size_t highWater = 0;
   std::string note;
@@ -93,7 +94,7 @@ struct RenderFlags {
   std::pair<int, int> size{320, 240};
   std::string out = "out", format = "png", order = "view", gl = "auto";
   std::string stream, quilt, predistort, codec;
-  bool strict = false;
+  bool strict = false, linear = false;
   MemoryFlags memory;
 
   void addShared(CLI::App& app) {
@@ -107,6 +108,9 @@ struct RenderFlags {
     addGlOption(app, gl);
     addThreadsOption(app);
     addStrictOption(app, strict);
+    app.add_flag("--linear", linear,
+                 "write linear values to png and tiff files (and 8-bit streams) instead of "
+                 "sRGB-encoded ones; exr is always linear");
   }
 
   void addRenderOwn(CLI::App& app) {
@@ -176,8 +180,11 @@ int runRender(int argc, char** argv, bool streamCommand) {
   const int views = f.views, rows = f.rows, bits = f.bits.value_or(defaultBits(f.format));
   const auto [width, height] = f.size;
   const std::string &out = f.out, &format = f.format, &order = f.order;
-  // 8-bit PNG renders into 8-bit targets; everything else renders in float.
-  const PixelType type = format == "png" && bits == 8 ? PixelType::U8 : PixelType::F32;
+  // 8-bit PNG renders into 8-bit targets, sRGB-encoding ones unless
+  // --linear (encoded from full precision, not from 8-bit linear values);
+  // everything else renders in float and is encoded as it is written.
+  const PixelType type = format == "png" && bits == 8 ? (f.linear ? PixelType::U8 : PixelType::Srgb8)
+                                                      : PixelType::F32;
   const GlPlatform platform = parseGlPlatform(f.gl);
 
   // Input problems first, before any GL or file work.
@@ -211,7 +218,8 @@ int runRender(int argc, char** argv, bool streamCommand) {
 
   ImageSetWriter writer(out, Manifest{.views = views, .rows = rows, .width = width, .height = height,
                                      .format = format, .order = order, .bits = bits,
-                                     .compression = f.compression, .codec = f.codec});
+                                     .compression = f.compression, .codec = f.codec,
+                                     .srgb = !f.linear});
   // Sink chain: [predistort] -> [reorder] -> writer (+ quilt).
   if (scratch) checkScratchFits(rowBytes, reorder.scratchDir);  // the output folder exists now
   std::vector<float> lut;

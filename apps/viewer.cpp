@@ -108,6 +108,7 @@ class Viewer {
     gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
     gl::Viewport(0, 0, set_.width, windowRows());
     gl::Disable(GL_DEPTH_TEST);
+    gl::Disable(GL_FRAMEBUFFER_SRGB);  // the textures hold display values already
     gl::UseProgram(program_.id());
     gl::setUniform(program_, "uEpiRows", set_.views);
     gl::setUniform(program_, "uPanelRows", panelRows_);
@@ -124,7 +125,7 @@ class Viewer {
 
   // The window as an image, rows top first.
   Image screenshot() const {
-    Image img(set_.width, windowRows(), PixelType::U8);
+    Image img(set_.width, windowRows(), PixelType::Srgb8);
     gl::BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
     std::vector<uint8_t> raw(img.bytes.size());
@@ -222,17 +223,15 @@ class Viewer {
   gl::Program program_;
 };
 
-// 8-bit copies for display (float sets are clamped).
+// 8-bit copies for display: float sets (linear) are clamped and
+// sRGB-encoded; 8-bit files are shown as they store their values.
 void toDisplay(ViewSet& set) {
   for (auto& row : set.images)
     for (Image& img : row) {
-      if (img.type == PixelType::U8) continue;
-      Image out(img.width, img.height, PixelType::U8);
+      if (isByteType(img.type)) continue;
+      Image out(img.width, img.height, PixelType::Srgb8);
       for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width; ++x) {
-          glm::vec4 v = glm::clamp(img.pixel(x, y), 0.0f, 1.0f);
-          for (int c = 0; c < 4; ++c) out.row(y)[x * 4 + c] = uint8_t(std::lround(v[c] * 255.0f));
-        }
+        for (int x = 0; x < img.width; ++x) out.setLinear(x, y, img.linear(x, y));
       img = std::move(out);
     }
 }
@@ -277,11 +276,11 @@ int runView(int argc, char** argv) {
     set.images.assign(set.rows, std::vector<Image>(set.views));
     window = GlfwWindow::open(w, h + std::min(set.views, 512), "mvr view", false);
     ShearingCamera cam(cameraFor(scene, w, h), w, h, set.views, set.rows);
-    auto renderer = makeRenderer(options, scene, PixelType::U8);
+    auto renderer = makeRenderer(options, scene, PixelType::Srgb8);
     ViewCollector collect(set);
     std::unique_ptr<EpisToViews> reorder;
     if (renderer->order() == FrameOrder::Epi)
-      reorder = std::make_unique<EpisToViews>(collect, w, h, set.views, PixelType::U8);
+      reorder = std::make_unique<EpisToViews>(collect, w, h, set.views, PixelType::Srgb8);
     RenderStats stats;
     renderer->render(cam, reorder ? static_cast<FrameSink&>(*reorder) : collect, stats);
   }

@@ -27,7 +27,7 @@ EpiStreamWriter::EpiStreamWriter(std::ostream& out, const EpiStreamHeader& h)
   std::array<uint8_t, kHeaderBytes> bytes{};
   std::memcpy(bytes.data(), kMagic, 8);
   const uint32_t fields[] = {kHeaderBytes, h.width, h.height, h.views, h.rows, h.channels,
-                             h.bytesPerChannel};
+                             h.bytesPerChannel, h.srgb};
   for (size_t i = 0; i < std::size(fields); ++i) putU32(bytes.data() + 8 + 4 * i, fields[i]);
   out_.write(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   if (!out_) fail("stream", "cannot write header");
@@ -35,7 +35,7 @@ EpiStreamWriter::EpiStreamWriter(std::ostream& out, const EpiStreamHeader& h)
 
 void EpiStreamWriter::putEpi(int row, int scanline, const Image& epi) {
   if (size_t(epi.width) != header_.width || size_t(epi.height) != header_.views ||
-      Image::channelBytes(epi.type) != header_.bytesPerChannel)
+      epi.type != header_.pixelType())
     fail("stream", "EPI does not match the stream header");
   uint8_t tag[8];
   putU32(tag, uint32_t(row));
@@ -62,6 +62,9 @@ EpiStreamReader::EpiStreamReader(std::istream& in) : in_(in) {
   header_.rows = getU32(bytes.data() + 24);
   header_.channels = getU32(bytes.data() + 28);
   header_.bytesPerChannel = getU32(bytes.data() + 32);
+  header_.srgb = getU32(bytes.data() + 36);
+  if (header_.srgb > 1 || (header_.srgb && header_.bytesPerChannel != 1))
+    fail("stream", "header color encoding " + std::to_string(header_.srgb) + " is not 0 (linear) or 1 (sRGB bytes)");
   if (header_.channels != 4 || (header_.bytesPerChannel != 1 && header_.bytesPerChannel != 4) ||
       header_.width == 0 || header_.views == 0 || header_.height == 0 || header_.rows == 0)
     fail("stream", "header describes no valid EPI");
@@ -99,7 +102,7 @@ std::optional<EpiStreamReader::Frame> EpiStreamReader::next() {
   Frame f{int(getU32(tag)), int(getU32(tag + 4)), Image()};
   f.epi.width = int(header_.width);
   f.epi.height = int(header_.views);
-  f.epi.type = header_.bytesPerChannel == 1 ? PixelType::U8 : PixelType::F32;
+  f.epi.type = header_.pixelType();
   // In pieces, the buffer growing with the data that arrived: a hostile
   // header promising gigabytes must not allocate them before the stream
   // shows it has them.

@@ -20,6 +20,11 @@ namespace mvr {
 
 struct EpiStreamHeader {
   uint32_t width = 0, height = 0, views = 0, rows = 1, channels = 4, bytesPerChannel = 1;
+  // 1: 8-bit colour is sRGB-encoded (Srgb8); 0: linear. Floats are linear.
+  uint32_t srgb = 0;
+  PixelType pixelType() const {
+    return bytesPerChannel == 4 ? PixelType::F32 : srgb ? PixelType::Srgb8 : PixelType::U8;
+  }
   size_t epiBytes() const { return size_t(width) * views * channels * bytesPerChannel; }
 };
 

@@ -7,6 +7,7 @@
 
 #include "epi/epi_rasterizer.h"
 #include "epi/pst.h"
+#include "mvr/color.h"
 #include "mvr/error.h"
 #include "mvr/parallel.h"
 #include "mvr/progress.h"
@@ -157,6 +158,9 @@ class SpanRasterizer final : public EpiRasterizer {
       p[1] = uint8_t(std::lrint(v.g * 255.0f));
       p[2] = uint8_t(std::lrint(v.b * 255.0f));
       p[3] = 255;
+    } else if (type_ == PixelType::Srgb8) {
+      uint8_t* p = img.row(y) + size_t(x) * 4;
+      p[0] = srgb8(v.r), p[1] = srgb8(v.g), p[2] = srgb8(v.b), p[3] = 255;
     } else {
       float* p = reinterpret_cast<float*>(img.row(y)) + size_t(x) * 4;
       p[0] = v.r, p[1] = v.g, p[2] = v.b, p[3] = 1.0f;

@@ -76,15 +76,10 @@ Image PredistortSink::apply(const Image& in) const {
       const float s = lut_[x] - 0.5f;  // continuous source coordinate of centres
       const int x0 = int(std::floor(s));
       const float t = s - float(x0);
-      glm::vec4 a = x0 >= 0 && x0 < in.width ? in.pixel(x0, y) : glm::vec4(0);
-      glm::vec4 b = x0 + 1 >= 0 && x0 + 1 < in.width ? in.pixel(x0 + 1, y) : glm::vec4(0);
-      const glm::vec4 v = a + (b - a) * t;
-      if (out.type == PixelType::U8) {
-        uint8_t* p = out.row(y) + size_t(x) * 4;
-        for (int c = 0; c < 4; ++c) p[c] = uint8_t(std::lround(std::clamp(v[c], 0.0f, 1.0f) * 255.0f));
-      } else {
-        std::memcpy(out.row(y) + size_t(x) * 16, &v, 16);
-      }
+      // Interpolated in linear light: encoded values would darken edges.
+      glm::vec4 a = x0 >= 0 && x0 < in.width ? in.linear(x0, y) : glm::vec4(0);
+      glm::vec4 b = x0 + 1 >= 0 && x0 + 1 < in.width ? in.linear(x0 + 1, y) : glm::vec4(0);
+      out.setLinear(x, y, a + (b - a) * t);
     }
   }
   return out;

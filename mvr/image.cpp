@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "mvr/color.h"
+
 namespace mvr {
 
 std::vector<uint8_t> resampleRgba8(const Image& src, glm::ivec4 rect, int width, int height,
@@ -27,10 +29,29 @@ std::vector<uint8_t> resampleRgba8(const Image& src, glm::ivec4 rect, int width,
 
 glm::vec4 Image::pixel(int x, int y) const {
   const size_t i = (size_t(y) * width + x) * 4;
-  if (type == PixelType::U8) return glm::vec4(bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]) / 255.0f;
+  if (isByteType(type)) return glm::vec4(bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]) / 255.0f;
   glm::vec4 v;
   std::memcpy(&v, bytes.data() + i * 4, sizeof v);
   return v;
+}
+
+glm::vec4 Image::linear(int x, int y) const {
+  if (type != PixelType::Srgb8) return pixel(x, y);
+  const uint8_t* p = bytes.data() + (size_t(y) * width + x) * 4;
+  return {linearOfSrgb8(p[0]), linearOfSrgb8(p[1]), linearOfSrgb8(p[2]), float(p[3]) / 255.0f};
+}
+
+void Image::setLinear(int x, int y, const glm::vec4& v) {
+  const size_t i = (size_t(y) * width + x) * 4;
+  if (type == PixelType::F32) {
+    std::memcpy(bytes.data() + i * 4, &v, sizeof v);
+    return;
+  }
+  // GL's float -> unorm8 conversion: round to nearest.
+  auto unorm8 = [](float c) { return uint8_t(std::lrint(std::clamp(c, 0.0f, 1.0f) * 255.0f)); };
+  uint8_t* p = bytes.data() + i;
+  for (int c = 0; c < 3; ++c) p[c] = type == PixelType::Srgb8 ? srgb8(v[c]) : unorm8(v[c]);
+  p[3] = unorm8(v[3]);
 }
 
 }  // namespace mvr

@@ -8,7 +8,11 @@
 
 namespace mvr {
 
-enum class PixelType { U8, F32 };
+// U8 and F32 hold linear values; Srgb8 holds sRGB-encoded colour (alpha
+// linear), what 8-bit files and displays expect (mvr/color.h).
+enum class PixelType { U8, Srgb8, F32 };
+
+inline bool isByteType(PixelType t) { return t != PixelType::F32; }
 
 struct Image {
   int width = 0, height = 0;
@@ -18,12 +22,17 @@ struct Image {
   Image() = default;
   Image(int w, int h, PixelType t)
       : width(w), height(h), type(t), bytes(size_t(w) * h * 4 * channelBytes(t)) {}
-  static size_t channelBytes(PixelType t) { return t == PixelType::U8 ? 1 : 4; }
+  static size_t channelBytes(PixelType t) { return isByteType(t) ? 1 : 4; }
   size_t rowBytes() const { return size_t(width) * 4 * channelBytes(type); }
   uint8_t* row(int y) { return bytes.data() + y * rowBytes(); }
   const uint8_t* row(int y) const { return bytes.data() + y * rowBytes(); }
-  // Channel value scaled to [0, 1].
+  // Stored channel values scaled to [0, 1] (sRGB-encoded for Srgb8).
   glm::vec4 pixel(int x, int y) const;
+  // Linear-light values: Srgb8 colour decoded.
+  glm::vec4 linear(int x, int y) const;
+  // Stores linear-light values: quantised (byte types, clamped to [0, 1])
+  // and sRGB-encoded for Srgb8.
+  void setLinear(int x, int y, const glm::vec4& v);
 };
 
 // The rectangle (x, y, w, h) of src resampled bilinearly (edges clamped) to

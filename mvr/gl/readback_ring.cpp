@@ -43,7 +43,7 @@ ReadbackRing::~ReadbackRing() {
 }
 
 void ReadbackRing::readRows(const RenderTarget& target, int y, int h, std::byte* dst) {
-  read(target, target.framebuffer(), y, h, dst);
+  read(target, target.readableFramebuffer(y, h), y, h, dst);
 }
 
 void ReadbackRing::readLayer(const RenderTarget& target, int layer, std::byte* dst) {
@@ -57,16 +57,14 @@ void ReadbackRing::readLayer(const RenderTarget& target, int layer, std::byte* d
 void ReadbackRing::read(const RenderTarget& target, GLuint framebuffer, int y, int h, std::byte* dst) {
   const size_t bytes = size_t(target.width()) * h * 4 * Image::channelBytes(target.type());
   gl::BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
-  gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
   if (!staged()) {
-    gl::ReadPixels(0, y, target.width(), h, GL_RGBA, glChannelType(target.type()), dst);
+    readStoredPixels(y, target.width(), h, target.type(), dst);
     return;
   }
   Slot& slot = slots_[current_];
   if (slot.used + bytes > slotBytes_) fail("ReadbackRing", "a batch reads more than a slot holds");
   gl::BindBuffer(GL_PIXEL_PACK_BUFFER, slot.buffer.id());
-  gl::ReadPixels(0, y, target.width(), h, GL_RGBA, glChannelType(target.type()),
-                 reinterpret_cast<void*>(slot.used));
+  readStoredPixels(y, target.width(), h, target.type(), reinterpret_cast<void*>(slot.used));
   gl::BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   slot.copies.push_back({slot.used, bytes, dst});
   slot.used += bytes;

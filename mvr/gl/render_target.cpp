@@ -5,7 +5,20 @@
 namespace mvr {
 namespace {
 
-GLenum colorFormat(PixelType t) { return t == PixelType::U8 ? GL_RGBA8 : GL_RGBA32F; }
+GLenum colorFormat(PixelType t) {
+  switch (t) {
+    case PixelType::U8: return GL_RGBA8;
+    case PixelType::Srgb8: return GL_SRGB8_ALPHA8;
+    case PixelType::F32: break;
+  }
+  return GL_RGBA32F;
+}
+
+void checkComplete(GLuint fbo, int width, int height) {
+  if (gl::CheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    fail("GL", "render target " + std::to_string(width) + "x" + std::to_string(height) +
+                   " is incomplete");
+}
 
 }  // namespace
 
@@ -27,14 +40,30 @@ RenderTarget::RenderTarget(int width, int height, PixelType type, int layers, Pi
   gl::checkError("allocating render target");
   gl::NamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, color_.id(), 0);
   gl::NamedFramebufferTexture(fbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
-  if (gl::CheckNamedFramebufferStatus(fbo_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    fail("GL", "render target " + std::to_string(width) + "x" + std::to_string(height) +
-                   " is incomplete");
+  checkComplete(fbo_.id(), width, height);
+  if (type == PixelType::Srgb8 && storage != type) {
+    if (layers) fail("GL", "a layered target cannot be read in another format");
+    resolved_ = gl::Texture(GL_TEXTURE_2D);
+    gl::TextureStorage2D(resolved_.id(), 1, colorFormat(type), width, height);
+    resolveFbo_ = gl::Framebuffer::create();
+    gl::NamedFramebufferTexture(resolveFbo_.id(), GL_COLOR_ATTACHMENT0, resolved_.id(), 0);
+    checkComplete(resolveFbo_.id(), width, height);
+  }
 }
 
 void RenderTarget::bind() const {
   gl::BindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
   gl::Viewport(0, 0, width_, height_);
+  gl::Enable(GL_FRAMEBUFFER_SRGB);  // no effect on linear targets
+}
+
+GLuint RenderTarget::readableFramebuffer(int y, int h) const {
+  if (!resolveFbo_.id()) return fbo_.id();
+  // The blit converts float to sRGB bytes (encoding on with FRAMEBUFFER_SRGB).
+  gl::Enable(GL_FRAMEBUFFER_SRGB);
+  gl::BlitNamedFramebuffer(fbo_.id(), resolveFbo_.id(), 0, y, width_, y + h, 0, y, width_, y + h,
+                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  return resolveFbo_.id();
 }
 
 void RenderTarget::clear() const {
@@ -54,9 +83,15 @@ Image RenderTarget::read() const {
 }
 
 void RenderTarget::readRows(int y, int h, Image& out, int outY) const {
-  gl::BindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.id());
+  gl::BindFramebuffer(GL_READ_FRAMEBUFFER, readableFramebuffer(y, h));
+  readStoredPixels(y, width_, h, type_, out.row(outY));
+}
+
+void readStoredPixels(int y, int width, int h, PixelType type, void* dst) {
   gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl::ReadPixels(0, y, width_, h, GL_RGBA, glChannelType(type_), out.row(outY));
+  gl::Disable(GL_FRAMEBUFFER_SRGB);
+  gl::ReadPixels(0, y, width, h, GL_RGBA, glChannelType(type), dst);
+  gl::Enable(GL_FRAMEBUFFER_SRGB);
 }
 
 void setDepthConvention() {

@@ -10,7 +10,9 @@ class RenderTarget {
  public:
   // layers = 0: plain 2D; otherwise a 2D array of that many layers.
   // storage: the colour buffer's own format when it differs from the
-  // images read back (F32 to accumulate passes, read as U8 with clamping).
+  // images read back (F32 to accumulate passes, read as U8 with clamping,
+  // or as Srgb8 through an encoding blit). An Srgb8 target is GL sRGB:
+  // shaders write linear values, GL encodes them (and blends in linear).
   RenderTarget(int width, int height, PixelType type, int layers = 0);
   RenderTarget(int width, int height, PixelType type, int layers, PixelType storage);
 
@@ -20,21 +22,33 @@ class RenderTarget {
   GLuint framebuffer() const { return fbo_.id(); }
   GLuint colorTexture() const { return color_.id(); }
 
-  void bind() const;           // binds, sets the viewport
+  void bind() const;           // binds, sets the viewport, sRGB encoding on
   void clear() const;          // colour 0, depth 0 (far in reversed Z)
   Image read() const;          // 2D target: whole image, rows top first
   // Rows [y, y + h) into an existing image of the target's width.
   void readRows(int y, int h, Image& out, int outY) const;
+  // The framebuffer whose rows [y, y + h) hold the pixels as read back:
+  // this one, or (F32 storage read as Srgb8) a copy the rows were just
+  // encoded into.
+  GLuint readableFramebuffer(int y, int h) const;
 
  private:
   int width_, height_, layers_;
   PixelType type_;
   gl::Texture color_, depth_;
   gl::Framebuffer fbo_;
+  gl::Texture resolved_;  // only when F32 storage is read as Srgb8
+  gl::Framebuffer resolveFbo_;
 };
 
 // The GL type of a PixelType's channels, for reads and uploads.
-inline GLenum glChannelType(PixelType t) { return t == PixelType::U8 ? GL_UNSIGNED_BYTE : GL_FLOAT; }
+inline GLenum glChannelType(PixelType t) { return isByteType(t) ? GL_UNSIGNED_BYTE : GL_FLOAT; }
+
+// Reads rows of the bound read framebuffer as they are stored (into a
+// bound pixel-pack buffer when dst is an offset): an sRGB target gives its
+// encoded bytes. FRAMEBUFFER_SRGB is off during the read, as drivers
+// differ on whether a read with it on decodes.
+void readStoredPixels(int y, int width, int h, PixelType type, void* dst);
 
 // Reversed Z: depth test GREATER, clear to 0, zero-to-one clip depth.
 void setDepthConvention();

@@ -2,12 +2,14 @@
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <OpenImageIO/strutil.h>
 
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <vector>
 
+#include "mvr/color.h"
 #include "mvr/error.h"
 #include "mvr/io/atomic_file.h"
 
@@ -46,6 +48,23 @@ void checkEncoding(const std::string& format, const ImageEncoding& e) {
   fail("--codec", "'" + e.codec + "' is not a " + format + " codec (" + list + ")");
 }
 
+namespace {
+
+// The float image a file of `encoding` stores: sRGB-encoded colour for
+// integer files that say sRGB, linear otherwise (Srgb8 images decoded).
+Image floatFor(const Image& image, bool encode) {
+  Image out(image.width, image.height, PixelType::F32);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      glm::vec4 v = image.linear(x, y);
+      if (encode) v = {srgbEncode(v.r), srgbEncode(v.g), srgbEncode(v.b), v.a};
+      out.setLinear(x, y, v);
+    }
+  return out;
+}
+
+}  // namespace
+
 void writeImage(const Image& image, const std::string& path, const ImageEncoding& encoding) {
   const std::string format = formatOf(path);
   auto out = OIIO::ImageOutput::create(path);
@@ -54,17 +73,30 @@ void writeImage(const Image& image, const std::string& path, const ImageEncoding
   const OIIO::TypeDesc fileType = format == "exr" ? (encoding.bits == 16 ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT)
                                   : encoding.bits == 16 ? OIIO::TypeDesc::UINT16
                                                         : OIIO::TypeDesc::UINT8;
+  // Byte images go out as stored when the file holds bytes; everything
+  // else through float, encoded where the file says sRGB.
+  const bool asStored = isByteType(image.type) && encoding.bits == 8 && format != "exr";
+  const bool srgb = asStored ? image.type == PixelType::Srgb8 : encoding.srgb && format != "exr";
+  Image converted;
+  if (!asStored && (image.type != PixelType::F32 || srgb)) converted = floatFor(image, srgb);
+  const Image& pixels = converted.bytes.empty() ? image : converted;
   OIIO::ImageSpec spec(image.width, image.height, 4, fileType);
-  if (format == "png") spec.attribute("png:compressionLevel", encoding.pngLevel);
-  else spec.attribute("compression", encoding.codec.empty() ? defaultCodec(format) : encoding.codec);
-  const OIIO::TypeDesc memType = image.type == PixelType::U8 ? OIIO::TypeDesc::UINT8
-                                                             : OIIO::TypeDesc::FLOAT;
+  if (format == "png") {
+    // sRGB, gAMA and cHRM chunks, or gAMA 1.0. TIFF has no standard tag
+    // (and OpenImageIO 2.4's sRGB EXIF tag left TIFFs unreadable): the
+    // manifest's color_encoding says.
+    spec.attribute("oiio:ColorSpace", srgb ? "sRGB" : "linear");
+    spec.attribute("png:compressionLevel", encoding.pngLevel);
+  } else {
+    spec.attribute("compression", encoding.codec.empty() ? defaultCodec(format) : encoding.codec);
+  }
+  const OIIO::TypeDesc memType = isByteType(pixels.type) ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
   // Encoded in memory, then written by us: OpenImageIO's writers do not
   // report a failed write (a full disk gave a truncated file and success).
   std::vector<unsigned char> encoded;
   OIIO::Filesystem::IOVecOutput proxy(encoded);
   if (!out->supports("ioproxy") || !out->set_ioproxy(&proxy)) fail(path, "image writer cannot encode to memory");
-  if (!out->open(path, spec) || !out->write_image(memType, image.bytes.data()) || !out->close())
+  if (!out->open(path, spec) || !out->write_image(memType, pixels.bytes.data()) || !out->close())
     fail(path, "cannot encode image: " + out->geterror());
   writeFileAtomically(path, std::as_bytes(std::span(encoded)));
 }
@@ -76,6 +108,10 @@ ImageEncoding readImageEncoding(const std::string& path) {
   ImageEncoding e;
   e.bits = int(spec.format.size()) * 8;
   if (formatOf(path) != "png") e.codec = spec.get_string_attribute("compression");
+  // A PNG says (sRGB chunk, or gAMA 1.0 for linear); others: exr linear,
+  // tiff unknown here (the manifest says), reported as sRGB.
+  const std::string space = spec.get_string_attribute("oiio:ColorSpace");
+  e.srgb = formatOf(path) != "exr" && !OIIO::Strutil::iequals(space, "linear");
   return e;
 }
 

@@ -16,11 +16,15 @@ inline constexpr int kDefaultPngCompression = 1;
 // tiff: 8 or 16 bits, codec none, lzw or zip. exr: 16 (half) or 32 (float)
 // bits, codec none, rle, zip, zips, piz, pxr24, b44, dwaa or dwab. Float
 // images are quantised for 8 and 16-bit integer files. An empty codec is
-// the format's default (defaultCodec).
+// the format's default (defaultCodec). srgb: float images written to png
+// and tiff files are sRGB-encoded before quantising, and tagged sRGB;
+// otherwise written and tagged linear. Byte images are written as stored
+// and tagged by their type (U8 linear, Srgb8 sRGB); exr is always linear.
 struct ImageEncoding {
   int bits = 8;
   int pngLevel = kDefaultPngCompression;
   std::string codec;
+  bool srgb = true;
 };
 
 // "" for png, "zip" for tiff and exr.
@@ -37,8 +41,8 @@ void checkEncoding(const std::string& format, const ImageEncoding& encoding);
 void writeImage(const Image& image, const std::string& path, const ImageEncoding& encoding = {});
 Image readImage(const std::string& path);  // 4 channels, U8 or F32
 
-// What a file stores, as writeImage describes it (bits per channel and the
-// codec OpenImageIO reports; "" for png).
+// What a file stores, as writeImage describes it (bits per channel, the
+// codec OpenImageIO reports, "" for png, and whether it says sRGB).
 ImageEncoding readImageEncoding(const std::string& path);
 
 }  // namespace mvr

@@ -71,6 +71,7 @@ nlohmann::json Manifest::toJson() const {
   j["format"] = format;
   j["order"] = order;
   j["bits"] = bits;
+  j["color_encoding"] = colorEncoding();
   if (format == "png") j["png_compression"] = compression;
   else j["codec"] = codec.empty() ? defaultCodec(format) : codec;
   j["naming"] = order == "view" ? viewPattern() : epiPattern() + " (rows: views)";
@@ -101,12 +102,15 @@ Manifest Manifest::fromJson(const nlohmann::json& j, const std::string& where) {
   m.format = text("format", "png");
   m.codec = text("codec", "");
   m.order = text("order", "view");
+  const std::string color = text("color_encoding", "linear");
+  if (color != "srgb" && color != "linear") fail(where, "unknown color_encoding '" + color + "'");
+  m.srgb = color == "srgb";
   if (m.format != "png" && m.format != "exr" && m.format != "tiff")
     fail(where, "unknown format '" + m.format + "'");
   if (m.order != "view" && m.order != "epi") fail(where, "unknown order '" + m.order + "'");
   m.info = j;
   for (const char* key : {"views", "rows", "width", "height", "format", "order", "bits", "png_compression",
-                          "codec", "naming"})
+                          "codec", "color_encoding", "naming"})
     m.info.erase(key);
   return m;
 }

@@ -21,6 +21,10 @@ class Manifest {
   int bits = 8;                // per channel in the files (exr: 16 half or 32 float)
   int compression = kDefaultPngCompression;  // png files: zlib level 0-9
   std::string codec;           // exr and tiff files: their codec ("": the format's default)
+  // png and tiff files hold sRGB-encoded colour (else linear; exr always
+  // linear). Recorded as color_encoding; a manifest without it is from
+  // before sRGB output, whose files were linear.
+  bool srgb = true;
   // Everything else the writer records (scene, back end, camera, timings,
   // files, ...), written beside the layout and kept when read back.
   nlohmann::json info = nlohmann::json::object();
@@ -34,7 +38,9 @@ class Manifest {
   std::string epiPattern() const;
 
   // How the set's files store their pixels.
-  ImageEncoding encoding() const { return {bits, compression, codec}; }
+  ImageEncoding encoding() const { return {bits, compression, codec, srgb}; }
+  // "srgb" or "linear", as the files hold colour.
+  std::string colorEncoding() const { return srgb && format != "exr" ? "srgb" : "linear"; }
 
   // The camera as the manifest records it (distance, image plane, track).
   void setCamera(const ShearingCamera& camera);
