@@ -6,11 +6,8 @@
 namespace mvr::app {
 namespace {
 
-void put(Image& img, int x, int y, const glm::vec3& c) {
-  uint8_t* p = img.row(y) + size_t(x) * 4;
-  for (int k = 0; k < 3; ++k) p[k] = uint8_t(std::lrint(std::clamp(c[k], 0.0f, 1.0f) * 255.0f));
-  p[3] = 255;
-}
+// Radiance in linear light, stored sRGB-encoded as image files are.
+void put(Image& img, int x, int y, const glm::vec3& c) { img.setLinear(x, y, glm::vec4(c, 1.0f)); }
 
 // Inverse of GL's table 8.19: the direction through (sc, tc) of a face.
 glm::vec3 cubeDirection(int face, float sc, float tc) {
@@ -52,7 +49,7 @@ glm::vec3 skyRadiance(glm::vec3 d) {
 }
 
 Image makeSkyCube(int face) {
-  Image img(6 * face, face, PixelType::U8);
+  Image img(6 * face, face, PixelType::Srgb8);
   for (int f = 0; f < 6; ++f)
     for (int y = 0; y < face; ++y)
       for (int x = 0; x < face; ++x) {
@@ -63,7 +60,7 @@ Image makeSkyCube(int face) {
 }
 
 Image makeSkySpherePair(int size) {
-  Image img(2 * size, size, PixelType::U8);
+  Image img(2 * size, size, PixelType::Srgb8);
   for (int half = 0; half < 2; ++half)
     for (int y = 0; y < size; ++y)
       for (int x = 0; x < size; ++x) {

@@ -8,11 +8,11 @@
 
 namespace mvr {
 
-std::vector<uint8_t> resampleRgba8(const Image& src, glm::ivec4 rect, int width, int height,
+std::vector<uint8_t> resampleSrgb8(const Image& src, glm::ivec4 rect, int width, int height,
                                    bool bottomUp) {
-  std::vector<uint8_t> out(size_t(width) * height * 4);
+  Image out(width, height, PixelType::Srgb8);
   auto at = [&](int px, int py) {
-    return src.pixel(rect.x + std::clamp(px, 0, rect.z - 1), rect.y + std::clamp(py, 0, rect.w - 1));
+    return src.linear(rect.x + std::clamp(px, 0, rect.z - 1), rect.y + std::clamp(py, 0, rect.w - 1));
   };
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
@@ -21,10 +21,9 @@ std::vector<uint8_t> resampleRgba8(const Image& src, glm::ivec4 rect, int width,
       const float fx = sx - x0, fy = sy - y0;
       const glm::vec4 c = glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx),
                                    glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx), fy);
-      uint8_t* p = out.data() + (size_t(bottomUp ? height - 1 - y : y) * width + x) * 4;
-      for (int k = 0; k < 4; ++k) p[k] = uint8_t(std::lrint(std::clamp(c[k], 0.0f, 1.0f) * 255.0f));
+      out.setLinear(x, bottomUp ? height - 1 - y : y, c);
     }
-  return out;
+  return std::move(out.bytes);
 }
 
 glm::vec4 Image::pixel(int x, int y) const {

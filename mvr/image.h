@@ -35,10 +35,12 @@ struct Image {
   void setLinear(int x, int y, const glm::vec4& v);
 };
 
-// The rectangle (x, y, w, h) of src resampled bilinearly (edges clamped) to
-// width x height and quantised to RGBA8. bottomUp: output row 0 is the
-// rectangle's bottom row, as GL's 2D texture convention wants.
-std::vector<uint8_t> resampleRgba8(const Image& src, glm::ivec4 rect, int width, int height,
+// The rectangle (x, y, w, h) of src resampled bilinearly (edges clamped,
+// in linear light) to width x height, as sRGB-encoded RGBA8 (alpha
+// linear): what textures are stored as, decoded by GL's sRGB textures and
+// by the CPU samplers. bottomUp: output row 0 is the rectangle's bottom
+// row, as GL's 2D texture convention wants.
+std::vector<uint8_t> resampleSrgb8(const Image& src, glm::ivec4 rect, int width, int height,
                                    bool bottomUp);
 
 }  // namespace mvr

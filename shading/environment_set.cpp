@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "mvr/color.h"
 #include "mvr/error.h"
 #include "mvr/image.h"
 #include "mvr/io/image_file.h"
@@ -48,7 +49,8 @@ glm::vec2 sphereCoordinates(glm::vec3 n, bool back) {
 }
 
 // Each image is `count` squares side by side; all squares resampled to the
-// largest one's size (returned in size), one after another, as RGBA8.
+// largest one's size (returned in size), one after another, as sRGB-encoded
+// RGBA8.
 std::vector<uint8_t> packSquares(const std::vector<Image>& images, int count, bool bottomUp, int& size) {
   size = 0;
   for (const Image& img : images) size = std::max(size, img.height);
@@ -56,7 +58,7 @@ std::vector<uint8_t> packSquares(const std::vector<Image>& images, int count, bo
   for (const Image& img : images)
     for (int k = 0; k < count; ++k) {
       const int s = img.height;
-      const std::vector<uint8_t> square = resampleRgba8(img, {k * s, 0, s, s}, size, size, bottomUp);
+      const std::vector<uint8_t> square = resampleSrgb8(img, {k * s, 0, s, s}, size, size, bottomUp);
       texels.insert(texels.end(), square.begin(), square.end());
     }
   return texels;
@@ -95,7 +97,7 @@ glm::vec3 EnvironmentSet::texel(const std::vector<uint8_t>& texels, int size, in
                                 int y) const {
   x = std::clamp(x, 0, size - 1), y = std::clamp(y, 0, size - 1);
   const uint8_t* p = texels.data() + ((size_t(layer) * size + y) * size + x) * 4;
-  return glm::vec3(p[0], p[1], p[2]) / 255.0f;
+  return glm::vec3(linearOfSrgb8(p[0]), linearOfSrgb8(p[1]), linearOfSrgb8(p[2]));
 }
 
 glm::vec3 EnvironmentSet::bilinear(const std::vector<uint8_t>& texels, int size, int layer,
@@ -126,7 +128,7 @@ namespace {
 gl::Texture uploadLayers(GLenum target, int size, int depth, const std::vector<uint8_t>& texels) {
   if (depth == 0) return {};
   gl::Texture tex(target);
-  gl::TextureStorage3D(tex.id(), 1, GL_RGBA8, size, size, depth);
+  gl::TextureStorage3D(tex.id(), 1, GL_SRGB8_ALPHA8, size, size, depth);  // decoded by GL
   gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
   gl::TextureSubImage3D(tex.id(), 0, 0, 0, 0, size, size, depth, GL_RGBA, GL_UNSIGNED_BYTE,
                         texels.data());

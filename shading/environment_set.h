@@ -58,7 +58,7 @@ class EnvironmentSet {
 
   int cubeSize_ = 0, cubeLayers_ = 0;      // cube faces: cubeLayers_ x 6 x size^2
   int sphereSize_ = 0, sphereLayers_ = 0;  // sphere maps: sphereLayers_ x size^2
-  std::vector<uint8_t> cube_, sphere_;     // RGBA8, row 0 at t = 0
+  std::vector<uint8_t> cube_, sphere_;     // sRGB-encoded RGBA8, row 0 at t = 0
   std::vector<Map> materialMap_;
 };
 

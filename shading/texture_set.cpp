@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "mvr/color.h"
 #include "mvr/error.h"
 #include "mvr/image.h"
 #include "mvr/io/image_file.h"
@@ -12,6 +13,16 @@ namespace mvr::shading {
 namespace {
 
 int wrap(int i, int n) { return ((i % n) + n) % n; }
+
+// Texels are stored sRGB-encoded (colour; alpha linear), as GL_SRGB8_ALPHA8.
+glm::vec4 decodeTexel(const uint8_t* p) {
+  return {linearOfSrgb8(p[0]), linearOfSrgb8(p[1]), linearOfSrgb8(p[2]), float(p[3]) / 255.0f};
+}
+
+void encodeTexel(const glm::vec4& v, uint8_t* p) {
+  for (int c = 0; c < 3; ++c) p[c] = srgb8(v[c]);
+  p[3] = uint8_t(std::lrint(std::clamp(v[3], 0.0f, 1.0f) * 255.0f));
+}
 
 }  // namespace
 
@@ -37,28 +48,28 @@ TextureSet TextureSet::load(const Scene& scene) {
   const int w = set.width_, h = set.height_;
   std::vector<uint8_t> base;
   for (const Image& img : images) {
-    std::vector<uint8_t> layer = resampleRgba8(img, {0, 0, img.width, img.height}, w, h, true);
+    std::vector<uint8_t> layer = resampleSrgb8(img, {0, 0, img.width, img.height}, w, h, true);
     base.insert(base.end(), layer.begin(), layer.end());
   }
   set.levelSize_.push_back({w, h});
   set.levels_.push_back(std::move(base));
-  // Box-filtered chain down to 1 x 1 (odd sizes drop the last texel).
+  // Box-filtered chain down to 1 x 1 (odd sizes drop the last texel),
+  // averaged in linear light.
   while (set.levelSize_.back() != glm::ivec2(1)) {
     const glm::ivec2 from = set.levelSize_.back(), to = glm::max(from / 2, glm::ivec2(1));
     const std::vector<uint8_t>& src = set.levels_.back();
     std::vector<uint8_t> dst(size_t(to.x) * to.y * 4 * set.layers_);
     for (int l = 0; l < set.layers_; ++l)
       for (int y = 0; y < to.y; ++y)
-        for (int x = 0; x < to.x; ++x)
-          for (int k = 0; k < 4; ++k) {
-            int sum = 0;
-            for (int dy = 0; dy < 2; ++dy)
-              for (int dx = 0; dx < 2; ++dx) {
-                const int sx = std::min(2 * x + dx, from.x - 1), sy = std::min(2 * y + dy, from.y - 1);
-                sum += src[((size_t(l) * from.y + sy) * from.x + sx) * 4 + k];
-              }
-            dst[((size_t(l) * to.y + y) * to.x + x) * 4 + k] = uint8_t((sum + 2) / 4);
-          }
+        for (int x = 0; x < to.x; ++x) {
+          glm::vec4 sum(0.0f);
+          for (int dy = 0; dy < 2; ++dy)
+            for (int dx = 0; dx < 2; ++dx) {
+              const int sx = std::min(2 * x + dx, from.x - 1), sy = std::min(2 * y + dy, from.y - 1);
+              sum += decodeTexel(&src[((size_t(l) * from.y + sy) * from.x + sx) * 4]);
+            }
+          encodeTexel(sum / 4.0f, &dst[((size_t(l) * to.y + y) * to.x + x) * 4]);
+        }
     set.levelSize_.push_back(to);
     set.levels_.push_back(std::move(dst));
   }
@@ -67,9 +78,8 @@ TextureSet TextureSet::load(const Scene& scene) {
 
 glm::vec4 TextureSet::texel(int layer, int level, int x, int y) const {
   const glm::ivec2 s = levelSize_[level];
-  const uint8_t* p = levels_[level].data() +
-                     ((size_t(layer) * s.y + wrap(y, s.y)) * s.x + wrap(x, s.x)) * 4;
-  return glm::vec4(p[0], p[1], p[2], p[3]) / 255.0f;
+  return decodeTexel(levels_[level].data() +
+                     ((size_t(layer) * s.y + wrap(y, s.y)) * s.x + wrap(x, s.x)) * 4);
 }
 
 glm::vec4 TextureSet::bilinear(int layer, int level, glm::vec2 uv) const {
@@ -98,7 +108,8 @@ float TextureSet::lodFor(glm::vec2 duv) const {
 
 gl::Texture TextureSet::upload() const {
   gl::Texture tex(GL_TEXTURE_2D_ARRAY);
-  gl::TextureStorage3D(tex.id(), levels(), GL_RGBA8, width_, height_, layers_);
+  // sRGB texels: GL decodes them to linear before filtering.
+  gl::TextureStorage3D(tex.id(), levels(), GL_SRGB8_ALPHA8, width_, height_, layers_);
   gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
   for (int l = 0; l < levels(); ++l)
     gl::TextureSubImage3D(tex.id(), l, 0, 0, 0, levelSize_[l].x, levelSize_[l].y, layers_, GL_RGBA,

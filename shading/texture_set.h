@@ -42,7 +42,7 @@ class TextureSet {
 
   int width_ = 0, height_ = 0, layers_ = 0;
   std::vector<glm::ivec2> levelSize_;
-  std::vector<std::vector<uint8_t>> levels_;  // per level: layers x h x w RGBA8, row 0 = v 0
+  std::vector<std::vector<uint8_t>> levels_;  // per level: layers x h x w sRGB RGBA8, row 0 = v 0
   std::vector<int> materialLayer_;
 };
 

@@ -121,7 +121,10 @@ Image readImage(const std::string& path) {
   const OIIO::ImageSpec& spec = in->spec();
   const bool isFloat = spec.format.basetype == OIIO::TypeDesc::FLOAT ||
                        spec.format.basetype == OIIO::TypeDesc::HALF;
-  Image img(spec.width, spec.height, isFloat ? PixelType::F32 : PixelType::U8);
+  // 8-bit files are sRGB unless they say linear (a PNG's gAMA 1.0).
+  const bool linear = OIIO::Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "linear");
+  Image img(spec.width, spec.height,
+            isFloat ? PixelType::F32 : linear ? PixelType::U8 : PixelType::Srgb8);
   // Read the file's channels, then widen to RGBA (alpha 1 when absent).
   const int nc = spec.nchannels;
   const size_t cb = Image::channelBytes(img.type);

@@ -39,7 +39,9 @@ void checkEncoding(const std::string& format, const ImageEncoding& encoding);
 // then writes through writeFileAtomically: a failed write leaves nothing
 // behind and names the system's reason.
 void writeImage(const Image& image, const std::string& path, const ImageEncoding& encoding = {});
-Image readImage(const std::string& path);  // 4 channels, U8 or F32
+// 4 channels: F32 for float files; 8-bit files as Srgb8, or U8 when they
+// say they are linear.
+Image readImage(const std::string& path);
 
 // What a file stores, as writeImage describes it (bits per channel, the
 // codec OpenImageIO reports, "" for png, and whether it says sRGB).

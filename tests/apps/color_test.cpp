@@ -85,6 +85,35 @@ TEST(ColorEncoding, AccumulatedPassesAndFloatFilesAreEncodedToo) {
   }
 }
 
+// A texture file is sRGB-encoded: an unlit, white, textured plane seen head
+// on writes the texture's own bytes back (GL decodes sRGB textures before
+// filtering, the CPU samplers decode the same way), and its linear values
+// with --linear. Byte 128 is linear 0.2158 (55.0 of 255).
+TEST(ColorEncoding, TexturesAreDecodedFromSrgb) {
+  const fs::path dir = test::freshDir("color_texture");
+  fs::create_directories(dir);
+  Image grey(8, 8, PixelType::Srgb8);
+  for (uint8_t& b : grey.bytes) b = 128;
+  writeImage(grey, (dir / "grey.png").string());
+  std::ofstream(dir / "plane.json") << R"({"meshes": [{"file": ")" << test::assetsDir() << R"(/plane.obj",
+      "material": {"diffuse": [1, 1, 1], "texture": "grey.png"}}],
+    "lights": [], "ambient": [1, 1, 1],
+    "camera": {"distance": 4, "image_plane": 2.0, "track": [-0.5, 0.5], "near": 2, "far": 6}})";
+  const fs::path out = dir / "out";
+  for (const std::string backend : {"svr", "deferred", "mvr --pst strip", "mvr --pst exact --texture direct",
+                                    "mvr --pst cpu"}) {
+    for (const bool linear : {false, true}) {
+      fs::remove_all(out);
+      const std::string args = "render " + (dir / "plane.json").string() + " --backend " + backend +
+                               " --views 3 --size 40x30" + (linear ? " --linear" : "");
+      const auto r = test::runMvr(args + " --out " + out.string());
+      ASSERT_EQ(r.status, 0) << args << ": " << r.err;
+      const Image img = readImage((out / "view_0001.png").string());
+      EXPECT_NEAR(img.pixel(20, 15).g * 255.0f, linear ? 55.0f : 128.0f, 1.0f) << args;
+    }
+  }
+}
+
 TEST(ColorEncoding, ExrIsLinear) {
   const fs::path out = test::freshDir("color_exr");
   ASSERT_EQ(test::runMvr("render " + planeScene(false).string() +

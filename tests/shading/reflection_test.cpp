@@ -14,6 +14,7 @@
 #include <random>
 
 #include "apps/sky.h"
+#include "mvr/color.h"
 #include "mvr/error.h"
 #include "mvr/io/image_file.h"
 #include "mvr/io/scene_io.h"
@@ -55,7 +56,7 @@ TEST(CubeMap, PicksTheFaceAndOrientationOfGlsTable) {
   // Faces in the order +X -X +Y -Y +Z -Z, each split: left half dark, the
   // top-right quarter red, the bottom-right quarter white.
   const int s = 8;
-  Image strip(6 * s, s, PixelType::U8);
+  Image strip(6 * s, s, PixelType::Srgb8);  // as image files are: sRGB-encoded
   for (int f = 0; f < 6; ++f) {
     fill(strip, {f * s, 0, s / 2, s}, glm::vec3(f / 8.0f));
     fill(strip, {f * s + s / 2, 0, s / 2, s / 2}, glm::vec3(1, 0, 0));
@@ -69,7 +70,7 @@ TEST(CubeMap, PicksTheFaceAndOrientationOfGlsTable) {
   const glm::vec3 leftOf[6] = {{1, 0, 0.5f}, {-1, 0, -0.5f}, {-0.5f, 1, 0},
                                {-0.5f, -1, 0}, {-0.5f, 0, 1}, {0.5f, 0, -1}};
   for (int f = 0; f < 6; ++f)
-    EXPECT_NEAR(env.sample(map, leftOf[f]).g, float(uint8_t(f / 8.0f * 255)) / 255.0f, 1e-6f) << f;
+    EXPECT_NEAR(env.sample(map, leftOf[f]).g, linearOfSrgb8(uint8_t(f / 8.0f * 255)), 1e-6f) << f;
   // +X: sc = -rz, tc = -ry. r = (1, 0.5, -0.5): s = 0.75, t = 0.25: top right.
   EXPECT_EQ(env.sample(map, {1, 0.5f, -0.5f}), glm::vec3(1, 0, 0));
   EXPECT_EQ(env.sample(map, {1, -0.5f, -0.5f}), glm::vec3(1, 1, 1));
@@ -108,9 +109,12 @@ TEST(ReflectionMaps, BothKindsReproduceTheSkyTheyWereMadeFrom) {
     pairError += glm::length(pair.sample(pair.materialMaps()[0], d) - truth);
   }
   // Only filtering at the sky's sharp edges remains (a flipped face or
-  // hemisphere would cost about 0.3).
-  EXPECT_LT(cubeError / n, 0.03);
-  EXPECT_LT(pairError / n, 0.03);
+  // hemisphere would cost about 0.3): under 0.030 with linear 8-bit texels.
+  // Texels are now stored sRGB-encoded, which moves a value by at most half
+  // a step: 0.5/255 x 2.27 (the decoding's largest slope, at 1) = 0.0045
+  // per channel in linear light, 0.0077 in length. 0.030 + 0.0077 < 0.038.
+  EXPECT_LT(cubeError / n, 0.038);
+  EXPECT_LT(pairError / n, 0.038);
 }
 
 TEST(ReflectionMaps, AffineFormIsTheMirroredViewRay) {
