@@ -58,6 +58,8 @@ struct Config {
   std::vector<std::string> backends;  // specs, as labels
   std::vector<BackendOptions> options;  // the same specs, parsed
   int repeat = 1, errorViews = 8, rows = 1;
+  // What `mvr render` writes by default (8-bit sRGB); --linear: 8-bit linear.
+  PixelType type = PixelType::Srgb8;
 };
 
 struct Run {
@@ -66,10 +68,11 @@ struct Run {
   std::map<int, Image> samples;
 };
 
-Run measure(Renderer& renderer, const ShearingCamera& cam, int repeat, const std::vector<int>& sampled) {
+Run measure(Renderer& renderer, const ShearingCamera& cam, int repeat, const std::vector<int>& sampled,
+            PixelType type) {
   Run best;
   for (int k = 0; k < repeat; ++k) {
-    SampleSink sink(sampled, cam.width(), cam.height(), PixelType::U8);
+    SampleSink sink(sampled, cam.width(), cam.height(), type);
     RenderStats stats;
     Stopwatch watch;
     renderer.render(cam, sink, stats);
@@ -136,7 +139,7 @@ void benchScene(const std::string& name, const Scene& scene, const Config& cfg,
                 std::vector<BenchRecord>& records) {
   std::vector<std::unique_ptr<Renderer>> renderers;
   for (const BackendOptions& options : cfg.options)
-    renderers.push_back(makeRenderer(options, scene, PixelType::U8));
+    renderers.push_back(makeRenderer(options, scene, cfg.type));
   {  // warm-up: shader compilation and first buffer use are not rendering
     auto [w, h] = cfg.sizes[0];
     ShearingCamera warm(cameraFor(scene, w, h), w, h, 2);
@@ -150,13 +153,13 @@ void benchScene(const std::string& name, const Scene& scene, const Config& cfg,
     // The fixed cost: every back end at one view.
     std::vector<double> fixed;
     const ShearingCamera one(cameraFor(scene, w, h), w, h, 1, 1);
-    for (auto& r : renderers) fixed.push_back(measure(*r, one, cfg.repeat, {0}).seconds);
+    for (auto& r : renderers) fixed.push_back(measure(*r, one, cfg.repeat, {0}, cfg.type).seconds);
     for (int n : cfg.views) {
       ShearingCamera cam(cameraFor(scene, w, h), w, h, n, cfg.rows);
       const double floor = readbackFloor(w, h, long(n) * cfg.rows, cfg.repeat);
       const std::vector<int> sampled = spreadViews(n, cfg.errorViews);
       std::vector<Run> runs;
-      for (auto& r : renderers) runs.push_back(measure(*r, cam, cfg.repeat, sampled));
+      for (auto& r : renderers) runs.push_back(measure(*r, cam, cfg.repeat, sampled, cfg.type));
       const Run* svr = nullptr;
       const Run* layered = nullptr;
       for (size_t k = 0; k < runs.size(); ++k) {
@@ -249,6 +252,8 @@ int runBench(int argc, char** argv) {
                  "end with L layers, coalescing T pixels, visibility, a budget of B source views, "
                  "K highlight splits, overlap P pixels")
       ->type_name("LIST")->capture_default_str();
+  bool linear = false;
+  app.add_flag("--linear", linear, "render 8-bit linear values (default: sRGB-encoded, as mvr render writes)");
   app.add_option("--repeat", cfg.repeat, "best of R runs")->check(CLI::Range(1, 100))->capture_default_str();
   app.add_option("--error-views", cfg.errorViews, "views compared against svr")
       ->check(CLI::Range(1, 1000))->capture_default_str();
@@ -261,6 +266,7 @@ int runBench(int argc, char** argv) {
   bool strict = false;
   addStrictOption(app, strict);
   if (auto exit = parseCommandLine(app, argc - 1, argv + 1)) return *exit;
+  if (linear) cfg.type = PixelType::U8;
 
   setProgressEnabled(false);
   if (!replot.empty()) {  // plots from an earlier run's JSON: no GL, no rendering
@@ -293,8 +299,9 @@ int runBench(int argc, char** argv) {
 
   auto context = GlContext::create(parseGlPlatform(gl));
   BenchMachine machine{context->describe(), cpuModel(), unsigned(threadCount())};
-  std::printf("# mvr bench\n# GL: %s\n# CPU: %s, %u cores, %u pool threads\n", machine.gl.c_str(),
-              machine.cpu.c_str(), std::thread::hardware_concurrency(), machine.threads);
+  std::printf("# mvr bench\n# GL: %s\n# CPU: %s, %u cores, %u pool threads\n# output: 8-bit %s\n",
+              machine.gl.c_str(), machine.cpu.c_str(), std::thread::hardware_concurrency(),
+              machine.threads, cfg.type == PixelType::Srgb8 ? "sRGB" : "linear");
   std::printf("%-16s %-9s %6s %-24s %10s %10s %8s %9s %8s %7s %10s %7s %10s\n", "scene", "size",
               "views", "backend", "total_s", "ms/view", "x_svr", "x_layered", "PSNR_dB", "SSIM",
               "identical", "holes", "slices");

@@ -4,15 +4,39 @@
 // quantising linear values to 8 bits first would leave the dark tones a
 // handful of levels (linear 1/255 is sRGB 13/255). So 8-bit sRGB output
 // is encoded from the full-precision value, as GL's sRGB render targets do.
+#include <array>
 #include <cstdint>
 
 namespace mvr {
 
 float srgbEncode(float linear);   // [0, 1] -> [0, 1]; clamped
 float srgbDecode(float encoded);  // [0, 1] -> [0, 1]; clamped
-// round(srgbEncode(linear) * 255) exactly, without a pow per call.
-uint8_t srgb8(float linear);
 // srgbDecode(value / 255).
 float linearOfSrgb8(uint8_t value);
+
+namespace detail {
+// Quantisation thresholds: upper[b] is the linear value where byte b
+// rounds up to b + 1. start[k] is the byte at k / kBuckets; with 4096
+// buckets the steepest part of the curve (3295 levels per unit, near 0)
+// puts at most one threshold in a bucket, so one comparison finishes.
+struct Srgb8Table {
+  static constexpr int kBuckets = 4096;
+  std::array<float, 256> upper{};  // upper[255] = +inf
+  std::array<uint8_t, kBuckets + 1> start{};
+  std::array<float, 256> decoded{};
+  Srgb8Table();
+};
+const Srgb8Table& srgb8Table();
+}  // namespace detail
+
+// round(srgbEncode(linear) * 255), exactly (the hot path of the CPU
+// rasterizer: a table and one comparison, no pow).
+inline uint8_t srgb8(float linear) {
+  if (!(linear > 0.0f)) return 0;  // NaN too
+  if (linear >= 1.0f) return 255;
+  const detail::Srgb8Table& t = detail::srgb8Table();
+  const int b = t.start[int(linear * detail::Srgb8Table::kBuckets)];
+  return uint8_t(b + (linear >= t.upper[b]));
+}
 
 }  // namespace mvr
