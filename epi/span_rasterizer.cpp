@@ -3,6 +3,7 @@
 // renderer for machines without a GPU. Scanlines are independent, so
 // the pool's workers take whole scanlines; frames leave in scanline order.
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "epi/epi_rasterizer.h"
@@ -33,30 +34,44 @@ class SpanRasterizer final : public EpiRasterizer {
     const int height = cam.height();
     eye0_ = glm::vec3(cam.eye(0, row));
     eyeStep_ = glm::vec3(cam.eye(1, row) - cam.eye(0, row));
-    const int batch = std::max(1, std::min(height, 4 * threadCount()));
-    std::vector<Image> epis(batch);
+    // Two halves of 2 EPIs per worker: the workers fill one while the
+    // caller hands the other to the sink (whose copies would otherwise
+    // leave the workers idle). The EPIs are allocated once and reused:
+    // fresh multi-megabyte images per scanline cost page faults that
+    // serialise on the kernel's memory lock.
+    const int batch = std::max(1, std::min(height, 2 * threadCount()));
+    std::array<std::vector<Image>, 2> halves;
+    for (std::vector<Image>& half : halves) half.assign(size_t(batch), Image(cam.width(), cam.views(), type_));
     Progress progress("mvr cpu", height);
-    for (int first = 0; first < height; first += batch) {
-      const int count = std::min(batch, height - first);
-      {
-        ScopedStage s(stats.times, "raster");
-        parallelFor(0, count, [&](int k) {
-          thread_local std::vector<float> depth;  // a worker's scratch, reused across EPIs
-          epis[k] = fillEpi(v, table, cam, first + k, depth);
-        });
-      }
-      for (int k = 0; k < count; ++k) {
-        sink.putEpi(row, first + k, epis[k]);
+    struct Filled {
+      int half = 0, first = 0, count = 0;
+    } pending;
+    auto handOn = [&](const Filled& f) {
+      for (int k = 0; k < f.count; ++k) {
+        sink.putEpi(row, f.first + k, halves[f.half][k]);
         progress.step();
       }
+    };
+    for (int first = 0, b = 0; first < height; first += batch, ++b) {
+      const Filled now{b % 2, first, std::min(batch, height - first)};
+      ScopedStage s(stats.times, "raster");  // with the previous batch's hand-over beside it
+      parallelForBeside(
+          0, now.count,
+          [&](int k) {
+            thread_local std::vector<float> depth;  // a worker's scratch, reused across EPIs
+            fillEpi(v, table, cam, now.first + k, halves[now.half][k], depth);
+          },
+          [&] { handOn(pending); });
+      pending = now;
     }
+    handOn(pending);
   }
 
  private:
-  Image fillEpi(const ExtremeVertices& v, const SliceTable& table, const ShearingCamera& cam,
-                int j, std::vector<float>& depth) const {
+  void fillEpi(const ExtremeVertices& v, const SliceTable& table, const ShearingCamera& cam, int j,
+               Image& epi, std::vector<float>& depth) const {
     const int w = cam.width(), n = cam.views();
-    Image epi(w, n, type_);
+    std::fill(epi.bytes.begin(), epi.bytes.end(), uint8_t(0));
     depth.assign(size_t(w) * n, 0.0f);  // reversed Z: 0 is far
     for (const Slice& s : table.scanline(j)) {
       auto [e0, e1] = sliceEnds(v, s);
@@ -67,7 +82,6 @@ class SpanRasterizer final : public EpiRasterizer {
         fillPiece(pst, pst.pieces[p], material,
                   vector ? Colors{&v.vectorTexels, vector, v.knots.data()} : Colors{}, epi, depth);
     }
-    return epi;
   }
 
   // Where a slice's colour comes from: its vertices, or its own vector.
@@ -160,7 +174,7 @@ class SpanRasterizer final : public EpiRasterizer {
       p[3] = 255;
     } else if (type_ == PixelType::Srgb8) {
       uint8_t* p = img.row(y) + size_t(x) * 4;
-      p[0] = srgb8(v.r), p[1] = srgb8(v.g), p[2] = srgb8(v.b), p[3] = 255;
+      p[0] = srgb8_(v.r), p[1] = srgb8_(v.g), p[2] = srgb8_(v.b), p[3] = 255;
     } else {
       float* p = reinterpret_cast<float*>(img.row(y)) + size_t(x) * 4;
       p[0] = v.r, p[1] = v.g, p[2] = v.b, p[3] = 1.0f;
@@ -168,6 +182,7 @@ class SpanRasterizer final : public EpiRasterizer {
   }
 
   PixelType type_;
+  Srgb8Encoder srgb8_;
   EpiShading shading_;
   glm::vec3 eye0_{0.0f}, eyeStep_{0.0f};
 };

@@ -29,14 +29,23 @@ struct Srgb8Table {
 const Srgb8Table& srgb8Table();
 }  // namespace detail
 
-// round(srgbEncode(linear) * 255), exactly (the hot path of the CPU
-// rasterizer: a table and one comparison, no pow).
-inline uint8_t srgb8(float linear) {
-  if (!(linear > 0.0f)) return 0;  // NaN too
-  if (linear >= 1.0f) return 255;
-  const detail::Srgb8Table& t = detail::srgb8Table();
-  const int b = t.start[int(linear * detail::Srgb8Table::kBuckets)];
-  return uint8_t(b + (linear >= t.upper[b]));
-}
+// round(srgbEncode(linear) * 255), exactly: a table and one comparison, no
+// pow. Hold one where it is called per pixel (the CPU rasterizer): it
+// keeps the table at hand.
+class Srgb8Encoder {
+ public:
+  Srgb8Encoder() : t_(detail::srgb8Table()) {}
+  uint8_t operator()(float linear) const {
+    if (!(linear > 0.0f)) return 0;  // NaN too
+    if (linear >= 1.0f) return 255;
+    const int b = t_.start[int(linear * detail::Srgb8Table::kBuckets)];
+    return uint8_t(b + (linear >= t_.upper[b]));
+  }
+
+ private:
+  const detail::Srgb8Table& t_;
+};
+
+inline uint8_t srgb8(float linear) { return Srgb8Encoder()(linear); }
 
 }  // namespace mvr

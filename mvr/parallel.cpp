@@ -38,6 +38,20 @@ void parallelFor(int begin, int end, const std::function<void(int)>& body) {
   });
 }
 
+void parallelForBeside(int begin, int end, const std::function<void(int)>& body,
+                       const std::function<void()>& beside) {
+  tbb::task_group group;
+  group.run([&] { parallelFor(begin, end, body); });
+  std::exception_ptr besideError;
+  try {
+    beside();
+  } catch (...) {
+    besideError = std::current_exception();
+  }
+  group.wait();  // the caller helps; rethrows body's exception
+  if (besideError) std::rethrow_exception(besideError);
+}
+
 struct BoundedTasks::State {
   tbb::task_group group;
   std::mutex mutex;

@@ -15,6 +15,13 @@ void setThreadCount(int n);
 // and on any worker; returns when all are done. Exceptions propagate.
 void parallelFor(int begin, int end, const std::function<void(int)>& body);
 
+// parallelFor(begin, end, body) on the pool while the caller runs `beside`
+// (a pipeline's serial stage: handing the previous batch on while the next
+// is computed); returns when both are done. An exception of either
+// propagates, body's first.
+void parallelForBeside(int begin, int end, const std::function<void(int)>& body,
+                       const std::function<void()>& beside);
+
 // Tasks run on the pool's workers while the caller goes on (image encoding
 // beside rendering), at most `limit` queued or running at once: beyond
 // that submit() runs queued tasks itself until they are done, which bounds
