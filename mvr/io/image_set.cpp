@@ -43,10 +43,30 @@ ImageSetWriter::~ImageSetWriter() {
   for (const std::string& f : written_) fs::remove(f, ec);
 }
 
+std::shared_ptr<Image> ImageSetWriter::copyOf(const Image& image) {
+  std::shared_ptr<Image> copy;
+  {
+    std::lock_guard lock(spareMutex_);
+    if (!spares_.empty()) {
+      copy = std::move(spares_.back());
+      spares_.pop_back();
+    }
+  }
+  if (!copy) return std::make_shared<Image>(image);
+  *copy = image;  // reuses the spare's storage when it is large enough
+  return copy;
+}
+
+void ImageSetWriter::recycle(std::shared_ptr<Image> copy) {
+  std::lock_guard lock(spareMutex_);
+  if (spares_.size() < size_t(BoundedTasks::defaultLimit()) + 1) spares_.push_back(std::move(copy));
+}
+
 void ImageSetWriter::put(const std::string& name, const Image& image) {
-  auto copy = std::make_shared<const Image>(image);  // the caller's image is gone after return
-  encoder_.submit([this, path = (fs::path(dir_) / name).string(), copy] {
+  auto copy = copyOf(image);  // the caller's image is gone after return
+  encoder_.submit([this, path = (fs::path(dir_) / name).string(), copy]() mutable {
     writeImage(*copy, path, manifest_.encoding());
+    recycle(std::move(copy));
     std::lock_guard lock(writtenMutex_);
     written_.push_back(path);
   });

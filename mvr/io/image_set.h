@@ -6,6 +6,7 @@
 // commit() the set is incomplete: if the writer is destroyed first (an
 // error), every file it wrote is removed, so no half-written set looks
 // finished. An encoding error surfaces at the next put or at commit().
+#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -39,11 +40,18 @@ class ImageSetWriter final : public FrameSink {
 
  private:
   void put(const std::string& name, const Image& image);
+  // Copies of the caller's frames, recycled: a fresh multi-megabyte
+  // allocation per file costs page faults that serialise on the kernel's
+  // memory lock and kept two cores from encoding twice as fast.
+  std::shared_ptr<Image> copyOf(const Image& image);
+  void recycle(std::shared_ptr<Image> copy);
 
   std::string dir_;
   Manifest manifest_;
   std::mutex writtenMutex_;
   std::vector<std::string> written_;
+  std::mutex spareMutex_;
+  std::vector<std::shared_ptr<Image>> spares_;
   bool committed_ = false;
   BoundedTasks encoder_;  // last member: destroyed (drained) first
 };
