@@ -57,6 +57,7 @@ int runCompare(int argc, char** argv) {
   bool json = false;
   app.add_option("DIR_A DIR_B", dirs, "the two sets")->required()->expected(2);
   app.add_flag("--json", json, "print JSON instead of a table");
+  addThreadsOption(app);
   if (auto exit = parseCommandLine(app, argc - 1, argv + 1)) return *exit;
   auto diffs = compareSets(dirs[0], dirs[1]);
   double worstPsnr = INFINITY, minIdentical = 1.0, maxError = 0.0, minSsim = 1.0;
