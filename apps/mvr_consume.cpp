@@ -13,6 +13,7 @@
 #include "epi/volume.h"
 #include "mvr/error.h"
 #include "mvr/io/fd_stream.h"
+#include "mvr/io/image_codec.h"
 #include "mvr/io/image_file.h"
 #include "mvr/io/image_set.h"
 #include "mvr/parallel.h"
@@ -38,6 +39,7 @@ int consume(int argc, char** argv) {
   mvr::FdStreamBuf buffer(mvr::openForReading(from));
   std::istream in(&buffer);
   mvr::EpiStreamReader reader(in);
+  mvr::preloadImageCodec();  // loads while the stream arrives
   const mvr::EpiStreamHeader& h = reader.header();
   const mvr::PixelType type = h.pixelType();
   if (format.empty()) format = mvr::isByteType(type) ? "png" : "exr";

@@ -1,5 +1,6 @@
 #include "apps/render_command.h"
 
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -20,6 +21,7 @@
 #include "mvr/frame_sinks.h"
 #include "mvr/gl/gl_context.h"
 #include "mvr/io/fd_stream.h"
+#include "mvr/io/image_codec.h"
 #include "mvr/io/image_set.h"
 #include "mvr/io/scene_io.h"
 #include "mvr/parallel.h"
@@ -190,6 +192,12 @@ int runRender(int argc, char** argv, bool streamCommand) {
 
   // Input problems first, before any GL or file work.
   Scene scene = loadInputScene(scenePath, f.strict);
+  // OpenImageIO loads beside GL start-up and rendering (textures and the
+  // first image wait for it); a stream of an untextured scene needs none.
+  const bool readsImages = std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) {
+    return !m.texture.empty() || !m.reflectionMap.empty();
+  });
+  if (!streaming || readsImages) preloadImageCodec();
   ShearingCamera camera(cameraFor(scene, width, height), width, height, views, rows);
   auto context = GlContext::create(platform);
   auto renderer = makeRenderer(choice, scene, type);

@@ -28,7 +28,7 @@ struct ImageEncoding {
 };
 
 // "" for png, "zip" for tiff and exr.
-std::string defaultCodec(const std::string& format);
+inline std::string defaultCodec(const std::string& format) { return format == "png" ? "" : "zip"; }
 // 32 (float) for exr, 8 for png and tiff.
 inline int defaultBits(const std::string& format) { return format == "exr" ? 32 : 8; }
 // Throws mvr::Error naming the option (--bits, --codec, --compression)

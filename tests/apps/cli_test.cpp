@@ -134,18 +134,19 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
     EXPECT_EQ(r.err.rfind("mvr: ", 0), 0u) << r.err;
     EXPECT_FALSE(fs::exists(d / "manifest.json")) << args;
-    if (args.find(noTexture.string()) != std::string::npos)
-      EXPECT_NE(r.err.find("nothere.png"), std::string::npos) << r.err;
-    if (args.find(squareMap.string()) != std::string::npos)
-      EXPECT_NE(r.err.find("checker.png: a reflection map must be"), std::string::npos) << r.err;
-    if (args.find("--quilt auto") != std::string::npos)
-      EXPECT_NE(r.err.find("GiB for the quilt) but"), std::string::npos) << r.err;
-    if (args.find("--memory 1G") != std::string::npos)
-      EXPECT_NE(r.err.find("the scratch file needs 4096.0 GiB but the disk has"), std::string::npos) << r.err;
-    if (args.find("--memory 100M") != std::string::npos)
-      EXPECT_NE(r.err.find("mvr: --memory: 100.0 MiB cannot hold one frame (64.0 MiB)"), std::string::npos) << r.err;
-    if (args.find("12X") != std::string::npos)
-      EXPECT_NE(r.err.find("mvr: --memory: '12X' is not a size"), std::string::npos) << r.err;
+    // The message each case must name (gtest's EXPECT is an if/else: no
+    // bare EXPECT under an if).
+    const std::pair<std::string, std::string> named[] = {
+        {noTexture.string(), "nothere.png"},
+        {squareMap.string(), "checker.png: a reflection map must be"},
+        {"--quilt auto", "GiB for the quilt) but"},
+        {"--memory 1G", "the scratch file needs 4096.0 GiB but the disk has"},
+        {"--memory 100M", "mvr: --memory: 100.0 MiB cannot hold one frame (64.0 MiB)"},
+        {"12X", "mvr: --memory: '12X' is not a size"}};
+    for (const auto& [marker, message] : named) {
+      if (args.find(marker) == std::string::npos) continue;
+      EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+    }
   }
 }
 
@@ -225,6 +226,19 @@ TEST(Cli, FailedWritesLeaveNoSet) {
     EXPECT_TRUE(!fs::exists(d) || fs::is_empty(d)) << args << ": files left behind";
     EXPECT_FALSE(fs::exists(stream)) << args;
   }
+}
+
+// OpenImageIO is a module loaded at run time; without it a render that
+// writes images fails in one line naming the module, and leaves no set.
+TEST(Cli, MissingImageModuleIsOneLineError) {
+  const fs::path d = outDir("no_codec");
+  const test::CliResult r = test::shell("MVR_IMAGE_CODEC=/nonexistent/libmvr_oiio.so " + test::mvrBinary() +
+                                        " render --views 2 --size 16x12 --out " + d.string() + " >/dev/null");
+  EXPECT_NE(r.status, 0);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("mvr: /nonexistent/libmvr_oiio.so: cannot load the image codec module"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(d / "manifest.json"));
 }
 
 TEST(Cli, RendersUnderGlfwWithAVirtualDisplay) {
