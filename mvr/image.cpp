@@ -34,23 +34,33 @@ glm::vec4 Image::pixel(int x, int y) const {
   return v;
 }
 
+namespace {
+
+// GL's float -> unorm8 conversion: round to nearest.
+uint8_t unorm8(float c) { return uint8_t(std::lrint(std::clamp(c, 0.0f, 1.0f) * 255.0f)); }
+
+}  // namespace
+
+glm::vec4 decodeSrgb8(const uint8_t* p) {
+  return {linearOfSrgb8(p[0]), linearOfSrgb8(p[1]), linearOfSrgb8(p[2]), float(p[3]) / 255.0f};
+}
+
+void encodeSrgb8(const glm::vec4& v, uint8_t* p) {
+  for (int c = 0; c < 3; ++c) p[c] = srgb8(v[c]);
+  p[3] = unorm8(v[3]);
+}
+
 glm::vec4 Image::linear(int x, int y) const {
   if (type != PixelType::Srgb8) return pixel(x, y);
-  const uint8_t* p = bytes.data() + (size_t(y) * width + x) * 4;
-  return {linearOfSrgb8(p[0]), linearOfSrgb8(p[1]), linearOfSrgb8(p[2]), float(p[3]) / 255.0f};
+  return decodeSrgb8(bytes.data() + (size_t(y) * width + x) * 4);
 }
 
 void Image::setLinear(int x, int y, const glm::vec4& v) {
   const size_t i = (size_t(y) * width + x) * 4;
-  if (type == PixelType::F32) {
-    std::memcpy(bytes.data() + i * 4, &v, sizeof v);
-    return;
-  }
-  // GL's float -> unorm8 conversion: round to nearest.
-  auto unorm8 = [](float c) { return uint8_t(std::lrint(std::clamp(c, 0.0f, 1.0f) * 255.0f)); };
   uint8_t* p = bytes.data() + i;
-  for (int c = 0; c < 3; ++c) p[c] = type == PixelType::Srgb8 ? srgb8(v[c]) : unorm8(v[c]);
-  p[3] = unorm8(v[3]);
+  if (type == PixelType::F32) std::memcpy(bytes.data() + i * 4, &v, sizeof v);
+  else if (type == PixelType::Srgb8) encodeSrgb8(v, p);
+  else for (int c = 0; c < 4; ++c) p[c] = unorm8(v[c]);
 }
 
 }  // namespace mvr

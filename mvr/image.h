@@ -35,6 +35,11 @@ struct Image {
   void setLinear(int x, int y, const glm::vec4& v);
 };
 
+// One RGBA8 pixel as GL_SRGB8_ALPHA8 stores it (colour sRGB-encoded, alpha
+// linear), from and to linear light; values outside [0, 1] clamp.
+glm::vec4 decodeSrgb8(const uint8_t* rgba);
+void encodeSrgb8(const glm::vec4& linear, uint8_t* rgba);
+
 // The rectangle (x, y, w, h) of src resampled bilinearly (edges clamped,
 // in linear light) to width x height, as sRGB-encoded RGBA8 (alpha
 // linear): what textures are stored as, decoded by GL's sRGB textures and

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <map>
 
-#include "mvr/color.h"
 #include "mvr/error.h"
 #include "mvr/image.h"
 #include "mvr/io/image_file.h"
@@ -97,7 +96,7 @@ glm::vec3 EnvironmentSet::texel(const std::vector<uint8_t>& texels, int size, in
                                 int y) const {
   x = std::clamp(x, 0, size - 1), y = std::clamp(y, 0, size - 1);
   const uint8_t* p = texels.data() + ((size_t(layer) * size + y) * size + x) * 4;
-  return glm::vec3(linearOfSrgb8(p[0]), linearOfSrgb8(p[1]), linearOfSrgb8(p[2]));
+  return glm::vec3(decodeSrgb8(p));
 }
 
 glm::vec3 EnvironmentSet::bilinear(const std::vector<uint8_t>& texels, int size, int layer,

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <map>
 
-#include "mvr/color.h"
 #include "mvr/error.h"
 #include "mvr/image.h"
 #include "mvr/io/image_file.h"
@@ -13,16 +12,6 @@ namespace mvr::shading {
 namespace {
 
 int wrap(int i, int n) { return ((i % n) + n) % n; }
-
-// Texels are stored sRGB-encoded (colour; alpha linear), as GL_SRGB8_ALPHA8.
-glm::vec4 decodeTexel(const uint8_t* p) {
-  return {linearOfSrgb8(p[0]), linearOfSrgb8(p[1]), linearOfSrgb8(p[2]), float(p[3]) / 255.0f};
-}
-
-void encodeTexel(const glm::vec4& v, uint8_t* p) {
-  for (int c = 0; c < 3; ++c) p[c] = srgb8(v[c]);
-  p[3] = uint8_t(std::lrint(std::clamp(v[3], 0.0f, 1.0f) * 255.0f));
-}
 
 }  // namespace
 
@@ -54,7 +43,8 @@ TextureSet TextureSet::load(const Scene& scene) {
   set.levelSize_.push_back({w, h});
   set.levels_.push_back(std::move(base));
   // Box-filtered chain down to 1 x 1 (odd sizes drop the last texel),
-  // averaged in linear light.
+  // averaged in linear light. Texels are stored as GL_SRGB8_ALPHA8 stores
+  // them (decodeSrgb8).
   while (set.levelSize_.back() != glm::ivec2(1)) {
     const glm::ivec2 from = set.levelSize_.back(), to = glm::max(from / 2, glm::ivec2(1));
     const std::vector<uint8_t>& src = set.levels_.back();
@@ -66,9 +56,9 @@ TextureSet TextureSet::load(const Scene& scene) {
           for (int dy = 0; dy < 2; ++dy)
             for (int dx = 0; dx < 2; ++dx) {
               const int sx = std::min(2 * x + dx, from.x - 1), sy = std::min(2 * y + dy, from.y - 1);
-              sum += decodeTexel(&src[((size_t(l) * from.y + sy) * from.x + sx) * 4]);
+              sum += decodeSrgb8(&src[((size_t(l) * from.y + sy) * from.x + sx) * 4]);
             }
-          encodeTexel(sum / 4.0f, &dst[((size_t(l) * to.y + y) * to.x + x) * 4]);
+          encodeSrgb8(sum / 4.0f, &dst[((size_t(l) * to.y + y) * to.x + x) * 4]);
         }
     set.levelSize_.push_back(to);
     set.levels_.push_back(std::move(dst));
@@ -78,7 +68,7 @@ TextureSet TextureSet::load(const Scene& scene) {
 
 glm::vec4 TextureSet::texel(int layer, int level, int x, int y) const {
   const glm::ivec2 s = levelSize_[level];
-  return decodeTexel(levels_[level].data() +
+  return decodeSrgb8(levels_[level].data() +
                      ((size_t(layer) * s.y + wrap(y, s.y)) * s.x + wrap(x, s.x)) * 4);
 }
 
