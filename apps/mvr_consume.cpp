@@ -46,14 +46,13 @@ int consume(int argc, char** argv) {
   const size_t viewBytes = h.epiBytes() / h.views * h.height, rowBytes = h.epiBytes() * h.height;
   const mvr::ReorderMemory reorder =
       memory.reorder(viewBytes, mvr::BoundedTasks::defaultLimit(), out);
-  const bool scratch = reorder.budget != 0 && rowBytes > reorder.budget;
-  mvr::app::checkHeldFramesFit({.reorderBytes = scratch ? reorder.budget : rowBytes},
+  mvr::app::checkHeldFramesFit({.reorderBytes = reorder.held(rowBytes)},
                                mvr::app::availableMemory(), "give a smaller --memory");
   mvr::ImageSetWriter writer(out, mvr::Manifest{.views = int(h.views), .rows = int(h.rows),
                                                 .width = int(h.width), .height = int(h.height),
                                                 .format = format, .bits = mvr::defaultBits(format),
                                                 .srgb = type != mvr::PixelType::U8});
-  if (scratch) mvr::app::checkScratchFits(rowBytes, reorder.scratchDir);
+  if (reorder.spills(rowBytes)) mvr::app::checkScratchFits(rowBytes, reorder.scratchDir);
   mvr::EpisToViews views(writer, int(h.width), int(h.height), int(h.views), type, reorder);
   size_t frames = 0;
   while (auto f = reader.next()) {  // in order, all of them, nothing after (or it throws)

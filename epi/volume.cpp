@@ -22,7 +22,7 @@ FrameTranspose::FrameTranspose(int inputs, int rowsPerInput, int width, PixelTyp
   inputBytes_ = rowBytes_ * size_t(rowsPerInput);
   const size_t outputBytes = rowBytes_ * size_t(inputs);
   int held = rowsPerInput;
-  if (memory.budget != 0 && outputBytes * size_t(rowsPerInput) > memory.budget) {
+  if (memory.spills(outputBytes * size_t(rowsPerInput))) {
     // At least one output frame, however small the budget.
     held = int(std::clamp<size_t>(memory.budget / outputBytes, 1, size_t(rowsPerInput)));
     scratch_ = std::make_unique<ScratchFile>(memory.scratchDir);

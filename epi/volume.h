@@ -19,6 +19,10 @@ namespace mvr {
 struct ReorderMemory {
   size_t budget = 0;       // bytes of frames held at once; 0: no limit
   std::string scratchDir;  // where the volume goes when it exceeds the budget
+  // A volume of this size goes through the scratch file.
+  bool spills(size_t volumeBytes) const { return budget != 0 && volumeBytes > budget; }
+  // What a volume of this size holds in memory at most.
+  size_t held(size_t volumeBytes) const { return spills(volumeBytes) ? budget : volumeBytes; }
 };
 
 // N input frames of M rows each, in, become M output frames of N rows each,
