@@ -1,6 +1,5 @@
 #include "apps/render_command.h"
 
-#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -25,6 +24,7 @@
 #include "mvr/io/image_set.h"
 #include "mvr/io/scene_io.h"
 #include "mvr/parallel.h"
+#include "shading/shading_plan.h"
 
 namespace mvr::app {
 
@@ -190,18 +190,15 @@ int runRender(int argc, char** argv, bool streamCommand) {
                                                       : PixelType::F32;
   const GlPlatform platform = parseGlPlatform(f.gl);
 
-  // Input problems first, before any GL or file work.
   // OpenImageIO loads beside scene loading, GL start-up and rendering
   // (textures and the first image wait for it): a one-view render takes
   // 0.62 s with the load started here, 0.9 s with it started after the
   // scene, 0.79 s with the library linked.
   if (!streaming) preloadImageCodec();
+  // Input problems first, before any GL or file work.
   Scene scene = loadInputScene(scenePath, f.strict);
-  // A stream of a textured scene reads images too.
-  if (streaming && std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) {
-        return !m.texture.empty() || !m.reflectionMap.empty();
-      }))
-    preloadImageCodec();
+  if (const shading::ShadingPlan plan = shading::planShading(scene); plan.texture || plan.reflection)
+    preloadImageCodec();  // a stream of a textured scene reads images too
   ShearingCamera camera(cameraFor(scene, width, height), width, height, views, rows);
   auto context = GlContext::create(platform);
   auto renderer = makeRenderer(choice, scene, type);
@@ -219,8 +216,8 @@ int runRender(int argc, char** argv, bool streamCommand) {
                                streaming ? f.queue : BoundedTasks::defaultLimit(),
                                streaming ? "." : out);
   }
-  const bool scratch = reorders && reorder.budget != 0 && rowBytes > reorder.budget;
-  checkHeldFramesFit({.reorderBytes = reorders ? (scratch ? reorder.budget : rowBytes) : 0,
+  const bool scratch = reorders && reorder.spills(rowBytes);
+  checkHeldFramesFit({.reorderBytes = reorders ? reorder.held(rowBytes) : 0,
                       .quiltBytes = !streaming && !f.quilt.empty() ? rowBytes * rows : 0},
                      availableMemory(),
                      std::string("give a smaller --memory") + (f.quilt.empty() ? "" : ", drop --quilt") +

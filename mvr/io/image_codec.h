@@ -26,8 +26,9 @@ struct ImageCodec {
   // Any file OpenImageIO reads, widened to RGBA: F32 for float files; 8-bit
   // files as Srgb8, or U8 when they say they are linear.
   std::string (*decode)(const std::string& path, Image& out);
-  // bits, codec and colour tag, as readImageEncoding describes them.
-  std::string (*describe)(const std::string& path, ImageEncoding& out);
+  // What a file says of its storage: bits per channel, its
+  // "compression" attribute, and whether it says it is linear.
+  std::string (*describe)(const std::string& path, int& bits, std::string& compression, bool& linear);
 };
 
 // The codec: loaded now, or when a preload is running, once it is done.

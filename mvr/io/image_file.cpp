@@ -82,7 +82,15 @@ void writeImage(const Image& image, const std::string& path, const ImageEncoding
 
 ImageEncoding readImageEncoding(const std::string& path) {
   ImageEncoding e;
-  if (std::string error = imageCodec().describe(path, e); !error.empty()) fail(path, error);
+  std::string compression;
+  bool linear = false;
+  if (std::string error = imageCodec().describe(path, e.bits, compression, linear); !error.empty())
+    fail(path, error);
+  const std::string format = formatOf(path);
+  if (format != "png") e.codec = compression;
+  // A PNG says (sRGB chunk, or gAMA 1.0 for linear); exr is linear; a tiff
+  // carries no tag (the manifest says) and is reported sRGB.
+  e.srgb = format != "exr" && !linear;
   return e;
 }
 

@@ -5,7 +5,6 @@
 #include <OpenImageIO/strutil.h>
 
 #include <cstring>
-#include <filesystem>
 
 #include "mvr/io/image_codec.h"
 
@@ -13,12 +12,6 @@ namespace mvr {
 namespace {
 
 constexpr int kPngFilterNone = 0x08, kPngAllFilters = 0xF8;  // libpng's PNG_FILTER_* bits
-
-std::string extensionOf(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  if (!ext.empty()) ext.erase(0, 1);
-  return ext == "tif" ? "tiff" : ext;
-}
 
 bool saysLinear(const OIIO::ImageSpec& spec) {
   return OIIO::Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "linear");
@@ -87,17 +80,13 @@ std::string decode(const std::string& path, Image& img) {
   return "";
 }
 
-std::string describe(const std::string& path, ImageEncoding& e) {
+std::string describe(const std::string& path, int& bits, std::string& compression, bool& linear) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) return "cannot read image: " + OIIO::geterror();
   const OIIO::ImageSpec& spec = in->spec();
-  const std::string format = extensionOf(path);
-  e = ImageEncoding{};
-  e.bits = int(spec.format.size()) * 8;
-  if (format != "png") e.codec = spec.get_string_attribute("compression");
-  // A PNG says (sRGB chunk, or gAMA 1.0 for linear); others: exr linear,
-  // tiff unknown here (the manifest says), reported as sRGB.
-  e.srgb = format != "exr" && !saysLinear(spec);
+  bits = int(spec.format.size()) * 8;
+  compression = spec.get_string_attribute("compression");
+  linear = saysLinear(spec);
   return "";
 }
 
