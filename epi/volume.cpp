@@ -16,10 +16,9 @@ std::span<const std::byte> bytesOf(const Image& image) {
 
 FrameTranspose::FrameTranspose(int inputs, int rowsPerInput, int width, PixelType type,
                                const ReorderMemory& memory)
-    : inputs_(inputs), rowsPerInput_(rowsPerInput) {
-  const Image probe(width, 1, type);
-  rowBytes_ = probe.rowBytes();
-  inputBytes_ = rowBytes_ * size_t(rowsPerInput);
+    : inputs_(inputs), rowsPerInput_(rowsPerInput),
+      inputBytes_(size_t(width) * 4 * Image::channelBytes(type) * size_t(rowsPerInput)),
+      rowBytes_(size_t(width) * 4 * Image::channelBytes(type)) {
   const size_t outputBytes = rowBytes_ * size_t(inputs);
   int held = rowsPerInput;
   if (memory.spills(outputBytes * size_t(rowsPerInput))) {

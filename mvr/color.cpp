@@ -27,8 +27,8 @@ const Srgb8Table& srgb8Table() {
 float srgbEncode(float linear) {
   if (!(linear > 0.0f)) return 0.0f;  // NaN too
   if (linear >= 1.0f) return 1.0f;
-  const float v = linear;
-  return v <= 0.0031308f ? 12.92f * v : std::min(1.0f, 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f);
+  return linear <= 0.0031308f ? 12.92f * linear
+                              : std::min(1.0f, 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f);
 }
 
 float srgbDecode(float encoded) {
