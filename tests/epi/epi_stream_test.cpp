@@ -91,6 +91,9 @@ TEST(EpiStream, HostileStreamsAreOneLineErrors) {
   EXPECT_NE(errorOf(withField(20, 0xffffffffu)).find("views"), std::string::npos);
   EXPECT_NE(errorOf(withField(24, 0xffffffffu)).find("rows"), std::string::npos);
   EXPECT_NE(errorOf(withField(24, 0)).find("no valid EPI"), std::string::npos);
+  EXPECT_NE(errorOf(withField(36, 2)).find("header color encoding 2 is not 0 (linear) or 1 (sRGB bytes)"),
+            std::string::npos);
+  EXPECT_EQ(errorOf(withField(36, 1)), "");  // sRGB bytes
   EXPECT_NE(errorOf(streamOf({{0, 1}, {0, 0}})).find("EPI 0 is tagged row 0 scanline 1, expected row 0 scanline 0"),
             std::string::npos);
   EXPECT_NE(errorOf(good + "x").find("data after the last of 2 EPIs"), std::string::npos);
