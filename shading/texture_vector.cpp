@@ -49,6 +49,12 @@ int TextureVectors::append(const TextureVectors& from, int base, int length) {
   return at;
 }
 
+int TextureVectors::append(const TextureVectors& from) {
+  const int at = int(texels_.size());
+  texels_.insert(texels_.end(), from.texels_.begin(), from.texels_.end());
+  return at;
+}
+
 // The box-filtered MIP chain after level 0 (k texels at base).
 void TextureVectors::addLevels(int base, int k) {
   for (int len = k / 2, from = base; len >= 1; from += 2 * len, len /= 2)

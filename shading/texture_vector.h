@@ -31,6 +31,8 @@ class TextureVectors {
   int addTexels(std::span<const glm::vec4> level0);
   // Appends a copy of `length` texels' vector at `base` of another store.
   int append(const TextureVectors& from, int base, int length);
+  // Appends every vector of another store; returns where its texel 0 went.
+  int append(const TextureVectors& from);
   static int lengthFor(float widthPixels);
   // Sample at screen parameter u with `texelsPerPixel` level-0 texels per
   // pixel: linear within a level, linear between levels.

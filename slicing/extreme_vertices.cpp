@@ -74,6 +74,24 @@ void ExtremeTransform::add(const glm::dvec3& p, const glm::vec3& front, const gl
   for (int k = 0; k < out_.extraCount; ++k) out_.extrasOverW.push_back(extras[k] * float(1.0 / w));
 }
 
+void appendVertices(ExtremeVertices& to, const ExtremeVertices& from) {
+  if (to.extraCount != from.extraCount) fail("appendVertices", "the vertices carry different extras");
+  const auto join = [](auto& a, const auto& b) { a.insert(a.end(), b.begin(), b.end()); };
+  const auto vertexBase = uint32_t(to.vertexCount());
+  const int texelBase = to.vectorTexels.append(from.vectorTexels);
+  const int knotBase = int(to.knots.size());
+  join(to.x0, from.x0), join(to.dx, from.dx), join(to.y, from.y), join(to.depth, from.depth);
+  join(to.invW, from.invW), join(to.yFirst, from.yFirst), join(to.yStep, from.yStep);
+  join(to.frontOverW, from.frontOverW), join(to.backOverW, from.backOverW), join(to.extrasOverW, from.extrasOverW);
+  for (const glm::uvec3& t : from.triangles) to.triangles.push_back(t + vertexBase);
+  join(to.cullBack, from.cullBack), join(to.materials, from.materials), join(to.knots, from.knots);
+  for (SliceVector v : from.vectors) {
+    v.base += texelBase;
+    v.firstKnot += knotBase;
+    to.vectors.push_back(v);
+  }
+}
+
 void moveToRow(ExtremeVertices& v, int row) {
   const float r = float(row);
   for (size_t i = 0; i < v.y.size(); ++i) v.y[i] = v.yFirst[i] + r * v.yStep[i];

@@ -94,6 +94,10 @@ class ExtremeTransform {
   int firstRow_;
 };
 
+// Appends `from`'s vertices and triangles, with their vectors, texels and
+// knots, after `to`'s (slices built in parallel, joined).
+void appendVertices(ExtremeVertices& to, const ExtremeVertices& from);
+
 // Moves the vertices to another row of views: y only.
 void moveToRow(ExtremeVertices& vertices, int row);
 

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "mvr/error.h"
+#include "mvr/parallel.h"
 #include "slicing/highlight_splits.h"
 #include "slicing/source_visibility.h"
 
@@ -53,11 +54,9 @@ class LayerSlicer {
     if (options.scene && options.splits > 0) highlights_.emplace(*options.scene, cam, row, options.splits);
   }
 
-  void slice(const SourceLayer& layer) {
-    const int w = cam_.width(), h = cam_.height();
-    if (layer.color.width != w || layer.color.height != h || layer.color.type != PixelType::F32 ||
-        layer.depth.size() != size_t(w) * h)
-      fail("sliceSourceLayers", "source layers must be float images of the output size");
+  // Scanlines [first, last) of the layer.
+  void slice(const SourceLayer& layer, int first, int last) {
+    const int w = cam_.width();
     // Off: even equal depths stay apart. Never infinite (a track with no
     // width): a block holding an empty pixel spans an infinite range.
     const float tolerance =
@@ -66,7 +65,7 @@ class LayerSlicer {
             : -1.0f;
     const bool split = highlights_ && layer.normals.size() == layer.depth.size();
     std::vector<uint8_t> alone(split ? w : 0);
-    for (int j = 0; j < h; ++j) {
+    for (int j = first; j < last; ++j) {
       const float* depth = layer.depth.data() + size_t(j) * w;
       for (int x = 0; split && x < w; ++x)
         alone[x] = highlights_->specular(materialOf(layer.normals[size_t(j) * w + x]));
@@ -139,12 +138,31 @@ float coalesceDepthRange(const ShearingCamera& cam, double eyeX, float pixels) {
 
 ImageSlices sliceSourceLayers(const std::vector<SourceLayer>& layers, const ShearingCamera& cam,
                               int row, const ImageSliceOptions& options) {
-  ImageSlices out;
-  LayerSlicer slicer(cam, row, options, out);
-  for (const SourceLayer& layer : layers) slicer.slice(layer);
+  const int w = cam.width(), h = cam.height();
+  for (const SourceLayer& layer : layers)
+    if (layer.color.width != w || layer.color.height != h || layer.color.type != PixelType::F32 ||
+        layer.depth.size() != size_t(w) * h)
+      fail("sliceSourceLayers", "source layers must be float images of the output size");
+  // Each band holds its scanlines' slices of every layer, layer by layer,
+  // so joined in band order each scanline lists them as one pass would.
+  const int bandRows = std::max(1, options.bandRows), bands = (h + bandRows - 1) / bandRows;
+  std::vector<ImageSlices> parts(size_t(std::max(1, bands)));
+  std::vector<std::vector<uint32_t>> scanlines(parts.size());
+  parallelFor(0, bands, [&](int b) {
+    LayerSlicer slicer(cam, row, options, parts[b]);
+    for (const SourceLayer& layer : layers) slicer.slice(layer, b * bandRows, std::min(h, (b + 1) * bandRows));
+    scanlines[b] = std::move(slicer.scanlineOf);
+  });
+  ImageSlices out = std::move(parts[0]);
+  std::vector<uint32_t> scanlineOf = std::move(scanlines[0]);
+  for (size_t b = 1; b < parts.size(); ++b) {
+    appendVertices(out.vertices, parts[b].vertices);
+    out.pixels += parts[b].pixels;
+    scanlineOf.insert(scanlineOf.end(), scanlines[b].begin(), scanlines[b].end());
+  }
   out.vertices.cullBack.assign(out.vertices.triangles.size(), 0);
   out.vertices.materials.assign(out.vertices.triangles.size(), 0);
-  out.table = SliceTable::fromSegments(slicer.scanlineOf, cam.height());
+  out.table = SliceTable::fromSegments(scanlineOf, h);
   return out;
 }
 

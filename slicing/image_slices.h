@@ -38,6 +38,9 @@ struct ImageSliceOptions {
   // its own slice with knots from `splits` split views per light.
   const Scene* scene = nullptr;
   int splits = 0;
+  // Scanlines per task: bands are sliced in parallel and joined in
+  // scanline order, so the table is the same for any band size.
+  int bandRows = 8;
 };
 
 struct ImageSlices {

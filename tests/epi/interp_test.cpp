@@ -8,6 +8,7 @@
 //               center at the ends of the track (content center never saw)
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 
 #include "epi/interp_renderer.h"
@@ -363,6 +364,53 @@ TEST_F(InterpTest, SplitTracksMoveHighlightsWithTheView) {
       test::renderViews(*makeInterpRenderer(diffuse, PixelType::U8, {.acquire = Acquire::Center}), small);
   EXPECT_EQ(test::compareViews(d0, d3).minIdentical, 1.0);
   EXPECT_EQ(none.counters.count("highlight_knots"), 0u);
+}
+
+// Slicing runs in bands of scanlines on the pool; joined, every slot of
+// the table holds the slice a single pass makes: the same ends, vector,
+// texels and highlight knots (default scene beside a specular plane, split
+// tracks and coalescing on, so every part of a slice is exercised).
+TEST_F(InterpTest, SlicingInBandsJoinsToTheSingleBandTable) {
+  Scene scene = specularPlane();
+  const ShearingCamera cam(*scene.camera, 72, 45, 9);
+  auto sources = makeSourceLayerRenderer(scene, true);
+  RenderStats stats;
+  const double track = cam.spec().trackRight - cam.spec().trackLeft;
+  std::vector<SourceLayer> layers;
+  for (double x : {cam.viewX(0), cam.viewX(8)})
+    for (SourceLayer& l : sources->render(cam, {x, 0.0}, 4, track, stats)) layers.push_back(std::move(l));
+  ImageSliceOptions options{.overlap = 0.25f, .coalesce = 0.5f, .scene = &scene, .splits = 2,
+                            .bandRows = cam.height()};
+  const ImageSlices whole = sliceSourceLayers(layers, cam, 0, options);
+  ASSERT_GT(whole.vertices.knots.size(), 0u);
+  for (int bandRows : {1, 7}) {
+    options.bandRows = bandRows;
+    const ImageSlices banded = sliceSourceLayers(layers, cam, 0, options);
+    ASSERT_TRUE(std::ranges::equal(banded.table.offsets(), whole.table.offsets())) << bandRows;
+    EXPECT_EQ(banded.pixels, whole.pixels);
+    const auto& wv = whole.vertices;
+    const auto& bv = banded.vertices;
+    for (size_t s = 0; s < whole.table.sliceCount(); ++s) {
+      const uint32_t a = whole.table.slices()[s].triangle, b = banded.table.slices()[s].triangle;
+      for (int end = 0; end < 2; ++end) {
+        const uint32_t p = wv.triangles[a][end], q = bv.triangles[b][end];
+        ASSERT_EQ(wv.x0[p], bv.x0[q]) << bandRows << " slot " << s;
+        ASSERT_EQ(wv.y[p], bv.y[q]);
+        ASSERT_EQ(wv.depth[p], bv.depth[q]);
+        ASSERT_EQ(wv.frontOverW[p], bv.frontOverW[q]);
+      }
+      const SliceVector &x = wv.vectors[a], &y = bv.vectors[b];
+      ASSERT_EQ(x.length, y.length);
+      ASSERT_EQ(x.u0, y.u0);
+      ASSERT_EQ(x.knotCount, y.knotCount);
+      for (int t = 0; t < 2 * x.length - 1; ++t)
+        ASSERT_EQ(wv.vectorTexels.texels()[x.base + t], bv.vectorTexels.texels()[y.base + t]);
+      for (int k = 0; k < x.knotCount; ++k) {
+        ASSERT_EQ(wv.knots[x.firstKnot + k].r, bv.knots[y.firstKnot + k].r);
+        ASSERT_EQ(wv.knots[x.firstKnot + k].specular, bv.knots[y.firstKnot + k].specular);
+      }
+    }
+  }
 }
 
 TEST_F(InterpTest, OneViewAndBadOptions) {
