@@ -64,6 +64,16 @@ class ShearingCamera {
   // Window (pixel x, pixel y, window depth) -> world point, for an eye at
   // (cameraX, cameraY) on the camera plane: the inverse of project.
   glm::dvec3 unprojectAt(double cameraX, double cameraY, const glm::dvec3& window) const;
+  // One view as a pinhole camera in the convention RGB-D tools use
+  // (OpenCV's axes): camera x right, y down, z along the view direction
+  // (world -z), world units, so camera z of a point is its distance D - Z
+  // from the camera plane. worldToCamera is V: the eye to the origin, then
+  // diag(1, -1, -1). intrinsics is K, to this file's pixel coordinates
+  // (centre of pixel (i, j) at (i + 0.5, j + 0.5)): u = fx x/z + cx with
+  // fx = W D / Wp for every view; the frustum's shear is a principal point
+  // that moves with the eye, cx = W/2 + (W/Wp) eye.x, cy = H/2 - (H/Hp) eye.y.
+  glm::dmat4 worldToCamera(int view, int row = 0) const;
+  glm::dmat3 intrinsics(int view, int row = 0) const;
   // Pixel x movement of a point at depth z per unit of camera x:
   // -(W / Wp) z / (D - z). Zero on the image plane.
   double disparityPerUnitTrack(double z) const;

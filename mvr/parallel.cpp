@@ -1,5 +1,6 @@
 #include "mvr/parallel.h"
 
+#include <algorithm>
 #include <exception>
 #include <memory>
 #include <mutex>
@@ -29,6 +30,10 @@ int threadCount() {
 void setThreadCount(int n) {
   limit().reset();
   if (n > 0) limit() = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(n));
+}
+
+void startPool() {
+  tbb::parallel_for(0, std::max(2, threadCount()), [](int) {});
 }
 
 void parallelFor(int begin, int end, const std::function<void(int)>& body) {

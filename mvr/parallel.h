@@ -11,6 +11,10 @@ namespace mvr {
 int threadCount();
 // Limits the pool to n workers for the rest of the program; 0: all cores.
 void setThreadCount(int n);
+// Starts the workers now instead of at the first parallel loop: their
+// start-up loads a library (TBB's allocator), so it must not come while
+// another thread holds the dynamic loader (preloadImageCodec).
+void startPool();
 // body(i) for every i in [begin, end), one index per task, in any order
 // and on any worker; returns when all are done. Exceptions propagate.
 void parallelFor(int begin, int end, const std::function<void(int)>& body);

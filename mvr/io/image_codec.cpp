@@ -3,12 +3,14 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cstdlib>
 #include <filesystem>
 #include <future>
 #include <mutex>
 
 #include "mvr/error.h"
+#include "mvr/timer.h"
 
 namespace mvr {
 namespace {
@@ -27,7 +29,17 @@ struct Loaded {
   std::string error;
 };
 
+std::atomic<double>& loadSeconds() {
+  static std::atomic<double> seconds{0.0};
+  return seconds;
+}
+
 Loaded load() {
+  const Stopwatch watch;
+  struct Timed {
+    const Stopwatch& watch;
+    ~Timed() { loadSeconds() = watch.seconds(); }
+  } timed{watch};
   try {
     const std::string path = modulePath();
     // Kept loaded for the rest of the program.
@@ -56,9 +68,12 @@ void start(std::launch policy) {
   std::call_once(started(), [policy] { loading() = std::async(policy, load).share(); });
 }
 
+
 }  // namespace
 
 void preloadImageCodec() { start(std::launch::async); }
+
+double imageCodecLoadSeconds() { return loadSeconds().load(); }
 
 const ImageCodec& imageCodec() {
   start(std::launch::deferred);  // runs on this thread at get() unless a preload started it

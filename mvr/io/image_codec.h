@@ -36,6 +36,8 @@ struct ImageCodec {
 const ImageCodec& imageCodec();
 // Starts loading the module on a background thread; returns at once.
 void preloadImageCodec();
+// Seconds the module's load took (0 before it is loaded).
+double imageCodecLoadSeconds();
 
 }  // namespace mvr
 

@@ -52,6 +52,8 @@ class Manifest {
   static Manifest read(const std::string& dir);
   // Writes dir/manifest.json under a temporary name and renames it.
   void write(const std::string& dir) const;
+  // What write() puts in manifest.json.
+  std::string text() const;
 };
 
 }  // namespace mvr

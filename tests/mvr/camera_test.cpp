@@ -60,6 +60,39 @@ TEST(ShearingCamera, OneViewSitsAtTrackCentre) {
   EXPECT_EQ(cam.viewSpacing(), 0.0);
 }
 
+// K V p, divided by its z, lands where project() puts p, in every view of
+// a full-parallax grid; camera z is the distance from the camera plane.
+// By hand for the centre view of spec() at 200x100 (plane 2 x 1, D = 4):
+// fx = 200 * 4 / 2 = 400, fy = 100 * 4 / 1 = 400, principal point at the
+// image centre; the point (0.5, 0.25, 1) is 3 in front of the eye, at
+// u = 100 + 400 * 0.5 / 3, v = 50 - 400 * 0.25 / 3.
+TEST(ShearingCamera, PinholeCamerasReproduceProjection) {
+  CameraSpec s = spec();
+  s.rowTop = 0.6, s.rowBottom = -0.6;
+  const ShearingCamera one(spec(), 200, 100, 3);
+  const glm::dvec3 p(0.5, 0.25, 1.0);
+  const glm::dvec3 c = glm::dvec3(one.worldToCamera(1) * glm::dvec4(p, 1.0));
+  EXPECT_DOUBLE_EQ(c.z, 3.0);
+  const glm::dvec3 uv = one.intrinsics(1) * c / c.z;
+  EXPECT_NEAR(uv.x, 100.0 + 400.0 * 0.5 / 3.0, 1e-9);
+  EXPECT_NEAR(uv.y, 50.0 - 400.0 * 0.25 / 3.0, 1e-9);
+
+  const ShearingCamera cam(s, 64, 48, 5, 3);
+  for (int row = 0; row < 3; ++row)
+    for (int view = 0; view < 5; ++view)
+      for (const glm::dvec3 q : {glm::dvec3(0.3, -0.2, 1.5), glm::dvec3(-0.7, 0.4, -2.0), glm::dvec3(0.1, 0.2, 0.0)}) {
+        const glm::dvec3 e = cam.eye(view, row);
+        const glm::dvec3 inCamera = glm::dvec3(cam.worldToCamera(view, row) * glm::dvec4(q, 1.0));
+        EXPECT_NEAR(inCamera.z, e.z - q.z, 1e-12);
+        EXPECT_NEAR(inCamera.x, q.x - e.x, 1e-12);  // x right, y down
+        EXPECT_NEAR(inCamera.y, e.y - q.y, 1e-12);
+        const glm::dvec3 pixel = cam.intrinsics(view, row) * inCamera / inCamera.z;
+        const glm::dvec3 expected = cam.project(q, view, row);
+        EXPECT_NEAR(pixel.x, expected.x, 1e-9) << view << " " << row;
+        EXPECT_NEAR(pixel.y, expected.y, 1e-9) << view << " " << row;
+      }
+}
+
 TEST(ShearingCamera, ImpossibleCamerasAreRejected) {
   auto bad = [](auto change) {
     CameraSpec s = spec();

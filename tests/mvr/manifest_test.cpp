@@ -6,7 +6,10 @@
 #include <set>
 
 #include "mvr/error.h"
+#include "mvr/camera.h"
 #include "mvr/io/manifest.h"
+
+#include <nlohmann/json.hpp>
 
 namespace mvr {
 namespace {
@@ -81,6 +84,38 @@ TEST(Manifest, RoundTripKeepsLayoutAndInfo) {
   EXPECT_EQ(r.bits, 16);
   EXPECT_EQ(r.info["backend"], "mvr");
   EXPECT_FALSE(r.info.contains("naming"));
+}
+
+// Every view of a full-parallax grid is listed as a pinhole camera, one
+// line each, with the camera's own K, V and eye, row by row.
+TEST(Manifest, ListsEveryViewAsAPinholeCamera) {
+  CameraSpec spec;
+  spec.rowTop = 0.5, spec.rowBottom = -0.5;
+  const ShearingCamera cam(spec, 32, 24, 4, 3);
+  Manifest written;
+  written.views = 4, written.rows = 3, written.width = 32, written.height = 24;
+  written.setCamera(cam);
+  const std::string text = written.text();
+  const nlohmann::json j = nlohmann::json::parse(text);
+  const nlohmann::json& views = j.at("cameras").at("views");
+  ASSERT_EQ(views.size(), 12u);
+  for (const nlohmann::json& v : views) {
+    const int view = v.at("view"), row = v.at("row");
+    const glm::dmat3 k = cam.intrinsics(view, row);
+    const glm::dmat4 w = cam.worldToCamera(view, row);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(v.at("K")[r][c].get<double>(), k[c][r]);
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) EXPECT_EQ(v.at("V")[r][c].get<double>(), w[c][r]);
+    EXPECT_EQ(v.at("eye")[0].get<double>(), cam.eye(view, row).x);
+    EXPECT_EQ(v.at("eye")[1].get<double>(), cam.eye(view, row).y);
+  }
+  EXPECT_EQ(views[5].at("row"), 1);  // row by row: view 1 of row 1
+  EXPECT_EQ(views[5].at("view"), 1);
+  size_t lines = 0;
+  for (size_t at = text.find("\n      {\"K\""); at != std::string::npos; at = text.find("\n      {\"K\"", at + 1))
+    ++lines;
+  EXPECT_EQ(lines, 12u);
 }
 
 TEST(Manifest, BadManifestsNameTheFile) {
