@@ -3,11 +3,18 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
+#include <string_view>
 
 namespace mvr {
 namespace {
-bool gEnabled = true;
+// MVR_PROGRESS=0 silences it for scripts that keep stderr for errors.
+bool fromEnvironment() {
+  const char* v = std::getenv("MVR_PROGRESS");
+  return !(v && std::string_view(v) == "0");
 }
+bool gEnabled = fromEnvironment();
+}  // namespace
 
 void setProgressEnabled(bool enabled) { gEnabled = enabled; }
 

@@ -22,7 +22,7 @@ class Progress {
   Stopwatch clock_;
 };
 
-// Turned off by tests and the benchmark.
+// Turned off by tests and the benchmark, and by MVR_PROGRESS=0.
 void setProgressEnabled(bool enabled);
 
 }  // namespace mvr

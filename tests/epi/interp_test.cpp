@@ -183,8 +183,9 @@ TEST_F(InterpTest, SourceViewIsReproducedAndDualBeatsCenterAtTheEnds) {
   for (int v = 0; v < 5; ++v) {
     const double pd = compareImages(reference.views.at({0, v}), d.views.at({0, v})).psnr;
     EXPECT_GE(pd, 24.0) << v;
-    if (v == 0 || v == 4)
+    if (v == 0 || v == 4) {
       EXPECT_GT(pd, compareImages(reference.views.at({0, v}), c.views.at({0, v})).psnr) << v;
+    }
   }
   // The CPU span rasterizer draws the same slices.
   auto cpu = makeInterpRenderer(scene, PixelType::U8, {Acquire::Dual, 4, PstMode::Cpu});

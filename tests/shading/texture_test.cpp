@@ -158,7 +158,9 @@ TEST_F(TextureVsSvr, EveryPathIsCloseToSvrWithoutShimmer) {
     EXPECT_GE(*lo, c.minPsnr) << name;
     // Shimmer would show as views whose error jumps when the level of
     // detail flips; the vector path's error must be even across views.
-    if (c.texture == TextureMode::Vector) EXPECT_LT(*hi - *lo, 3.0) << name;
+    if (c.texture == TextureMode::Vector) {
+      EXPECT_LT(*hi - *lo, 3.0) << name;
+    }
   }
 }
 

@@ -17,6 +17,9 @@ struct CliResult {
 
 // Runs a shell command line; returns its exit status and stderr.
 inline CliResult shell(const std::string& commandLine) {
+  // Errors only: a run slowed past a second (sanitizers, a loaded machine)
+  // would add progress lines.
+  setenv("MVR_PROGRESS", "0", 1);
   // ctest runs tests in parallel processes: one stderr file per process.
   const auto errFile = std::filesystem::temp_directory_path() /
                        ("mvr_cli_stderr_" + std::to_string(getpid()) + ".txt");
