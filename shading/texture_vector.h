@@ -21,6 +21,9 @@ class TextureVectors {
   static constexpr int kMaxLength = 4096;
 
   void clear() { texels_.clear(); }
+  void reserve(size_t texels) { texels_.reserve(texels); }
+  // Appends every vector of another store; returns where its texel 0 went.
+  int append(const TextureVectors& from);
   // Appends the vector of a slice whose ends carry uv / w and 1 / w;
   // returns its first texel. widthPixels: the wider p-edge.
   int add(const TextureSet& textures, int layer, glm::vec2 uv0OverW, glm::vec2 uv1OverW,
@@ -31,8 +34,6 @@ class TextureVectors {
   int addTexels(std::span<const glm::vec4> level0);
   // Appends a copy of `length` texels' vector at `base` of another store.
   int append(const TextureVectors& from, int base, int length);
-  // Appends every vector of another store; returns where its texel 0 went.
-  int append(const TextureVectors& from);
   static int lengthFor(float widthPixels);
   // Sample at screen parameter u with `texelsPerPixel` level-0 texels per
   // pixel: linear within a level, linear between levels.

@@ -74,6 +74,14 @@ void ExtremeTransform::add(const glm::dvec3& p, const glm::vec3& front, const gl
   for (int k = 0; k < out_.extraCount; ++k) out_.extrasOverW.push_back(extras[k] * float(1.0 / w));
 }
 
+void ExtremeVertices::reserve(size_t vertices, size_t triangleCount, size_t texels) {
+  for (auto* a : {&x0, &dx, &y, &depth, &invW, &yFirst, &yStep}) a->reserve(vertices);
+  frontOverW.reserve(vertices), backOverW.reserve(vertices);
+  extrasOverW.reserve(vertices * size_t(extraCount));
+  triangles.reserve(triangleCount);
+  if (texels > 0) vectors.reserve(triangleCount), vectorTexels.reserve(texels);
+}
+
 void appendVertices(ExtremeVertices& to, const ExtremeVertices& from) {
   if (to.extraCount != from.extraCount) fail("appendVertices", "the vertices carry different extras");
   const auto join = [](auto& a, const auto& b) { a.insert(a.end(), b.begin(), b.end()); };

@@ -60,6 +60,9 @@ struct ExtremeVertices {
   std::vector<HighlightKnot> knots;
 
   size_t vertexCount() const { return x0.size(); }
+  // Room for this many vertices and triangles (and texels of vectors),
+  // so that builders appending millions do not copy as they grow.
+  void reserve(size_t vertices, size_t triangleCount, size_t texels = 0);
   size_t bytes() const;
 };
 

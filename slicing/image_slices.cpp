@@ -149,13 +149,30 @@ ImageSlices sliceSourceLayers(const std::vector<SourceLayer>& layers, const Shea
   std::vector<ImageSlices> parts(size_t(std::max(1, bands)));
   std::vector<std::vector<uint32_t>> scanlines(parts.size());
   parallelFor(0, bands, [&](int b) {
+    const int first = b * bandRows, last = std::min(h, (b + 1) * bandRows);
+    // At most a slice per covered pixel: reserved, the arrays never copy
+    // as they grow (growing, slicing was bound by copies and page faults).
+    size_t covered = 0;
+    for (const SourceLayer& layer : layers)
+      covered += size_t(std::count_if(layer.depth.begin() + size_t(first) * w, layer.depth.begin() + size_t(last) * w,
+                                      [](float d) { return d != 0.0f; }));
+    parts[b].vertices.reserve(2 * covered, covered, 2 * covered);
     LayerSlicer slicer(cam, row, options, parts[b]);
-    for (const SourceLayer& layer : layers) slicer.slice(layer, b * bandRows, std::min(h, (b + 1) * bandRows));
+    slicer.scanlineOf.reserve(covered);
+    for (const SourceLayer& layer : layers) slicer.slice(layer, first, last);
     scanlines[b] = std::move(slicer.scanlineOf);
   });
-  ImageSlices out = std::move(parts[0]);
-  std::vector<uint32_t> scanlineOf = std::move(scanlines[0]);
-  for (size_t b = 1; b < parts.size(); ++b) {
+  // Joined into room reserved for all: each array copied once.
+  ImageSlices out;
+  size_t vertices = 0, triangles = 0, texels = 0;
+  for (const ImageSlices& part : parts) {
+    vertices += part.vertices.vertexCount(), triangles += part.vertices.triangles.size();
+    texels += part.vertices.vectorTexels.texels().size();
+  }
+  out.vertices.reserve(vertices, triangles, texels);
+  std::vector<uint32_t> scanlineOf;
+  scanlineOf.reserve(triangles);
+  for (size_t b = 0; b < parts.size(); ++b) {
     appendVertices(out.vertices, parts[b].vertices);
     out.pixels += parts[b].pixels;
     scanlineOf.insert(scanlineOf.end(), scanlines[b].begin(), scanlines[b].end());
