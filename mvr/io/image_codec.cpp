@@ -34,12 +34,7 @@ std::atomic<double>& loadSeconds() {
   return seconds;
 }
 
-Loaded load() {
-  const Stopwatch watch;
-  struct Timed {
-    const Stopwatch& watch;
-    ~Timed() { loadSeconds() = watch.seconds(); }
-  } timed{watch};
+Loaded tryLoad() {
   try {
     const std::string path = modulePath();
     // Kept loaded for the rest of the program.
@@ -51,6 +46,13 @@ Loaded load() {
   } catch (const std::exception& e) {
     return {nullptr, e.what()};
   }
+}
+
+Loaded load() {
+  const Stopwatch watch;
+  Loaded loaded = tryLoad();
+  loadSeconds() = watch.seconds();
+  return loaded;
 }
 
 // Started once, by a preload or by the first use.
@@ -67,7 +69,6 @@ std::once_flag& started() {
 void start(std::launch policy) {
   std::call_once(started(), [policy] { loading() = std::async(policy, load).share(); });
 }
-
 
 }  // namespace
 

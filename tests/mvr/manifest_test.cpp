@@ -5,8 +5,8 @@
 #include <fstream>
 #include <set>
 
-#include "mvr/error.h"
 #include "mvr/camera.h"
+#include "mvr/error.h"
 #include "mvr/io/manifest.h"
 
 #include <nlohmann/json.hpp>
