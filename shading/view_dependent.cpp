@@ -34,14 +34,19 @@ glm::vec3 specularLight(const Scene& scene, const Material& m, const glm::vec3& 
   return m.specular * sum;
 }
 
-const std::string& glslSpecular() {
-  static const std::string src = R"(
+const char* glslMaterials() {
+  return R"(
 struct Material {
   vec4 specular;  // rgb, shininess
   vec4 params;    // model (0 Phong, 1 Blinn-Phong), texture layer, reflection layer, map kind
   vec4 reflectivity;
 };
 layout(std430, binding = 1) readonly buffer Materials { Material uMaterials[]; };
+)";
+}
+
+const std::string& glslSpecular() {
+  static const std::string src = std::string(glslMaterials()) + R"(
 
 vec3 specularLight(int material, vec3 p, vec3 nIn, vec3 eye) {
   Material m = uMaterials[material];

@@ -18,7 +18,11 @@ namespace mvr::shading {
 glm::vec3 specularLight(const Scene& scene, const Material& material, const glm::vec3& p,
                         const glm::vec3& n, const glm::vec3& eye);
 
-// GLSL: the Materials storage block (binding 1) and
+// GLSL: the Materials storage block (binding 1) that makeMaterialBuffer
+// fills; params.y of a material is its texture layer.
+const char* glslMaterials();
+
+// GLSL: glslMaterials() and
 // `vec3 specularLight(int material, vec3 p, vec3 n, vec3 eye)`; needs
 // glslLighting() before it for the light uniforms.
 const std::string& glslSpecular();

@@ -149,13 +149,13 @@ void main() {
 }
 )";
 
-// Slices coloured by their own vectors (the image-based back end): the
-// attributes of EpiPass::linear(), u running from u0 at end 0 to u1 at
-// end 1, the first texel an exact integer.
+// Slices coloured by texture vectors (their own, or the scene's extracted
+// per batch): the attributes of EpiPass::linear(), u running from u0 at
+// end 0 to u1 at end 1, the first texel an exact integer.
 const char* const kPulledVectorSliverVertex = R"(
 void main() {
   PstVertex p = pullSliverVertex();
-  uvec4 vector = uVectors[p.triangle];
+  uvec4 vector = sliceVector(p);
   float u0 = uintBitsToFloat(vector.z), u1 = uintBitsToFloat(vector.w);
   float width = widthAt(p.e0, p.e1, p.r);
   for (int c = 0; c < NV; ++c) vA[c] = vec4(0.0);
@@ -167,7 +167,7 @@ void main() {
 const char* const kPulledVectorExactVertex = R"(
 void main() {
   PstVertex p = pullExactVertex();
-  uvec4 vector = uVectors[p.triangle];
+  uvec4 vector = sliceVector(p);
   for (int c = 0; c < NV; ++c) vA0[c] = vA1[c] = vec4(0.0);
   vA0[0] = vec4(uintBitsToFloat(vector.z), 0.0, float(vector.y), 0.0);
   vA1[0] = vec4(uintBitsToFloat(vector.w), 0.0, float(vector.y), 0.0);
@@ -286,8 +286,8 @@ int passAttributeCount(shading::Pass pass, const EpiShading& shading) {
 
 EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bool pulled)
     : mode_(mode), pass_(pass), shading_(shading), count_(passAttributeCount(pass, shading)) {
-  if (pulled && linear() && (!shading.sliceVectors || shading.sliceHighlights))
-    fail("EpiPass", "only slices' own vectors without highlights are pulled");
+  if (pulled && linear() && shading.sliceHighlights)
+    fail("EpiPass", "split highlight tracks are not pulled");
   if (shading.sliceVectors && pass != shading::Pass::Texture)
     fail("EpiPass", "slices coloured by vectors take the texture pass only");
   if (pass != shading::Pass::Diffuse && !shading.scene && !shading.sliceVectors)
@@ -315,7 +315,8 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bo
   std::string vertex = header + (exact ? kExactOutputs : kSliverOutputs);
   if (pulled) {
     vertex += "#define NA " + std::to_string(count_) + "\n" +
-              PstGeometry::glslPull(GpuVertices::kRecordHead + shading.plan.extraCount) +
+              PstGeometry::glslPull(GpuVertices::kRecordHead + shading.plan.extraCount,
+                                    linear() && !shading.sliceVectors) +
               (exact ? kPulledExactHead : kPulledSliverHead);
     if (linear())
       vertex += exact ? kPulledVectorExactVertex : kPulledVectorSliverVertex;

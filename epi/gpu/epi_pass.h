@@ -20,9 +20,8 @@ namespace mvr {
 class EpiPass {
  public:
   // pulled: the vertex shader pulls PST vertices from the GPU slice table
-  // (PstGeometry) instead of reading the CPU-built layouts below; of the
-  // texture-vector passes only slices' own vectors without highlights (the
-  // image-based back end's) are pulled.
+  // (PstGeometry) instead of reading the CPU-built layouts below; split
+  // highlight tracks (image slices' knots) are not pulled.
   EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bool pulled = false);
 
   shading::Pass pass() const { return pass_; }

@@ -16,8 +16,8 @@
 // Where the geometry is built: on the GPU (epi/gpu/pst_geometry.h: the
 // slice table stays in GPU memory, a compute pass and a prefix sum per
 // batch, vertices pulled by the passes' vertex shaders), or on the CPU
-// (below: vertices emitted per batch and uploaded). The texture-vector
-// passes (1-D vectors extracted per slice on the CPU) take the CPU path.
+// (below: vertices emitted per batch and uploaded). Split highlight
+// tracks (interp's --splits) take the CPU path.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -58,23 +58,30 @@ class GlRasterizer final : public EpiRasterizer {
  public:
   GlRasterizer(PstMode mode, PixelType type, const EpiShading& shading, PstBuilder builder)
       : mode_(mode), type_(type), shading_(shading) {
-    // Vectors extracted per slice, and highlight knots, are the CPU's.
-    const bool cpuOnly = shading_.sliceHighlights ||
-                         (!shading_.sliceVectors && shading_.plan.texture &&
-                          shading_.textureMode == TextureMode::Vector);
-    const bool gpu = builder == PstBuilder::Gpu || (builder == PstBuilder::Auto && !gl::rendersOnCpu());
-    if (gpu && !cpuOnly) geometry_.emplace(mode, shading_.plan.extraCount);
+    // Highlight knots are the CPU's.
+    const bool gpu = !shading_.sliceHighlights && (builder == PstBuilder::Gpu ||
+                                                   (builder == PstBuilder::Auto && !gl::rendersOnCpu()));
+    const bool sceneVectors = !shading_.sliceVectors && shading_.plan.texture &&
+                              shading_.textureMode == TextureMode::Vector;
+    if (shading_.scene) {
+      static const shading::TextureSet kNoTextures;
+      static const shading::EnvironmentSet kNoMaps;
+      // The texture array is sampled by direct texturing and by the GPU's
+      // vector extraction.
+      const bool sampled = shading_.textureMode == TextureMode::Direct || (gpu && sceneVectors);
+      materials_.emplace(*shading_.scene, shading_.textures ? *shading_.textures : kNoTextures,
+                         shading_.environment ? *shading_.environment : kNoMaps, sampled);
+    }
+    if (gpu && sceneVectors) {
+      const SceneTexturing texturing{shading_.plan.uv, *shading_.textures, *materials_};
+      geometry_.emplace(mode, shading_.plan.extraCount, &texturing);
+    } else if (gpu) {
+      geometry_.emplace(mode, shading_.plan.extraCount);
+    }
     if (shading_.sliceVectors)
       passes_.emplace_back(mode, shading::Pass::Texture, shading_, pulled());
     else
       for (shading::Pass p : shading_.plan.passes()) passes_.emplace_back(mode, p, shading_, pulled());
-    if (shading_.scene) {
-      static const shading::TextureSet kNoTextures;
-      static const shading::EnvironmentSet kNoMaps;
-      const bool direct = shading_.textureMode == TextureMode::Direct;
-      materials_.emplace(*shading_.scene, shading_.textures ? *shading_.textures : kNoTextures,
-                         shading_.environment ? *shading_.environment : kNoMaps, direct);
-    }
   }
 
   bool readsDeviceTable() const override { return pulled(); }
@@ -129,6 +136,7 @@ class GlRasterizer final : public EpiRasterizer {
         // barriers would otherwise flush the clear of the whole target.
         ScopedStage s(stats.times, "pst");
         geometry_->build(*device, slices.device(), first, count, n);
+        vectorTexels_ += geometry_->vectorTexels();
         // The build's compute passes use storage bindings of their own.
         if (materials_) materials_->bind(EpiPass::kTextureUnit);
       }

@@ -15,7 +15,6 @@ const char* const kLibrary = R"(
 layout(std430, binding = 2) readonly buffer Records { float uRecords[]; };
 layout(std430, binding = 3) readonly buffer Triangles { uvec4 uTriangles[]; };  // a, b, c, material | cull << 31
 layout(std430, binding = 4) readonly buffer Slices { uvec4 uSlices[]; };  // triangle, tLong, tShort, flags
-layout(std430, binding = 8) readonly buffer Vectors { uvec4 uVectors[]; };  // GpuVertices::vectors
 uniform uint uFirstSlice;  // the batch: slices [uFirstSlice, uFirstSlice + uSliceCount)
 uniform uint uSliceCount;
 uniform float uViews;
@@ -124,6 +123,7 @@ uniform int uChunkRows;
 uniform int uView0;
 
 struct PstVertex {
+  uint slice;  // in the batch
   End e0, e1;
   float x, y;  // framebuffer position (pixels)
   float r;     // EPI row coordinate
@@ -145,6 +145,7 @@ PstVertex pullPstVertex() {
   PstVertex p;
   uint word;
   sliceEnds(uFirstSlice + lo, p.e0, p.e1, word);
+  p.slice = lo;
   p.triangle = uSlices[uFirstSlice + lo].x;
   p.material = float(word & 0x7FFFFFFFu);
   float n = uViews, top = 0.0, bottom = n;
@@ -168,6 +169,17 @@ PstVertex pullPstVertex() {
 }
 )";
 
+// A slice's own vector (image slices: one per "triangle").
+const char* const kTriangleVectors = R"(
+layout(std430, binding = 8) readonly buffer Vectors { uvec4 uVectors[]; };  // GpuVertices::vectors
+uvec4 sliceVector(PstVertex p) { return uVectors[p.triangle]; }
+)";
+
+// Vectors extracted per slice of the batch (SceneVectors).
+const char* const kBatchVectors = R"(
+uvec4 sliceVector(PstVertex p) { return sliceVector(p.slice); }
+)";
+
 std::string recordDefine(int stride) { return "#define RECORD " + std::to_string(stride) + "\n"; }
 
 struct DrawArraysIndirectCommand {
@@ -176,13 +188,20 @@ struct DrawArraysIndirectCommand {
 
 }  // namespace
 
-std::string PstGeometry::glslPull(int recordStride) {
-  return recordDefine(recordStride) + kLibrary + kPull;
+std::string PstGeometry::glslLibrary(int recordStride) { return recordDefine(recordStride) + kLibrary; }
+
+std::string PstGeometry::glslPull(int recordStride, bool sceneVectors) {
+  return glslLibrary(recordStride) + kPull +
+         (sceneVectors ? std::string(SceneVectors::glslPull()) + kBatchVectors : kTriangleVectors);
 }
 
-PstGeometry::PstGeometry(PstMode mode, int extraCount)
+PstGeometry::PstGeometry(PstMode mode, int extraCount, const SceneTexturing* texturing)
     : mode_(mode), recordStride_(GpuVertices::kRecordHead + extraCount) {
   if (mode == PstMode::Cpu) fail("PstGeometry", "cpu is not a GL mode");
+  if (texturing) {
+    sceneVectors_.emplace(recordStride_, GpuVertices::kRecordHead + texturing->uv, texturing->textures);
+    materials_ = &texturing->materials;
+  }
   count_ = gl::linkProgram("pst-count", {{GL_COMPUTE_SHADER, gl::glslHeader() + recordDefine(recordStride_) +
                                                                  kLibrary + kCount}});
   const DrawArraysIndirectCommand command{0, 1, 0, 0};
@@ -217,7 +236,14 @@ void PstGeometry::build(const GpuVertices& vertices, const GpuSliceTable& table,
     gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
   prefixSum_.exclusive(firstVertex_.id(), 0, sliceCount_, indirect_.id(), 0);
+  if (sceneVectors_) {
+    bindBuffers();
+    materials_->bind(kTextureUnit);
+    sceneVectors_->build(firstSlice_, sliceCount_, views_);
+  }
 }
+
+size_t PstGeometry::vectorTexels() const { return sceneVectors_ ? sceneVectors_->texelCount() : 0; }
 
 void PstGeometry::setSliceUniforms(const gl::Program& p) const {
   gl::ProgramUniform1ui(p.id(), gl::GetUniformLocation(p.id(), "uFirstSlice"), firstSlice_);
@@ -238,7 +264,8 @@ void PstGeometry::bind(const gl::Program& program, int chunkRows, int view0) con
   gl::setUniform(program, "uChunkRows", chunkRows);
   gl::setUniform(program, "uView0", view0);
   bindBuffers();
-  if (vertices_->hasVectors()) bindVectors();
+  if (sceneVectors_) sceneVectors_->bind(kVectorUnit);
+  else if (vertices_->hasVectors()) bindVectors();
 }
 
 void PstGeometry::bindVectors() const {

@@ -1,0 +1,201 @@
+#include "epi/gpu/scene_vectors.h"
+
+#include <algorithm>
+#include <string>
+
+#include "epi/gpu/pst_geometry.h"
+#include "mvr/error.h"
+#include "mvr/gl/gl_program.h"
+#include "shading/texture_vector.h"
+#include "shading/view_dependent.h"
+
+namespace mvr {
+namespace {
+
+// TextureVectors::lengthFor.
+const char* const kLength = R"(
+uint lengthFor(float width) {
+  float c = isinf(width) || isnan(width) ? 1.0 : ceil(width);
+  uint k = uint(clamp(c, 1.0, float(MAX_LENGTH)));
+  return k == 1u ? 1u : 1u << uint(findMSB(k - 1u) + 1);
+}
+float textureLayer(uint word) { return uMaterials[word & 0x7FFFFFFFu].params.y; }
+)";
+
+// The widest p-edge of the pieces drawn, as the CPU's addVector reads it
+// from makePst: rows 0 and the last drawn piece's bottom (the edge-on view
+// r* where the second piece is culled).
+const char* const kSize = R"(
+layout(local_size_x = 64) in;
+layout(std430, binding = 7) readonly buffer Pieces { uvec2 uPieces[]; };
+layout(std430, binding = 8) writeonly buffer Base { uint uBase[]; };  // texel counts, scanned later
+layout(std430, binding = 9) writeonly buffer Length { uint uLength[]; };
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= uSliceCount) return;
+  End e0, e1;
+  uint word;
+  sliceEnds(uFirstSlice + i, e0, e1, word);
+  uvec2 piece = uPieces[i];
+  uint k0 = piece.x & 0xFFFFu, k1 = piece.x >> 16, flags = piece.y >> 16, k = 0u;
+  if ((k0 | k1) != 0u && textureLayer(word) >= 0.0) {
+    float n = uViews, dL = widthAt(e0, e1, 0.0), bottom = n;
+    if ((flags & 1u) != 0u && k1 == 0u) bottom = n * dL / (dL - widthAt(e0, e1, n));
+    k = lengthFor(max(abs(dL), abs(widthAt(e0, e1, bottom))));
+  }
+  uBase[i] = k == 0u ? 0u : 2u * k - 1u;
+  uLength[i] = k;
+}
+)";
+
+// TextureVectors::add's level 0: the surface at screen parameter
+// u = (t + 0.5) / K, at the level of the texel's footprint.
+const char* const kSample = R"(
+layout(local_size_x = 64) in;
+layout(std430, binding = 8) readonly buffer Base { uint uBase[]; };
+layout(std430, binding = 9) readonly buffer Length { uint uLength[]; };
+layout(std430, binding = 10) writeonly buffer Texels { vec4 uTexels[]; };
+layout(binding = 0) uniform sampler2DArray uTextures;
+uniform uint uTexelCount;
+uniform int uUv;
+uniform float uMaxLod;
+
+vec2 uvAt(End e0, End e1, float u) {
+  vec2 a = vec2(endAttribute(e0, uUv), endAttribute(e0, uUv + 1));
+  vec2 b = vec2(endAttribute(e1, uUv), endAttribute(e1, uUv + 1));
+  return (a + (b - a) * u) / (e0.invW + (e1.invW - e0.invW) * u);
+}
+
+void main() {
+  uint t = gl_GlobalInvocationID.x;
+  if (t >= uTexelCount) return;
+  uint lo = 0u, hi = uSliceCount - 1u;  // the last slice whose first texel is at or before t
+  while (lo < hi) {
+    uint mid = (lo + hi + 1u) >> 1;
+    if (uBase[mid] <= t) lo = mid; else hi = mid - 1u;
+  }
+  uint k = uLength[lo], local = t - uBase[lo];
+  if (local >= k) return;  // a MIP level: the levels pass
+  End e0, e1;
+  uint word;
+  sliceEnds(uFirstSlice + lo, e0, e1, word);
+  float kf = float(k), u = (float(local) + 0.5) / kf;
+  vec2 uv = uvAt(e0, e1, u);
+  vec2 duv = uvAt(e0, e1, min(1.0, u + 0.5 / kf)) - uvAt(e0, e1, max(0.0, u - 0.5 / kf));
+  float texels = length(duv * vec2(textureSize(uTextures, 0).xy));
+  float lod = texels > 0.0 ? log2(texels) : 0.0;
+  lod = clamp(isnan(lod) ? 0.0 : lod, 0.0, uMaxLod);
+  bool finite = !any(isnan(uv)) && !any(isinf(uv));
+  uTexels[t] = finite ? textureLod(uTextures, vec3(uv - floor(uv), textureLayer(word)), lod) : vec4(0.0);
+}
+)";
+
+// TextureVectors::addLevels: level l + 1 box-filtered from level l.
+const char* const kLevels = R"(
+layout(local_size_x = 64) in;
+layout(std430, binding = 8) readonly buffer Base { uint uBase[]; };
+layout(std430, binding = 9) readonly buffer Length { uint uLength[]; };
+layout(std430, binding = 10) buffer Texels { vec4 uTexels[]; };
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= uSliceCount) return;
+  for (uint len = uLength[i] / 2u, from = uBase[i]; len >= 1u; from += 2u * len, len /= 2u)
+    for (uint j = 0u; j < len; ++j)
+      uTexels[from + 2u * len + j] = 0.5 * (uTexels[from + 2u * j] + uTexels[from + 2u * j + 1u]);
+}
+)";
+
+const char* const kPull = R"(
+layout(std430, binding = 8) readonly buffer VectorBase { uint uVectorBase[]; };
+layout(std430, binding = 9) readonly buffer VectorLength { uint uVectorLength[]; };
+uvec4 sliceVector(uint slice) {
+  return uvec4(uVectorBase[slice], uVectorLength[slice], floatBitsToUint(0.0), floatBitsToUint(1.0));
+}
+)";
+
+gl::Program compile(const char* name, int recordStride, const char* main) {
+  const std::string header = gl::glslHeader({"MAX_LENGTH " + std::to_string(shading::TextureVectors::kMaxLength)});
+  return gl::linkProgram(name, {{GL_COMPUTE_SHADER, header + PstGeometry::glslLibrary(recordStride) +
+                                                        shading::glslMaterials() + kLength + main}});
+}
+
+GLuint groups(size_t items) { return GLuint((items + 63) / 64); }
+
+}  // namespace
+
+const char* SceneVectors::glslPull() { return kPull; }
+
+SceneVectors::SceneVectors(int recordStride, int uvAt, const shading::TextureSet& textures)
+    : size_(compile("vector-size", recordStride, kSize)),
+      sample_(compile("vector-sample", recordStride, kSample)),
+      levels_(compile("vector-levels", recordStride, kLevels)) {
+  if (textures.empty()) fail("SceneVectors", "the scene has no textures");
+  gl::setUniform(sample_, "uUv", uvAt);
+  gl::setUniform(sample_, "uMaxLod", float(textures.levels() - 1));
+  total_ = gl::makeBuffer<uint32_t>(nullptr, 1);
+}
+
+void SceneVectors::setUniforms(const gl::Program& p) const {
+  gl::ProgramUniform1ui(p.id(), gl::GetUniformLocation(p.id(), "uFirstSlice"), firstSlice_);
+  gl::ProgramUniform1ui(p.id(), gl::GetUniformLocation(p.id(), "uSliceCount"), sliceCount_);
+  gl::setUniform(p, "uViews", float(views_));
+}
+
+void SceneVectors::build(uint32_t firstSlice, uint32_t sliceCount, int views) {
+  firstSlice_ = firstSlice, sliceCount_ = sliceCount, views_ = views;
+  texelCount_ = 0;
+  if (sliceCount == 0) return;
+  reserveSlices(sliceCount);
+  auto run = [&](const gl::Program& p, size_t items) {
+    gl::UseProgram(p.id());
+    setUniforms(p);
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kBase, base_.id());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kLength, length_.id());
+    if (texels_.id()) gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTexels, texels_.id());
+    gl::DispatchCompute(groups(items), 1, 1);
+    gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  };
+  run(size_, sliceCount);
+  prefixSum_.exclusive(base_.id(), 0, sliceCount, total_.id(), 0);
+  uint32_t total = 0;
+  gl::GetNamedBufferSubData(total_.id(), 0, sizeof(total), &total);
+  texelCount_ = total;
+  if (total == 0) return;
+  reserveTexels(total);
+  gl::ProgramUniform1ui(sample_.id(), gl::GetUniformLocation(sample_.id(), "uTexelCount"), total);
+  run(sample_, total);
+  run(levels_, sliceCount);
+  gl::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void SceneVectors::reserveSlices(uint32_t count) {
+  if (count <= sliceCapacity_) return;
+  sliceCapacity_ = count + count / 4;
+  base_ = gl::makeBuffer<uint32_t>(nullptr, sliceCapacity_);
+  length_ = gl::makeBuffer<uint32_t>(nullptr, sliceCapacity_);
+}
+
+// Texels are read through a buffer texture and written as a storage
+// block: both have GL limits, checked here with the counts they hit.
+void SceneVectors::reserveTexels(size_t count) {
+  if (count <= texelCapacity_) return;
+  GLint texelLimit = 0, blockLimit = 0;
+  gl::GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &texelLimit);
+  gl::GetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &blockLimit);
+  const size_t limit = std::min(size_t(texelLimit), size_t(unsigned(blockLimit)) / sizeof(glm::vec4));
+  if (count > limit)
+    fail("SceneVectors", "a batch's " + std::to_string(count) + " texture-vector texels pass the GL's limit of " +
+                             std::to_string(limit));
+  texelCapacity_ = std::min(limit, count + count / 4);
+  texels_ = gl::makeBuffer<glm::vec4>(nullptr, texelCapacity_);
+  texelTexture_ = gl::Texture(GL_TEXTURE_BUFFER);
+  gl::TextureBuffer(texelTexture_.id(), GL_RGBA32F, texels_.id());
+}
+
+void SceneVectors::bind(GLuint vectorUnit) const {
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kBase, base_.id());
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kLength, length_.id());
+  if (texelTexture_.id()) gl::BindTextureUnit(vectorUnit, texelTexture_.id());
+}
+
+}  // namespace mvr
