@@ -2,6 +2,7 @@
 
 #include <csignal>
 #include <cstdio>
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -16,6 +17,7 @@
 #include "epi/backend.h"
 #include "epi/stream_queue.h"
 #include "epi/volume.h"
+#include "mvr/depth.h"
 #include "mvr/error.h"
 #include "mvr/frame_sinks.h"
 #include "mvr/gl/gl_context.h"
@@ -83,6 +85,36 @@ int streamTo(Renderer& renderer, const ShearingCamera& cam, const std::string& e
   return 0;
 }
 
+// Hands each view of the depth scene on as a depth map.
+class DepthSink final : public FrameSink {
+ public:
+  DepthSink(ImageSetWriter& writer, const DepthColoring& coloring) : writer_(writer), coloring_(coloring) {}
+  void putView(int row, int view, const Image& image) override {
+    writer_.putDepth(row, view, depthFromColors(image, coloring_));
+  }
+  void putEpi(int, int, const Image&) override { fail("--depth", "the depth pass reorders EPIs into views"); }
+
+ private:
+  ImageSetWriter& writer_;
+  DepthColoring coloring_;
+};
+
+// The depth maps: the depth scene (mvr/depth.h) rendered in float by the
+// same back end, its EPIs reordered into views where it renders EPIs.
+void renderDepth(const BackendOptions& choice, const Scene& scene, const ShearingCamera& cam,
+                 ImageSetWriter& writer, const ReorderMemory& reorder, RenderStats& stats) {
+  DepthColoring coloring;
+  const Scene depth = depthScene(scene, cam, coloring);
+  auto renderer = makeRenderer(choice, depth, PixelType::F32);
+  DepthSink depthSink(writer, coloring);
+  std::optional<EpisToViews> reorderer;
+  FrameSink* sink = &depthSink;
+  if (renderer->order() == FrameOrder::Epi)
+    sink = &reorderer.emplace(depthSink, cam.width(), cam.height(), cam.views(), PixelType::F32, reorder);
+  renderer->render(cam, *sink, stats);
+  sink->finish();
+}
+
 }  // namespace
 
 namespace {
@@ -96,7 +128,7 @@ struct RenderFlags {
   std::pair<int, int> size{320, 240};
   std::string out = "out", format = "png", order = "view", gl = "auto";
   std::string stream, quilt, predistort, codec;
-  bool strict = false, linear = false;
+  bool strict = false, linear = false, depth = false;
   MemoryFlags memory;
 
   void addShared(CLI::App& app) {
@@ -138,6 +170,10 @@ struct RenderFlags {
                    "also write all views tiled in one quilt image, "
                    "quilt_qs{C}x{R}a{aspect}.{format} (auto: near square)")
         ->type_name("auto|CxR");
+    app.add_flag("--depth", depth,
+                 "also write each view's depth map, depth_0000.exr (one float channel Z): the "
+                 "distance along the view axis in world units, 0 where nothing is seen; the same "
+                 "back end renders the scene a second time");
     app.add_option("--predistort", predistort,
                    "resample every row through a table of source x per column")
         ->type_name("LUT");
@@ -189,6 +225,8 @@ int runRender(int argc, char** argv, bool streamCommand) {
   const PixelType type = format == "png" && bits == 8 ? (f.linear ? PixelType::U8 : PixelType::Srgb8)
                                                       : PixelType::F32;
   const GlPlatform platform = parseGlPlatform(f.gl);
+  if (f.depth && (streaming || order != "view" || !f.predistort.empty()))
+    fail("--depth", "writes a view set: not with --stream, --order epi or --predistort");
 
   // OpenImageIO (about 260 libraries) loads beside the scene's loading.
   // Not later: dlopen holds the dynamic loader's lock, which GL start-up
@@ -226,7 +264,14 @@ int runRender(int argc, char** argv, bool streamCommand) {
                                streaming ? "." : out);
   }
   const bool scratch = reorders && reorder.spills(rowBytes);
-  checkHeldFramesFit({.reorderBytes = reorders ? reorder.held(rowBytes) : 0,
+  // The depth pass reorders float frames where the back end renders EPIs.
+  const size_t depthRowBytes = size_t(width) * height * 16 * views;
+  ReorderMemory depthReorder;
+  const bool depthReorders = f.depth && renderer->order() == FrameOrder::Epi;
+  if (depthReorders)
+    depthReorder = f.memory.reorder(size_t(width) * height * 16, BoundedTasks::defaultLimit(), out);
+  checkHeldFramesFit({.reorderBytes = std::max(reorders ? reorder.held(rowBytes) : 0,
+                                               depthReorders ? depthReorder.held(depthRowBytes) : 0),
                       .quiltBytes = !streaming && !f.quilt.empty() ? rowBytes * rows : 0},
                      availableMemory(),
                      std::string("give a smaller --memory") + (f.quilt.empty() ? "" : ", drop --quilt") +
@@ -241,6 +286,7 @@ int runRender(int argc, char** argv, bool streamCommand) {
                                      .srgb = !f.linear});
   // Sink chain: [predistort] -> [reorder] -> writer (+ quilt).
   if (scratch) checkScratchFits(rowBytes, reorder.scratchDir);  // the output folder exists now
+  if (depthReorders && depthReorder.spills(depthRowBytes)) checkScratchFits(depthRowBytes, depthReorder.scratchDir);
   std::vector<float> lut;
   if (!f.predistort.empty()) lut = loadPredistortionTable(f.predistort, width);
   std::unique_ptr<QuiltSink> quilt;
@@ -273,6 +319,9 @@ int runRender(int argc, char** argv, bool streamCommand) {
   renderer->render(camera, *sink, stats);
   sink->finish();
   if (quilt) writer.putExtra(quilt->fileName(format), quilt->quilt());
+  const double colorSeconds = total.seconds();
+  RenderStats depthStats;
+  if (f.depth) renderDepth(choice, scene, camera, writer, depthReorder, depthStats);
   writer.flush();  // every image encoded, so the module's load is done and timed
 
   Manifest& manifest = writer.manifest();
@@ -298,6 +347,14 @@ int runRender(int argc, char** argv, bool streamCommand) {
                     {"scratch_file", transpose->usesScratch()},
                     {"frames_per_pass", transpose->outputsPerPass()}};
   if (!lut.empty()) m["predistortion"] = f.predistort;
+  if (f.depth) {
+    m["timings_s"]["color"] = colorSeconds;
+    m["depth"] = {{"files", manifest.depthPattern() + ".exr"},
+                  {"channel", "Z"},
+                  {"measure", "distance along the view axis (camera z of V in cameras), world units"},
+                  {"background", 0},
+                  {"timings_s", depthStats.times.seconds}};
+  }
   writer.commit();
   std::fprintf(stderr, "mvr: %s rendered %d view(s) of %dx%d to %s in %.3f s%s\n",
                renderer->name().c_str(), views * rows, width, height, out.c_str(),

@@ -35,6 +35,17 @@ struct Image {
   void setLinear(int x, int y, const glm::vec4& v);
 };
 
+// One float per pixel, rows top first: a depth map (mvr/depth.h).
+struct DepthImage {
+  int width = 0, height = 0;
+  std::vector<float> values;  // width * height
+
+  DepthImage() = default;
+  DepthImage(int w, int h) : width(w), height(h), values(size_t(w) * h, 0.0f) {}
+  float& at(int x, int y) { return values[size_t(y) * width + x]; }
+  float at(int x, int y) const { return values[size_t(y) * width + x]; }
+};
+
 // One RGBA8 pixel as GL_SRGB8_ALPHA8 stores it (colour sRGB-encoded, alpha
 // linear), from and to linear light; values outside [0, 1] clamp.
 glm::vec4 decodeSrgb8(const uint8_t* rgba);

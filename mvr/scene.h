@@ -59,6 +59,9 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Light> lights;
   glm::vec3 ambient{0.15f};
+  // The colours are data (depth, mvr/depth.h), not reflectances: back ends
+  // keep them in float wherever they store them (the G-buffer's albedo).
+  bool exactColors = false;
   std::optional<CameraSpec> camera;  // from the scene file, if it had one
   std::string source;                // file it came from, for manifests
   // Faces of the files that could not be used (a repeated corner or one

@@ -94,10 +94,10 @@ void main() {
 
 }  // namespace
 
-GBuffer::GBuffer(int w, int h)
+GBuffer::GBuffer(int w, int h, bool exactAlbedo)
     : width_(w), height_(h), albedo_(GL_TEXTURE_2D), normal_(GL_TEXTURE_2D), depth_(GL_TEXTURE_2D),
       fbo_(gl::Framebuffer::create()) {
-  gl::TextureStorage2D(albedo_.id(), 1, GL_RGBA8, w, h);
+  gl::TextureStorage2D(albedo_.id(), 1, exactAlbedo ? GL_RGBA32F : GL_RGBA8, w, h);
   gl::TextureStorage2D(normal_.id(), 1, GL_RGBA16F, w, h);
   gl::TextureStorage2D(depth_.id(), 1, GL_DEPTH_COMPONENT32F, w, h);
   gl::NamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, albedo_.id(), 0);
@@ -129,7 +129,8 @@ DeferredPipeline::DeferredPipeline(const Scene& scene, bool separateHighlights)
                                     shading::glslLighting() + shading::glslSpecular() +
                                     shading::glslEnvironment() + kLightingFragment}})),
       emptyVao_(gl::VertexArray::create()),
-      materials_(scene, shading::TextureSet::load(scene), shading::EnvironmentSet::load(scene)) {
+      materials_(scene, shading::TextureSet::load(scene), shading::EnvironmentSet::load(scene)),
+      exactAlbedo_(scene.exactColors) {
   shading::setLightUniforms(lighting_, scene);
 }
 

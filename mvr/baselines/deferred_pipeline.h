@@ -19,7 +19,8 @@ namespace mvr {
 // index) and depth.
 class GBuffer {
  public:
-  GBuffer(int width, int height);
+  // exactAlbedo: albedo in float (Scene::exactColors), else 8 bits.
+  GBuffer(int width, int height, bool exactAlbedo = false);
   void bindForWriting() const;  // sets the viewport, as RenderTarget::bind
   GLuint depthTexture() const { return depth_.id(); }
   GLuint normalTexture() const { return normal_.id(); }
@@ -44,6 +45,8 @@ class DeferredPipeline {
 
   // Before the passes of a sequence of views of this size.
   void begin(int width, int height);
+  // The G-buffers this pipeline fills.
+  GBuffer makeGBuffer(int width, int height) const { return GBuffer(width, height, exactAlbedo_); }
   // previous: the G-buffer of the layer in front (depth peeling), or null.
   void geometry(const glm::dmat4& viewProj, const GBuffer& gbuffer, const GBuffer* previous,
                 const glm::vec4& peel = glm::vec4(0.0f));
@@ -61,6 +64,7 @@ class DeferredPipeline {
   gl::Program geometry_, peeling_, lighting_;
   gl::VertexArray emptyVao_;
   shading::GpuMaterials materials_;
+  bool exactAlbedo_;
 };
 
 }  // namespace mvr

@@ -16,7 +16,7 @@ class DeferredRenderer final : public Renderer {
 
   void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
     RenderTarget target(cam.width(), cam.height(), type_);
-    GBuffer gbuffer(cam.width(), cam.height());
+    const GBuffer gbuffer = pipeline_.makeGBuffer(cam.width(), cam.height());
     pipeline_.begin(cam.width(), cam.height());
     renderEachView(cam, target, "deferred", sink, stats, [&](int row, int view) {
       const glm::dmat4 viewProj = cam.viewProjection(view, row);

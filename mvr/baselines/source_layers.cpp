@@ -89,12 +89,13 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
 
   // Kept across calls (every source eye of every row has the same size).
   struct Targets {
-    Targets(int w, int h) : color(w, h, PixelType::F32), gbuffers{GBuffer(w, h), GBuffer(w, h)} {}
+    Targets(int w, int h, const DeferredPipeline& p)
+        : color(w, h, PixelType::F32), gbuffers{p.makeGBuffer(w, h), p.makeGBuffer(w, h)} {}
     RenderTarget color;
     GBuffer gbuffers[2];  // ping-pong: the layer in front is read while the next is written
   };
   Targets& targets(int w, int h) {
-    if (!targets_ || targets_->color.width() != w || targets_->color.height() != h) targets_.emplace(w, h);
+    if (!targets_ || targets_->color.width() != w || targets_->color.height() != h) targets_.emplace(w, h, pipeline_);
     return *targets_;
   }
 

@@ -23,6 +23,9 @@ struct ImageCodec {
   // says sRGB (else linear, gAMA 1.0).
   std::string (*encode)(const Image& pixels, const std::string& format, const ImageEncoding& encoding,
                         bool srgbTag, std::vector<unsigned char>& out);
+  // One float channel named Z, as an exr file of encoding.codec (32-bit).
+  std::string (*encodeDepth)(const DepthImage& depth, const ImageEncoding& encoding,
+                             std::vector<unsigned char>& out);
   // Any file OpenImageIO reads, widened to RGBA: F32 for float files; 8-bit
   // files as Srgb8, or U8 when they say they are linear.
   std::string (*decode)(const std::string& path, Image& out);

@@ -80,6 +80,25 @@ void writeImage(const Image& image, const std::string& path, const ImageEncoding
   writeFileAtomically(path, std::as_bytes(std::span(encoded)));
 }
 
+void writeDepthImage(const DepthImage& depth, const std::string& path, const ImageEncoding& encoding) {
+  if (formatOf(path) != "exr") fail(path, "depth images are exr files");
+  ImageEncoding exr = encoding;
+  const auto& allowed = codecs("exr");
+  if (std::find(allowed.begin(), allowed.end(), exr.codec) == allowed.end()) exr.codec = "";
+  thread_local std::vector<unsigned char> encoded;
+  if (std::string error = imageCodec().encodeDepth(depth, exr, encoded); !error.empty()) fail(path, error);
+  writeFileAtomically(path, std::as_bytes(std::span(encoded)));
+}
+
+DepthImage readDepthImage(const std::string& path) {
+  const Image rgba = readImage(path);
+  if (rgba.type != PixelType::F32) fail(path, "a depth image must hold floats");
+  DepthImage depth(rgba.width, rgba.height);
+  const float* v = reinterpret_cast<const float*>(rgba.bytes.data());
+  for (size_t i = 0; i < depth.values.size(); ++i) depth.values[i] = v[4 * i];
+  return depth;
+}
+
 ImageEncoding readImageEncoding(const std::string& path) {
   ImageEncoding e;
   std::string compression;

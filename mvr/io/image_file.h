@@ -43,6 +43,13 @@ void writeImage(const Image& image, const std::string& path, const ImageEncoding
 // say they are linear.
 Image readImage(const std::string& path);
 
+// A depth map as a 32-bit exr file with one channel, Z (its codec from
+// encoding.codec if it is an exr codec, else zip), written as writeImage
+// writes.
+void writeDepthImage(const DepthImage& depth, const std::string& path, const ImageEncoding& encoding = {});
+// The first channel of any file OpenImageIO reads (exr Z, PFM, ...).
+DepthImage readDepthImage(const std::string& path);
+
 // What a file stores, as writeImage describes it (bits per channel, the
 // codec OpenImageIO reports, "" for png, and whether it says sRGB).
 ImageEncoding readImageEncoding(const std::string& path);

@@ -62,13 +62,25 @@ void ImageSetWriter::recycle(std::shared_ptr<Image> copy) {
   if (spares_.size() < size_t(BoundedTasks::defaultLimit()) + 1) spares_.push_back(std::move(copy));
 }
 
-void ImageSetWriter::put(const std::string& name, const Image& image) {
-  auto copy = copyOf(image);  // the caller's image is gone after return
-  encoder_.submit([this, path = (fs::path(dir_) / name).string(), copy]() mutable {
-    writeImage(*copy, path, manifest_.encoding());
-    recycle(std::move(copy));
+void ImageSetWriter::submit(const std::string& name, std::function<void(const std::string& path)> write) {
+  encoder_.submit([this, path = (fs::path(dir_) / name).string(), write = std::move(write)] {
+    write(path);
     std::lock_guard lock(writtenMutex_);
     written_.push_back(path);
+  });
+}
+
+void ImageSetWriter::put(const std::string& name, const Image& image) {
+  auto copy = copyOf(image);  // the caller's image is gone after return
+  submit(name, [this, copy](const std::string& path) mutable {
+    writeImage(*copy, path, manifest_.encoding());
+    recycle(std::move(copy));
+  });
+}
+
+void ImageSetWriter::putDepth(int row, int view, const DepthImage& depth) {
+  submit(manifest_.depthName(row, view), [this, depth](const std::string& path) {
+    writeDepthImage(depth, path, manifest_.encoding());
   });
 }
 

@@ -6,6 +6,7 @@
 // commit() the set is incomplete: if the writer is destroyed first (an
 // error), every file it wrote is removed, so no half-written set looks
 // finished. An encoding error surfaces at the next put or at commit().
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -26,6 +27,8 @@ class ImageSetWriter final : public FrameSink {
 
   void putView(int row, int view, const Image& image) override;
   void putEpi(int row, int scanline, const Image& epi) override;
+  // A view's depth map (Manifest::depthName), float exr.
+  void putDepth(int row, int view, const DepthImage& depth);
   // An extra image in the set (a quilt), removed like the rest on failure.
   void putExtra(const std::string& name, const Image& image);
   // What commit() writes; fill its info before.
@@ -40,6 +43,8 @@ class ImageSetWriter final : public FrameSink {
 
  private:
   void put(const std::string& name, const Image& image);
+  // Encodes on the pool; the file is removed with the rest on failure.
+  void submit(const std::string& name, std::function<void(const std::string& path)> write);
   // Copies of the caller's frames, recycled: a fresh multi-megabyte
   // allocation per file costs page faults that serialise on the kernel's
   // memory lock and kept two cores from encoding twice as fast.

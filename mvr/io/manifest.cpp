@@ -41,9 +41,16 @@ std::string Manifest::epiPattern() const {
   return rows == 1 ? "epi_" + scanline : "epi_r" + field(digitsFor(rows, 3)) + "_" + scanline;
 }
 
+std::string Manifest::depthPattern() const { return "depth" + viewPattern().substr(4); }
+
 std::string Manifest::viewName(int row, int view) const {
   const std::string name = rows == 1 ? printInts(viewPattern(), view) : printInts(viewPattern(), row, view);
   return name + "." + format;
+}
+
+std::string Manifest::depthName(int row, int view) const {
+  const std::string name = rows == 1 ? printInts(depthPattern(), view) : printInts(depthPattern(), row, view);
+  return name + ".exr";
 }
 
 std::string Manifest::epiName(int row, int scanline) const {

@@ -36,6 +36,10 @@ class Manifest {
   // The names as a printf pattern, e.g. "view_%05d" or "view_r%03d_c%04d".
   std::string viewPattern() const;
   std::string epiPattern() const;
+  // A view's depth map (render --depth): the view's name with depth_ for
+  // view_, always exr.
+  std::string depthName(int row, int view) const;
+  std::string depthPattern() const;
 
   // How the set's files store their pixels.
   ImageEncoding encoding() const { return {bits, compression, codec, srgb}; }

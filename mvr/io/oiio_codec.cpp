@@ -48,6 +48,22 @@ std::string encode(const Image& pixels, const std::string& format, const ImageEn
   return "";
 }
 
+std::string encodeDepth(const DepthImage& depth, const ImageEncoding& encoding, std::vector<unsigned char>& out) {
+  auto output = OIIO::ImageOutput::create("exr");
+  if (!output) return "no image writer for exr";
+  OIIO::ImageSpec spec(depth.width, depth.height, 1, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = {"Z"};
+  spec.z_channel = 0;
+  spec.attribute("compression", encoding.codec.empty() ? defaultCodec("exr") : encoding.codec);
+  out.clear();
+  OIIO::Filesystem::IOVecOutput proxy(out);
+  if (!output->supports("ioproxy") || !output->set_ioproxy(&proxy)) return "image writer cannot encode to memory";
+  if (!output->open("depth.exr", spec) || !output->write_image(OIIO::TypeDesc::FLOAT, depth.values.data()) ||
+      !output->close())
+    return "cannot encode depth image: " + output->geterror();
+  return "";
+}
+
 std::string decode(const std::string& path, Image& img) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) return "cannot read image: " + OIIO::geterror();
@@ -90,7 +106,7 @@ std::string describe(const std::string& path, int& bits, std::string& compressio
   return "";
 }
 
-const ImageCodec kCodec{encode, decode, describe};
+const ImageCodec kCodec{encode, encodeDepth, decode, describe};
 
 }  // namespace
 }  // namespace mvr

@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -128,7 +129,9 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
                            "render --views 65536 --size 4096x4096 --quilt auto --out " + d.string(),
                            "render --views 65536 --size 4096x4096 --memory 1G --threads 1 --out " + d.string(),
                            "render --views 8 --size 4096x4096 --memory 100M --out " + d.string(),
-                           "render --memory 12X --out " + d.string(), "frobnicate"}) {
+                           "render --memory 12X --out " + d.string(),
+                           "render --depth --order epi --out " + d.string(),
+                           "render --depth --stream " + (d / "s.epis").string(), "frobnicate"}) {
     Result r = run(args);
     EXPECT_NE(r.status, 0) << args;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
@@ -276,6 +279,44 @@ TEST(Cli, MvrWritesEpisAndStats) {
   EXPECT_LE(phases, startup["before_render"].get<double>());
   EXPECT_GT(startup["image_module_load"].get<double>(), 0.0);
   EXPECT_EQ(m["cameras"]["views"].size(), 5u);
+}
+
+// --depth: a float exr beside every view of a grid, 0 exactly where the
+// view is empty, the same surfaces as svr's depth (mvr's CPU spans are
+// exact), and the manifest says what the files hold.
+TEST(Cli, DepthMapsBesideEveryView) {
+  const fs::path mvr = outDir("depth_mvr"), svr = outDir("depth_svr");
+  const std::string common = " --views 3 --rows 2 --size 40x30 --depth --out ";
+  Result r = run("render --backend mvr --pst cpu" + common + mvr.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("render --backend svr" + common + svr.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto m = nlohmann::json::parse(std::ifstream(mvr / "manifest.json"));
+  EXPECT_EQ(m["depth"]["files"], "depth_r%03d_c%04d.exr");
+  EXPECT_EQ(m["depth"]["channel"], "Z");
+  EXPECT_EQ(m["files"], 12);  // 6 views, 6 depth maps
+  size_t covered = 0, agree = 0;
+  for (int row = 0; row < 2; ++row)
+    for (int view = 0; view < 3; ++view) {
+      char name[40];
+      std::snprintf(name, sizeof name, "r%03d_c%04d", row, view);
+      const mvr::Image color = mvr::readImage((mvr / ("view_" + std::string(name) + ".png")).string());
+      const mvr::DepthImage depth = mvr::readDepthImage((mvr / ("depth_" + std::string(name) + ".exr")).string());
+      const mvr::DepthImage reference =
+          mvr::readDepthImage((svr / ("depth_" + std::string(name) + ".exr")).string());
+      ASSERT_EQ(depth.width, 40);
+      ASSERT_EQ(depth.height, 30);
+      for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 40; ++x) {
+          const bool seen = color.pixel(x, y).a > 0.5f;
+          EXPECT_EQ(seen, depth.at(x, y) > 0.0f) << name << " " << x << "," << y;
+          if (!seen || reference.at(x, y) == 0.0f) continue;
+          ++covered;
+          agree += std::abs(depth.at(x, y) - reference.at(x, y)) < 1e-3f;
+        }
+    }
+  EXPECT_GT(covered, 1000u);
+  EXPECT_GE(double(agree) / double(covered), 0.999);
 }
 
 TEST(Cli, BenchPlotsAgainFromItsJson) {

@@ -1,0 +1,52 @@
+#include "mvr/depth.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "mvr/error.h"
+
+namespace mvr {
+
+Scene depthScene(const Scene& scene, const ShearingCamera& cam, DepthColoring& coloring) {
+  Scene out;
+  out.positions = scene.positions;
+  out.normals = scene.normals;
+  out.uvs = scene.uvs;
+  out.triangles = scene.triangles;
+  out.materialIds = scene.materialIds;
+  out.source = scene.source;
+  out.camera = scene.camera;
+  out.ambient = glm::vec3(1.0f);
+  out.exactColors = true;
+  for (const Material& m : scene.materials) {
+    Material matte;
+    matte.name = m.name;
+    matte.diffuse = glm::vec3(1.0f);
+    matte.twoSided = m.twoSided;
+    out.materials.push_back(matte);
+  }
+  const glm::dmat4 v = cam.worldToCamera(0, 0);
+  std::vector<double> depth(scene.vertexCount());
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (size_t i = 0; i < depth.size(); ++i) {
+    depth[i] = (v * glm::dvec4(glm::dvec3(scene.positions[i]), 1.0)).z;
+    lo = std::min(lo, depth[i]);
+    hi = std::max(hi, depth[i]);
+  }
+  coloring = DepthColoring{depth.empty() ? 0.0 : lo, hi > lo ? hi - lo : 1.0};
+  out.colors.resize(depth.size());
+  for (size_t i = 0; i < depth.size(); ++i) out.colors[i] = glm::vec3(coloring.colorOf(depth[i]));
+  return out;
+}
+
+DepthImage depthFromColors(const Image& view, const DepthColoring& coloring) {
+  if (view.type != PixelType::F32) fail("depth", "the depth scene must be rendered in float");
+  DepthImage depth(view.width, view.height);
+  const float* px = reinterpret_cast<const float*>(view.bytes.data());
+  for (size_t i = 0; i < depth.values.size(); ++i)
+    depth.values[i] = px[4 * i + 3] > 0.5f ? coloring.depthOf(px[4 * i]) : 0.0f;
+  return depth;
+}
+
+}  // namespace mvr
