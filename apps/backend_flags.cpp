@@ -23,13 +23,28 @@ void BackendFlags::add(CLI::App& app) {
                                   "or on the CPU, uploaded per batch (cpu); auto (default): gpu unless GL "
                                   "renders on the CPU (llvmpipe)")
                        ->type_name(choices(kPstBuilderNames));
+  acquireOption_ = app.add_option("--acquire", acquire_,
+                                  "interp and warp: source views from the middle of the track (center, "
+                                  "interp only), both ends (dual), or both ends and then halfway between "
+                                  "two sources wherever they leave holes, recursively (hierarchical); "
+                                  "default " + std::string(acquireName(interp.acquire)))
+                       ->type_name(choices(kAcquireNames));
+  budgetOption_ = app.add_option("--budget", interp.budget,
+                                 "interp and warp hierarchical: source views per row at most")
+                      ->capture_default_str();
+  WarpOptions& warp = options_.warp;
+  warpOptions_ = {
+      app.add_option("--tau", warp.tau,
+                     "warp: relative depth step that makes a depth discontinuity (occlusion label) "
+                     "and a nearer surface (visibility test)")
+          ->capture_default_str(),
+      app.add_option("--penalty", warp.penalty,
+                     "warp: growth a of the occlusion penalty phi = occ (a theta_i / (theta_i + "
+                     "theta_j))^4")
+          ->type_name("A")
+          ->capture_default_str(),
+  };
   interpOptions_ = {
-      app.add_option("--acquire", acquire_,
-                     "interp: source views from the middle of the track (center), both ends "
-                     "(dual), or both ends and then halfway between two sources wherever they "
-                     "leave holes, recursively (hierarchical); default " +
-                         std::string(acquireName(interp.acquire)))
-          ->type_name(choices(kAcquireNames)),
       app.add_option("--max-layers", interp.maxLayers, "interp: depth-peeled layers per source view")
           ->capture_default_str(),
       app.add_option("--coalesce", interp.coalesce,
@@ -40,8 +55,6 @@ void BackendFlags::add(CLI::App& app) {
       app.add_flag("--visibility", interp.visibility,
                    "interp: drop layer pixels the nearest layer hides from the whole track; stop "
                    "peeling at a layer with none left"),
-      app.add_option("--budget", interp.budget, "interp hierarchical: source views per row at most")
-          ->capture_default_str(),
       app.add_option("--splits", interp.splits,
                      "interp: highlights per view, split at K views across each specular pixel's "
                      "highlight (0: as the source saw it)")
@@ -73,9 +86,20 @@ BackendOptions BackendFlags::resolve() const {
   for (const CLI::Option* option : interpOptions_)
     if (option->count() && o.backend != Backend::Interp)
       fail(option->get_name(), "applies to --backend interp only");
+  for (const CLI::Option* option : warpOptions_)
+    if (option->count() && o.backend != Backend::Warp)
+      fail(option->get_name(), "applies to --backend warp only");
+  for (const CLI::Option* option : {acquireOption_, budgetOption_})
+    if (option->count() && o.backend != Backend::Interp && o.backend != Backend::Warp)
+      fail(option->get_name(), "applies to --backend interp and warp only");
   if (o.backend == Backend::Interp) {
     if (!acquire_.empty()) o.interp.acquire = parseAcquire(acquire_);
     validate(o.interp);
+  }
+  if (o.backend == Backend::Warp) {
+    if (!acquire_.empty()) o.warp.acquire = parseAcquire(acquire_);
+    if (budgetOption_->count()) o.warp.budget = o.interp.budget;
+    validate(o.warp);
   }
   return o;
 }

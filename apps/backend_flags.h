@@ -26,7 +26,9 @@ class BackendFlags {
   std::optional<std::string> pst_;
   CLI::Option* textureOption_ = nullptr;
   CLI::Option* builderOption_ = nullptr;
-  std::vector<CLI::Option*> interpOptions_;
+  std::vector<CLI::Option*> interpOptions_, warpOptions_;
+  CLI::Option* acquireOption_ = nullptr;
+  CLI::Option* budgetOption_ = nullptr;
 };
 
 }  // namespace mvr::app

@@ -13,6 +13,7 @@ std::unique_ptr<Renderer> makeRenderer(const BackendOptions& o, const Scene& sce
   switch (o.backend) {
     case Backend::Mvr: return makeMvrRenderer(scene, o.mvr.mode, type, o.mvr.texture, o.mvr.builder);
     case Backend::Interp: return makeInterpRenderer(scene, type, o.interp);
+    case Backend::Warp: return makeWarpRenderer(scene, type, o.warp);
     case Backend::Svr: return makeSvrRenderer(scene, type);
     case Backend::SvrLayered: return makeLayeredSvrRenderer(scene, type);
     case Backend::Deferred: return makeDeferredRenderer(scene, type);
@@ -66,6 +67,17 @@ void interpOption(const std::string& token, InterpOptions& o, const char* where)
   if (token.empty() || *end != '\0') fail(where, "unknown interp option '" + token + "'");
 }
 
+// One warp option token, checked by validate(WarpOptions).
+void warpOption(const std::string& token, WarpOptions& o, const char* where) {
+  char* end = nullptr;
+  const char* text = token.c_str();
+  const char key = token.size() > 1 ? token[0] : '\0';
+  if (key == 't') o.tau = std::strtof(text + 1, &end);
+  else if (key == 'a') o.penalty = std::strtof(text + 1, &end);
+  else if (key == 'b') o.budget = int(std::strtol(text + 1, &end, 10));
+  if (!end || *end != '\0') fail(where, "unknown warp option '" + token + "'");
+}
+
 // One mvr option token: a texture mode, or NAME-psts for a PST builder.
 void mvrOption(const std::string& token, MvrOptions& o, const char* where) {
   if (builderOption(token, o.builder)) return;
@@ -82,6 +94,10 @@ BackendOptions parseBackendSpec(const std::string& spec, const char* where) {
     if (field.size() > 1) o.interp.acquire = parseName(kAcquireNames, field[1], where, "acquisition");
     for (size_t i = 2; i < field.size(); ++i) interpOption(field[i], o.interp, where);
     validate(o.interp);
+  } else if (o.backend == Backend::Warp) {
+    if (field.size() > 1) o.warp.acquire = parseName(kAcquireNames, field[1], where, "acquisition");
+    for (size_t i = 2; i < field.size(); ++i) warpOption(field[i], o.warp, where);
+    validate(o.warp);
   } else if (o.hasPst()) {
     if (field.size() > 1) o.mvr.mode = parseName(kPstModeNames, field[1], where, "mode");
     for (size_t i = 2; i < field.size(); ++i) mvrOption(field[i], o.mvr, where);

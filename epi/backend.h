@@ -8,15 +8,17 @@
 
 #include "epi/epi_rasterizer.h"
 #include "epi/interp_renderer.h"
+#include "epi/warp_renderer.h"
 #include "mvr/names.h"
 #include "mvr/renderer.h"
 #include "mvr/scene.h"
 
 namespace mvr {
 
-enum class Backend { Mvr, Interp, Svr, SvrLayered, Deferred };
-inline constexpr NameTable<Backend, 5> kBackendNames{{{Backend::Mvr, "mvr"},
+enum class Backend { Mvr, Interp, Warp, Svr, SvrLayered, Deferred };
+inline constexpr NameTable<Backend, 6> kBackendNames{{{Backend::Mvr, "mvr"},
                                                       {Backend::Interp, "interp"},
+                                                      {Backend::Warp, "warp"},
                                                       {Backend::Svr, "svr"},
                                                       {Backend::SvrLayered, "svr-layered"},
                                                       {Backend::Deferred, "deferred"}}};
@@ -31,6 +33,7 @@ struct BackendOptions {
   Backend backend = Backend::Mvr;
   MvrOptions mvr;
   InterpOptions interp;
+  WarpOptions warp;
 
   // mvr and interp fill EPIs through an accuracy mode; the baselines do not.
   bool hasPst() const { return backend == Backend::Mvr || backend == Backend::Interp; }
@@ -50,7 +53,8 @@ std::unique_ptr<Renderer> makeRenderer(const BackendOptions& options, const Scen
 // interp[:ACQUIRE[:OPTION...]] with options L (layers), cT (coalesce T
 // pixels), vis (visibility), bB (budget), sK (splits), oP (overlap P
 // pixels), a PST builder and an accuracy mode, e.g.
-// interp:hierarchical:2:c0.5:vis:b5:exact.
+// interp:hierarchical:2:c0.5:vis:b5:exact, or
+// warp[:ACQUIRE[:OPTION...]] with tT (tau), aA (penalty a), bB (budget).
 // Throws naming `where` for an unknown name or option.
 BackendOptions parseBackendSpec(const std::string& spec, const char* where = "--backends");
 

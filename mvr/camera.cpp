@@ -84,19 +84,27 @@ glm::dmat4 ShearingCamera::viewProjectionAt(double cx, double cy) const {
 
 glm::dmat4 ShearingCamera::worldToCamera(int view, int row) const {
   const glm::dvec3 e = eye(view, row);
+  return worldToCameraAt(e.x, e.y);
+}
+
+glm::dmat4 ShearingCamera::worldToCameraAt(double cx, double cy) const {
   glm::dmat4 v(1.0);  // column-major: v[column][row]
   v[1][1] = v[2][2] = -1.0;
-  v[3] = glm::dvec4(0.0 - e.x, e.y, e.z, 1.0);  // 0 - x: no negative zero in manifests
+  v[3] = glm::dvec4(0.0 - cx, cy, spec_.distance, 1.0);  // 0 - x: no negative zero in manifests
   return v;
 }
 
 glm::dmat3 ShearingCamera::intrinsics(int view, int row) const {
   const glm::dvec3 e = eye(view, row);
+  return intrinsicsAt(e.x, e.y);
+}
+
+glm::dmat3 ShearingCamera::intrinsicsAt(double cx, double cy) const {
   glm::dmat3 k(0.0);
   k[0][0] = width_ * spec_.distance / planeWidth_;
   k[1][1] = height_ * spec_.distance / planeHeight_;
-  k[2][0] = 0.5 * width_ + width_ / planeWidth_ * e.x;
-  k[2][1] = 0.5 * height_ - height_ / planeHeight_ * e.y;
+  k[2][0] = 0.5 * width_ + width_ / planeWidth_ * cx;
+  k[2][1] = 0.5 * height_ - height_ / planeHeight_ * cy;
   k[2][2] = 1.0;
   return k;
 }

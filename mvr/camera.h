@@ -74,6 +74,9 @@ class ShearingCamera {
   // that moves with the eye, cx = W/2 + (W/Wp) eye.x, cy = H/2 - (H/Hp) eye.y.
   glm::dmat4 worldToCamera(int view, int row = 0) const;
   glm::dmat3 intrinsics(int view, int row = 0) const;
+  // The same for an eye anywhere on the camera plane (a source between views).
+  glm::dmat4 worldToCameraAt(double cameraX, double cameraY) const;
+  glm::dmat3 intrinsicsAt(double cameraX, double cameraY) const;
   // Pixel x movement of a point at depth z per unit of camera x:
   // -(W / Wp) z / (D - z). Zero on the image plane.
   double disparityPerUnitTrack(double z) const;

@@ -1,0 +1,322 @@
+#include "epi/gpu/depth_warp.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <glm/gtc/constants.hpp>
+
+#include "mvr/error.h"
+#include "mvr/gl/gl_program.h"
+
+namespace mvr {
+namespace {
+
+// The vertex in reference pixel coordinates: pixel centres (i + 0.5,
+// j + 0.5), and a ring on the image's border (0 and W, 0 and H) that takes
+// its pixel's depth, so that warping to the reference itself covers every
+// pixel centre (the grid of centres alone ends half a pixel short, and
+// fill rules drop centres on its right and bottom edges). With SPLAT, the
+// corner of a silhouette pixel's own footprint (splats below).
+const char* const kWarpVertex = R"(
+#ifdef SPLAT
+const vec2 kCorners[6] = vec2[6](vec2(-0.5, -0.5), vec2(0.5, -0.5), vec2(-0.5, 0.5), vec2(0.5, -0.5),
+                                 vec2(0.5, 0.5), vec2(-0.5, 0.5));
+#else
+layout(location = 0) in vec2 aPixel;
+#endif
+layout(binding = 1) uniform sampler2D uDepth;
+uniform mat4 uPixelToWorld;
+uniform mat4 uViewProjection;
+uniform float uTau;
+out vec2 vUv;
+out float vOcc;
+out float vValid;
+out float vDepth;
+
+float depthAt(ivec2 p) { return texelFetch(uDepth, p, 0).r; }
+// A neighbour with no sample, or one whose depth differs by more than tau
+// of the nearer: the vertex borders a disocclusion.
+bool jumps(float z, ivec2 p) {
+  float n = depthAt(p);
+  return !(n > 0.0) || abs(n - z) > uTau * min(z, n);
+}
+bool inside(ivec2 p, ivec2 last) { return all(greaterThanEqual(p, ivec2(0))) && all(lessThanEqual(p, last)); }
+
+void main() {
+  ivec2 last = textureSize(uDepth, 0) - 1;
+#ifdef SPLAT
+  ivec2 p = ivec2(gl_InstanceID % (last.x + 1), gl_InstanceID / (last.x + 1));
+  vec2 centre = vec2(p) + 0.5, at = centre + kCorners[gl_VertexID];
+  float z = depthAt(p);
+  bool edge = false;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx)
+      edge = edge || (inside(p + ivec2(dx, dy), last) && !(depthAt(p + ivec2(dx, dy)) > 0.0));
+  if (!edge) z = 0.0;  // only silhouette pixels splat
+  bool occ = true;
+#else
+  ivec2 p = clamp(ivec2(floor(aPixel)), ivec2(0), last);
+  vec2 centre = aPixel, at = aPixel;
+  float z = depthAt(p);
+  bool occ = (p.x > 0 && jumps(z, p - ivec2(1, 0))) || (p.x < last.x && jumps(z, p + ivec2(1, 0))) ||
+             (p.y > 0 && jumps(z, p - ivec2(0, 1))) || (p.y < last.y && jumps(z, p + ivec2(0, 1)));
+#endif
+  vValid = z > 0.0 ? 1.0 : 0.0;
+  vec4 world = uPixelToWorld * vec4(vec3(at, 1.0) * z, 1.0);
+  // No sample: outside the clip volume; triangles touching it are dropped.
+  gl_Position = z > 0.0 ? uViewProjection * world : vec4(0.0, 0.0, -2.0, 1.0);
+  vDepth = gl_Position.w;  // the virtual camera's z
+  vOcc = occ ? 1.0 : 0.0;
+  vUv = centre / vec2(last + 1);
+}
+)";
+
+const char* const kWarpFragment = R"(
+layout(binding = 0) uniform sampler2D uColor;
+in vec2 vUv;
+in float vOcc;
+in float vValid;
+in float vDepth;
+layout(location = 0) out vec4 oColor;  // rgb, occlusion label
+layout(location = 1) out vec4 oDepth;  // r: the virtual camera's z
+void main() {
+  if (vValid < 0.999) discard;
+  oColor = vec4(texture(uColor, vUv).rgb, vOcc);
+  oDepth = vec4(vDepth);
+}
+)";
+
+// The weight of reference 0 (depth_warp.h; keep in step with warpWeight).
+const char* const kComposite = R"(
+layout(binding = 0) uniform sampler2D uColor0;
+layout(binding = 1) uniform sampler2D uDepth0;
+layout(binding = 2) uniform sampler2D uColor1;
+layout(binding = 3) uniform sampler2D uDepth1;
+uniform int uTwo;
+uniform mat4 uPixelToWorld;
+uniform vec3 uCenter;
+uniform vec3 uCenter0;
+uniform vec3 uCenter1;
+uniform float uTau;
+uniform float uA;
+layout(location = 0) out vec4 oColor;
+
+float angle(vec3 p, vec3 a, vec3 b) {
+  return acos(clamp(dot(normalize(a - p), normalize(b - p)), -1.0, 1.0));
+}
+
+float weight0(float theta0, float theta1, float z0, float z1, float occ0, float occ1) {
+  float s = theta0 + theta1 > 0.0 ? theta0 / (theta0 + theta1) : 0.5;
+  float wAng = 0.5 + 0.5 * cos(3.14159265358979 * s);
+  float closer0 = z0 - z1 < -uTau * z0 ? 1.0 : 0.0;
+  float closer1 = z1 - z0 < -uTau * z1 ? 1.0 : 0.0;
+  float phi0 = min(1.0, occ0 * pow(uA * s, 4.0));
+  float phi1 = min(1.0, occ1 * pow(uA * (1.0 - s), 4.0));
+  float w = min(1.0, phi1 + (1.0 - phi0) * clamp(wAng + phi0 * closer0 - phi1 * closer1, 0.0, 1.0));
+  return clamp(w, 0.0, 1.0);
+}
+
+void main() {
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  vec4 c0 = texelFetch(uColor0, px, 0), c1 = texelFetch(uColor1, px, 0);
+  float z0 = texelFetch(uDepth0, px, 0).r, z1 = uTwo != 0 ? texelFetch(uDepth1, px, 0).r : 0.0;
+  if (!(z0 > 0.0) && !(z1 > 0.0)) discard;
+  if (!(z1 > 0.0)) { oColor = vec4(c0.rgb, 1.0); return; }
+  if (!(z0 > 0.0)) { oColor = vec4(c1.rgb, 1.0); return; }
+  vec3 p = (uPixelToWorld * vec4(vec3(gl_FragCoord.xy, 1.0) * min(z0, z1), 1.0)).xyz;
+  float w = weight0(angle(p, uCenter, uCenter0), angle(p, uCenter, uCenter1), z0, z1, c0.a, c1.a);
+  oColor = vec4(w * c0.rgb + (1.0 - w) * c1.rgb, 1.0);
+}
+)";
+
+gl::Texture texture2D(GLenum format, int w, int h, GLenum filter) {
+  gl::Texture t(GL_TEXTURE_2D);
+  gl::TextureStorage2D(t.id(), 1, format, w, h);
+  gl::TextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, filter);
+  gl::TextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, filter);
+  gl::TextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  gl::TextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return t;
+}
+
+void setMatrix(const gl::Program& p, const char* name, const glm::dmat4& m) { gl::setUniform(p, name, glm::mat4(m)); }
+
+}  // namespace
+
+float warpWeight(float theta0, float theta1, float z0, float z1, float occ0, float occ1, float tau, float a) {
+  const float s = theta0 + theta1 > 0.0f ? theta0 / (theta0 + theta1) : 0.5f;
+  const float wAng = 0.5f + 0.5f * std::cos(glm::pi<float>() * s);
+  const float closer0 = z0 - z1 < -tau * z0 ? 1.0f : 0.0f;
+  const float closer1 = z1 - z0 < -tau * z1 ? 1.0f : 0.0f;
+  const float phi0 = std::min(1.0f, occ0 * std::pow(a * s, 4.0f));
+  const float phi1 = std::min(1.0f, occ1 * std::pow(a * (1.0f - s), 4.0f));
+  const float w = std::min(1.0f, phi1 + (1.0f - phi0) * std::clamp(wAng + phi0 * closer0 - phi1 * closer1, 0.0f, 1.0f));
+  return std::clamp(w, 0.0f, 1.0f);
+}
+
+WarpReference WarpReference::upload(const RgbdView& view) {
+  const int w = view.color.width, h = view.color.height;
+  if (view.color.type != PixelType::F32) fail("RGB-D reference", "colour must be float");
+  if (view.depth.width != w || view.depth.height != h)
+    fail("RGB-D reference", "depth is " + std::to_string(view.depth.width) + "x" +
+                                std::to_string(view.depth.height) + ", colour " + std::to_string(w) + "x" +
+                                std::to_string(h));
+  WarpReference r;
+  r.width = w, r.height = h;
+  r.color = texture2D(GL_RGBA32F, w, h, GL_LINEAR);
+  gl::TextureSubImage2D(r.color.id(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, view.color.bytes.data());
+  r.depth = texture2D(GL_R32F, w, h, GL_NEAREST);
+  gl::TextureSubImage2D(r.depth.id(), 0, 0, 0, w, h, GL_RED, GL_FLOAT, view.depth.values.data());
+  r.pixelToWorld = glm::mat4(RgbdView::pixelToWorld(view.K, view.V));
+  r.center = glm::vec3(view.center());
+  gl::checkError("uploading an RGB-D reference");
+  return r;
+}
+
+DepthWarp::DepthWarp(float tau, float a)
+    : warp_(gl::linkProgram("warp", {{GL_VERTEX_SHADER, gl::glslHeader() + kWarpVertex},
+                                     {GL_FRAGMENT_SHADER, gl::glslHeader() + kWarpFragment}})),
+      splat_(gl::linkProgram("warp-splat", {{GL_VERTEX_SHADER, gl::glslHeader({"SPLAT"}) + kWarpVertex},
+                                            {GL_FRAGMENT_SHADER, gl::glslHeader() + kWarpFragment}})),
+      composite_(gl::linkProgram("warp-composite",
+                                 {{GL_VERTEX_SHADER, gl::glslHeader() + gl::kFullScreenTriangleVertex},
+                                  {GL_FRAGMENT_SHADER, gl::glslHeader() + kComposite}})),
+      grid_(gl::VertexArray::create()),
+      empty_(gl::VertexArray::create()) {
+  gl::setUniform(warp_, "uTau", tau);
+  gl::setUniform(splat_, "uTau", tau);
+  gl::setUniform(composite_, "uTau", tau);
+  gl::setUniform(composite_, "uA", a);
+}
+
+// The static grid (seed 5.2): one vertex per reference pixel centre and
+// the border ring, (W + 2) x (H + 2), two triangles per cell; made once
+// per reference size.
+void DepthWarp::ensureGrid(int w, int h) {
+  if (w == gridWidth_ && h == gridHeight_) return;
+  auto at = [](int k, int n) { return std::clamp(float(k) - 0.5f, 0.0f, float(n)); };
+  const int gw = w + 2, gh = h + 2;
+  std::vector<glm::vec2> vertices;
+  vertices.reserve(size_t(gw) * gh);
+  for (int j = 0; j < gh; ++j)
+    for (int i = 0; i < gw; ++i) vertices.emplace_back(at(i, w), at(j, h));
+  std::vector<uint32_t> indices;
+  indices.reserve(size_t(gw - 1) * (gh - 1) * 6);
+  for (int j = 0; j + 1 < gh; ++j)
+    for (int i = 0; i + 1 < gw; ++i) {
+      const uint32_t a = uint32_t(j * gw + i), b = a + 1, c = a + uint32_t(gw), d = c + 1;
+      for (uint32_t k : {a, b, c, b, d, c}) indices.push_back(k);
+    }
+  gridVertices_ = gl::makeBuffer(vertices.data(), vertices.size());
+  gridIndices_ = gl::makeBuffer(indices.data(), indices.size());
+  const GLuint vao = grid_.id();
+  gl::VertexArrayVertexBuffer(vao, 0, gridVertices_.id(), 0, sizeof(glm::vec2));
+  gl::VertexArrayElementBuffer(vao, gridIndices_.id());
+  gl::VertexArrayAttribFormat(vao, 0, 2, GL_FLOAT, GL_FALSE, 0);
+  gl::VertexArrayAttribBinding(vao, 0, 0);
+  gl::EnableVertexArrayAttrib(vao, 0);
+  gridWidth_ = w, gridHeight_ = h;
+  gridIndexCount_ = indices.size();
+}
+
+void DepthWarp::ensureTargets(int w, int h) {
+  for (Warped& t : warped_) {
+    if (t.width == w && t.height == h) continue;
+    t.width = w, t.height = h;
+    t.color = texture2D(GL_RGBA32F, w, h, GL_NEAREST);
+    t.depth = texture2D(GL_R32F, w, h, GL_NEAREST);
+    t.zbuffer = texture2D(GL_DEPTH_COMPONENT32F, w, h, GL_NEAREST);
+    t.fbo = gl::Framebuffer::create();
+    gl::NamedFramebufferTexture(t.fbo.id(), GL_COLOR_ATTACHMENT0, t.color.id(), 0);
+    gl::NamedFramebufferTexture(t.fbo.id(), GL_COLOR_ATTACHMENT1, t.depth.id(), 0);
+    gl::NamedFramebufferTexture(t.fbo.id(), GL_DEPTH_ATTACHMENT, t.zbuffer.id(), 0);
+    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    gl::NamedFramebufferDrawBuffers(t.fbo.id(), 2, buffers);
+    if (gl::CheckNamedFramebufferStatus(t.fbo.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      fail("GL", "warp target is incomplete");
+  }
+}
+
+void DepthWarp::warp(const WarpReference& ref, const WarpCamera& view, const Warped& into) const {
+  gl::BindFramebuffer(GL_FRAMEBUFFER, into.fbo.id());
+  gl::Viewport(0, 0, into.width, into.height);
+  const float zero[4] = {0, 0, 0, 0};
+  gl::ClearNamedFramebufferfv(into.fbo.id(), GL_COLOR, 0, zero);
+  gl::ClearNamedFramebufferfv(into.fbo.id(), GL_COLOR, 1, zero);
+  gl::ClearNamedFramebufferfi(into.fbo.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
+  gl::BindTextureUnit(0, ref.color.id());
+  gl::BindTextureUnit(1, ref.depth.id());
+  for (const gl::Program* p : {&warp_, &splat_}) {
+    gl::UseProgram(p->id());
+    gl::setUniform(*p, "uPixelToWorld", ref.pixelToWorld);
+    setMatrix(*p, "uViewProjection", view.viewProjection);
+  }
+  gl::UseProgram(warp_.id());
+  gl::BindVertexArray(grid_.id());
+  gl::DrawElements(GL_TRIANGLES, GLsizei(gridIndexCount_), GL_UNSIGNED_INT, nullptr);
+  gl::UseProgram(splat_.id());
+  gl::BindVertexArray(empty_.id());
+  gl::DrawArraysInstanced(GL_TRIANGLES, 0, 6, GLsizei(ref.width) * ref.height);
+}
+
+DepthWarp::WarpedImage DepthWarp::read(const Warped& from) const {
+  WarpedImage out{Image(from.width, from.height, PixelType::F32), DepthImage(from.width, from.height)};
+  gl::GetTextureSubImage(from.color.id(), 0, 0, 0, 0, from.width, from.height, 1, GL_RGBA, GL_FLOAT,
+                         GLsizei(out.color.bytes.size()), out.color.bytes.data());
+  gl::GetTextureSubImage(from.depth.id(), 0, 0, 0, 0, from.width, from.height, 1, GL_RED, GL_FLOAT,
+                         GLsizei(out.depth.values.size() * sizeof(float)), out.depth.values.data());
+  return out;
+}
+
+DepthWarp::WarpedImage DepthWarp::warped(const WarpReference& ref, const WarpCamera& view, int width, int height) {
+  ensureGrid(ref.width, ref.height);
+  ensureTargets(width, height);
+  setDepthConvention();
+  warp(ref, view, warped_[0]);
+  return read(warped_[0]);
+}
+
+long DepthWarp::holes(const WarpReference& a, const WarpReference& b, const WarpCamera& view, int width,
+                      int height) {
+  const WarpedImage w0 = warped(a, view, width, height), w1 = warped(b, view, width, height);
+  const float* c0 = reinterpret_cast<const float*>(w0.color.bytes.data());
+  const float* c1 = reinterpret_cast<const float*>(w1.color.bytes.data());
+  long count = 0;
+  for (size_t i = 0; i < w0.depth.values.size(); ++i) {
+    const bool seen0 = w0.depth.values[i] > 0.0f, seen1 = w1.depth.values[i] > 0.0f;
+    const bool sheet0 = !seen0 || c0[4 * i + 3] > 0.5f, sheet1 = !seen1 || c1[4 * i + 3] > 0.5f;
+    count += (seen0 || seen1) && sheet0 && sheet1;
+  }
+  return count;
+}
+
+void DepthWarp::render(const WarpReference& a, const WarpReference* b, const WarpCamera& view,
+                       const RenderTarget& target) {
+  if (b && (b->width != a.width || b->height != a.height))
+    fail("RGB-D references", "two references of different sizes");
+  ensureGrid(a.width, a.height);
+  ensureTargets(target.width(), target.height());
+  setDepthConvention();
+  warp(a, view, warped_[0]);
+  if (b) warp(*b, view, warped_[1]);
+  target.bind();
+  target.clear();
+  gl::Disable(GL_DEPTH_TEST);
+  gl::UseProgram(composite_.id());
+  gl::setUniform(composite_, "uTwo", b ? 1 : 0);
+  setMatrix(composite_, "uPixelToWorld", view.pixelToWorld);
+  gl::setUniform(composite_, "uCenter", glm::vec3(view.center));
+  gl::setUniform(composite_, "uCenter0", a.center);
+  gl::setUniform(composite_, "uCenter1", b ? b->center : a.center);
+  gl::BindTextureUnit(0, warped_[0].color.id());
+  gl::BindTextureUnit(1, warped_[0].depth.id());
+  gl::BindTextureUnit(2, warped_[1].color.id());
+  gl::BindTextureUnit(3, warped_[1].depth.id());
+  gl::BindVertexArray(empty_.id());
+  gl::DrawArrays(GL_TRIANGLES, 0, 3);
+  gl::Enable(GL_DEPTH_TEST);
+  gl::checkError("depth warp");
+}
+
+}  // namespace mvr

@@ -1,0 +1,104 @@
+#pragma once
+// Novel views from two RGB-D references on the GPU (seed 003, chapter 5):
+//   warp       one static grid of the references' W x H pixel centres
+//              (X, Y only), drawn once per reference into its own target:
+//              the vertex shader fetches the pixel's depth, unprojects it
+//              with K and V, projects it into the virtual view and labels
+//              it occluded where a neighbour's depth jumps (more than tau
+//              of the nearer depth, or no sample); the fragment shader
+//              writes colour, the label and the virtual camera's depth.
+//              Triangles touching a pixel without a sample are dropped;
+//              those across a jump (rubber sheets) are drawn and labelled.
+//              A pixel beside one without a sample (a silhouette) is also
+//              drawn as its own footprint, a flat square at its depth
+//              (labelled), so silhouettes are not eroded by the half
+//              pixel the grid of centres stops short of them.
+//   composite  one full-screen pass blends the two warped references per
+//              pixel with the seed's weight (eqs. 5-1 to 5-3): the angular
+//              weight, the visibility test and the occlusion penalty.
+// The weight of reference i at a pixel whose surface point P the two
+// warps agree on (the nearer one's), theta_i the angle at P between the
+// rays to the virtual camera and to reference i, s = theta_i / (theta_i +
+// theta_j):
+//   wAng_i  = (1 + cos(pi s)) / 2: 1 at reference i, 1/2 halfway, 0 at j,
+//             smooth at both ends (the seed's cosine form; its eq. 4-4 is
+//             not in the excerpt we have, this is our reading of it);
+//   closer  = 1 where i's depth is nearer than j's by more than tau of it;
+//   phi_i   = min(1, occ_i (a s)^4) (eq. 5-2, saturated at 1: a = 30
+//             makes the penalty total once s passes 1/30);
+//   w_i     = min(1, phi_j + (1 - phi_i) clamp(wAng_i + phi_i closer_i
+//             - phi_j closer_j, 0, 1)) (eq. 5-3), clamped to [0, 1];
+//   colour  = w_i c_i + (1 - w_i) c_j. Where one reference has no sample,
+//   the other alone; where neither, nothing (alpha 0).
+#include "mvr/gl/gl_handles.h"
+#include "mvr/gl/render_target.h"
+#include "mvr/rgbd_view.h"
+
+namespace mvr {
+
+// The weight of reference 0 against reference 1 at a pixel both cover
+// (above): theta the angles at the surface point, z their virtual depths,
+// occ their occlusion labels. The composite pass computes the same in GLSL.
+float warpWeight(float theta0, float theta1, float z0, float z1, float occ0, float occ1, float tau, float a);
+
+// A reference resident on the GPU.
+struct WarpReference {
+  int width = 0, height = 0;
+  gl::Texture color, depth;  // RGBA32F linear, R32F camera z
+  glm::mat4 pixelToWorld{1.0f};
+  glm::vec3 center{0.0f};
+
+  static WarpReference upload(const RgbdView& view);  // needs a current GL context
+};
+
+// The virtual camera of one view.
+struct WarpCamera {
+  glm::dmat4 viewProjection;  // world to clip, reversed Z (ShearingCamera); w = camera z
+  glm::dmat4 pixelToWorld;    // RgbdView::pixelToWorld of its K and V
+  glm::dvec3 center;
+};
+
+class DepthWarp {
+ public:
+  // tau: the relative depth difference that makes a discontinuity and a
+  // nearer surface; a: the penalty's growth (eq. 5-2). Needs a current GL
+  // context.
+  DepthWarp(float tau, float a);
+
+  // Composites references a and b (b may be null: a alone) into target,
+  // whose size is the virtual view's.
+  void render(const WarpReference& a, const WarpReference* b, const WarpCamera& view, const RenderTarget& target);
+  // Pixels of a width x height view that a or b cover but only with
+  // triangles labelled occluded (rubber sheets over what neither saw).
+  long holes(const WarpReference& a, const WarpReference& b, const WarpCamera& view, int width, int height);
+
+  // One reference warped alone into a width x height view: colour with
+  // the occlusion label as alpha, and the virtual camera's z (0: not
+  // covered).
+  struct WarpedImage {
+    Image color;  // F32
+    DepthImage depth;
+  };
+  WarpedImage warped(const WarpReference& ref, const WarpCamera& view, int width, int height);
+
+ private:
+  // The warped reference: colour and label, virtual depth, depth buffer.
+  struct Warped {
+    int width = 0, height = 0;
+    gl::Texture color, depth, zbuffer;
+    gl::Framebuffer fbo;
+  };
+  void ensureGrid(int width, int height);
+  void ensureTargets(int width, int height);
+  void warp(const WarpReference& ref, const WarpCamera& view, const Warped& into) const;
+  WarpedImage read(const Warped& from) const;
+
+  gl::Program warp_, splat_, composite_;
+  gl::VertexArray grid_, empty_;
+  gl::Buffer gridVertices_, gridIndices_;
+  int gridWidth_ = 0, gridHeight_ = 0;
+  size_t gridIndexCount_ = 0;
+  Warped warped_[2];
+};
+
+}  // namespace mvr

@@ -1,0 +1,157 @@
+#include "epi/warp_renderer.h"
+
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <string>
+
+#include "epi/gpu/depth_warp.h"
+#include "mvr/baselines/source_layers.h"
+#include "mvr/baselines/view_loop.h"
+#include "mvr/error.h"
+
+namespace mvr {
+
+void validate(const WarpOptions& o) {
+  if (o.acquire == Acquire::Center) fail("--acquire", "warp composites two references: dual or hierarchical");
+  if (!(o.tau > 0.0f && o.tau < 1.0f)) fail("--tau", "expected a relative depth step in (0, 1)");
+  if (!(o.penalty >= 0.0f && std::isfinite(o.penalty))) fail("--penalty", "expected a finite value >= 0");
+  if (o.budget < 2) fail("--budget", "expected at least 2 source views");
+}
+
+namespace {
+
+struct Reference {
+  WarpReference gpu;
+  double x = 0.0;  // camera x on the track (scene sources)
+};
+
+// Camera z from a reversed-Z window depth (ShearingCamera::unprojectAt).
+float cameraDepth(const CameraSpec& s, float window) {
+  const double n = s.nearDistance, f = s.farDistance;
+  return window > 0.0f ? float(n * f / (double(window) * (f - n) + n)) : 0.0f;
+}
+
+class WarpRenderer final : public Renderer {
+ public:
+  WarpRenderer(const Scene* scene, std::vector<RgbdView> captured, PixelType type, const WarpOptions& options)
+      : options_((validate(options), options)),
+        type_(type),
+        warp_(options.tau, options.penalty),
+        sources_(scene ? makeSourceLayerRenderer(*scene) : nullptr) {
+    for (const RgbdView& view : captured) captured_.push_back({WarpReference::upload(view)});
+    if (!scene && captured_.empty()) fail("warp", "no references");
+  }
+
+  std::string name() const override { return "warp"; }
+  FrameOrder order() const override { return FrameOrder::View; }
+
+  void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
+    RenderTarget target(cam.width(), cam.height(), type_);
+    int loadedRow = -1;
+    std::vector<Reference> rowSources;
+    renderEachView(cam, target, "warp", sink, stats, [&](int row, int view) {
+      if (sources_ && row != loadedRow) {
+        ScopedStage s(stats.times, "sources");
+        rowSources = acquire(cam, row, stats);
+        loadedRow = row;
+      }
+      const std::vector<Reference>& refs = sources_ ? rowSources : captured_;
+      const glm::dvec3 eye = cam.eye(view, row);
+      const auto [a, b] = nearestPair(refs, eye);
+      ScopedStage s(stats.times, "warp");
+      warp_.render(refs[a].gpu, b < 0 ? nullptr : &refs[b].gpu, cameraOf(cam, view, row), target);
+    });
+    stats.notes["acquire"] = sources_ ? acquireName(options_.acquire) : "captured";
+  }
+
+ private:
+  static WarpCamera cameraOf(const ShearingCamera& cam, int view, int row) {
+    return {cam.viewProjection(view, row),
+            RgbdView::pixelToWorld(cam.intrinsics(view, row), cam.worldToCamera(view, row)), cam.eye(view, row)};
+  }
+
+  // The nearest reference, and the nearest of those beyond the eye from
+  // it (-1: none, or the eye is at the reference).
+  static std::pair<int, int> nearestPair(const std::vector<Reference>& refs, const glm::dvec3& eye) {
+    auto distance = [&](int k) { return glm::length(glm::dvec3(refs[k].gpu.center) - eye); };
+    int a = 0;
+    for (int k = 1; k < int(refs.size()); ++k)
+      if (distance(k) < distance(a)) a = k;
+    const glm::dvec3 ca(refs[a].gpu.center), toEye = eye - ca;
+    if (glm::length(toEye) <= 1e-9 * (1.0 + glm::length(ca))) return {a, -1};
+    int b = -1;
+    for (int k = 0; k < int(refs.size()); ++k)
+      if (k != a && glm::dot(glm::dvec3(refs[k].gpu.center) - ca, toEye) > 0.0 && (b < 0 || distance(k) < distance(b)))
+        b = k;
+    return {a, b};
+  }
+
+  std::vector<Reference> acquire(const ShearingCamera& cam, int row, RenderStats& stats) {
+    const int n = cam.views();
+    std::vector<Reference> refs;
+    refs.push_back(source(cam, row, cam.viewX(0), stats));
+    if (n > 1) refs.push_back(source(cam, row, cam.viewX(n - 1), stats));
+    if (options_.acquire == Acquire::Hierarchical && n > 2) refine(cam, row, refs, stats);
+    return refs;
+  }
+
+  // Breadth first over the track, as interp's hierarchical acquisition.
+  void refine(const ShearingCamera& cam, int row, std::vector<Reference>& refs, RenderStats& stats) {
+    const double tolerance = options_.holeFraction * cam.width() * cam.height();
+    std::deque<std::pair<int, int>> todo{{0, 1}};  // indices into refs and their views
+    std::vector<int> viewOf{0, cam.views() - 1};
+    while (!todo.empty() && int(refs.size()) < options_.budget) {
+      const auto [a, b] = todo.front();
+      todo.pop_front();
+      if (viewOf[b] - viewOf[a] < 2) continue;
+      const int m = (viewOf[a] + viewOf[b]) / 2;
+      stats.counters["hole_checks"] += 1;
+      if (double(warp_.holes(refs[a].gpu, refs[b].gpu, cameraOf(cam, m, row), cam.width(), cam.height())) <=
+          tolerance)
+        continue;
+      refs.push_back(source(cam, row, cam.viewX(m), stats));
+      viewOf.push_back(m);
+      todo.emplace_back(a, int(refs.size()) - 1);
+      todo.emplace_back(int(refs.size()) - 1, b);
+    }
+  }
+
+  // One source view: the deferred pipeline's nearest layer as an RGB-D image.
+  Reference source(const ShearingCamera& cam, int row, double x, RenderStats& stats) {
+    stats.counters["source_views"] += 1;
+    const double y = cam.rowY(row);
+    std::vector<SourceLayer> layers = sources_->render(cam, {x, y}, 1, 0.0, stats);
+    RgbdView view;
+    view.K = cam.intrinsicsAt(x, y);
+    view.V = cam.worldToCameraAt(x, y);
+    view.depth = DepthImage(cam.width(), cam.height());
+    if (layers.empty()) {
+      view.color = Image(cam.width(), cam.height(), PixelType::F32);
+    } else {
+      view.color = std::move(layers[0].color);
+      for (size_t k = 0; k < view.depth.values.size(); ++k)
+        view.depth.values[k] = cameraDepth(cam.spec(), layers[0].depth[k]);
+    }
+    return {WarpReference::upload(view), x};
+  }
+
+  WarpOptions options_;
+  PixelType type_;
+  DepthWarp warp_;
+  std::unique_ptr<SourceLayerRenderer> sources_;  // scene sources, or null
+  std::vector<Reference> captured_;
+};
+
+}  // namespace
+
+std::unique_ptr<Renderer> makeWarpRenderer(const Scene& scene, PixelType type, const WarpOptions& options) {
+  return std::make_unique<WarpRenderer>(&scene, std::vector<RgbdView>{}, type, options);
+}
+
+std::unique_ptr<Renderer> makeWarpRenderer(std::vector<RgbdView> references, PixelType type,
+                                           const WarpOptions& options) {
+  return std::make_unique<WarpRenderer>(nullptr, std::move(references), type, options);
+}
+
+}  // namespace mvr

@@ -1,0 +1,43 @@
+#pragma once
+// The depth-image warping back end (seed 003; epi/gpu/depth_warp.h): each
+// view composited from its two nearest RGB-D references. References come
+// from a scene, rendered by the deferred pipeline at source eyes on the
+// track (as interp's sources), or from a capture (mvr synthesize).
+#include <memory>
+#include <vector>
+
+#include "epi/interp_renderer.h"
+#include "mvr/renderer.h"
+#include "mvr/rgbd_view.h"
+#include "mvr/scene.h"
+
+namespace mvr {
+
+struct WarpOptions {
+  // dual: both ends of the track; hierarchical: then the view halfway
+  // between two sources wherever only their labelled rubber sheets cover
+  // more than holeFraction of the pixels, breadth first within budget.
+  Acquire acquire = Acquire::Dual;
+  // Relative depth step, of the nearer depth, that makes a discontinuity
+  // (occlusion label) and a nearer surface (visibility test). A smooth
+  // surface tilted by alpha steps (Wp / (W D)) tan(alpha) between pixels:
+  // with the bundled cameras (Wp / D = 1/2) 0.08% tan(alpha) at 640 pixels
+  // across, so 0.02 labels no smooth surface tilted less than 87 degrees
+  // (81 at 160 pixels), while objects that occlude one another stand off
+  // by much more than 2% of their depth.
+  float tau = 0.02f;
+  float penalty = 30.0f;  // a of eq. 5-2, the seed's value for its datasets
+  int budget = 9;         // hierarchical: source views per row at most
+  double holeFraction = 1e-3;
+};
+
+// Throws mvr::Error naming the option that is out of range; needs no GL.
+void validate(const WarpOptions& options);
+
+// Needs a current GL context.
+std::unique_ptr<Renderer> makeWarpRenderer(const Scene& scene, PixelType type, const WarpOptions& options);
+// Views of a capture: every reference must have the same size.
+std::unique_ptr<Renderer> makeWarpRenderer(std::vector<RgbdView> references, PixelType type,
+                                           const WarpOptions& options);
+
+}  // namespace mvr
