@@ -25,6 +25,7 @@ const char* const kUsage =
     "  render [SCENE] [options]   render a view set (mvr render --help)\n"
     "  compare DIR_A DIR_B        per image PSNR / SSIM / max error / identical / holes\n"
     "  stream [SCENE] --to DEST   EPIs to a pipe, file or socket as they complete\n"
+    "  synthesize --from DIR      views from RGB-D references (mvr synthesize --help)\n"
     "  view DIR|SCENE             look at views and EPIs (mvr view --help)\n"
     "  bench [SCENE] [options]    MVR against SVR, svr-layered, deferred (mvr bench --help)\n";
 
@@ -101,7 +102,8 @@ int dispatch(int argc, char** argv) {
   const std::map<std::string, Command> commands = {
       {"info", runInfo},
       {"render", [](int c, char** v) { return runRender(c, v); }},
-      {"stream", [](int c, char** v) { return runRender(c, v, true); }},
+      {"stream", [](int c, char** v) { return runRender(c, v, RenderCommand::Stream); }},
+      {"synthesize", [](int c, char** v) { return runRender(c, v, RenderCommand::Synthesize); }},
       {"view", runView},
       {"compare", runCompare},
       {"bench", runBench}};
@@ -115,10 +117,10 @@ int dispatch(int argc, char** argv) {
   app.set_version_flag("--version", std::string("mvr ") + MVR_VERSION);
   app.footer(kUsage);
   std::string command;
-  app.add_option("COMMAND", command, "info, render, stream, view, compare or bench")->required();
+  app.add_option("COMMAND", command, "info, render, stream, synthesize, view, compare or bench")->required();
   app.allow_extras();
   if (auto exit = parseCommandLine(app, argc, argv)) return *exit;
-  fail("mvr", "unknown command '" + command + "' (expected info, render, stream, view, compare or bench)");
+  fail("mvr", "unknown command '" + command + "' (expected info, render, stream, synthesize, view, compare or bench)");
 }
 
 }  // namespace

@@ -24,6 +24,7 @@
 #include "mvr/io/fd_stream.h"
 #include "mvr/io/image_codec.h"
 #include "mvr/io/image_set.h"
+#include "mvr/io/rgbd_set.h"
 #include "mvr/io/scene_io.h"
 #include "mvr/parallel.h"
 #include "shading/shading_plan.h"
@@ -130,18 +131,24 @@ struct RenderFlags {
   std::string stream, quilt, predistort, codec;
   bool strict = false, linear = false, depth = false;
   MemoryFlags memory;
+  std::string from;  // synthesize: the references' folder
+  WarpOptions warp;
 
   void addShared(CLI::App& app) {
     app.add_option("SCENE", scene,
                    "a JSON scene file or a mesh (OBJ, PLY, OFF, STL); default: the bundled scene");
     backend.add(app);
+    addOutputShape(app);
+  }
+
+  void addOutputShape(CLI::App& app) {
     addViewCountOptions(app, views, rows);
     addSizeOption(app, "size", size, "image size in pixels");
     app.add_option("--format", format, "image format: png, exr or tiff (exr renders in float)")
         ->capture_default_str();
     addGlOption(app, gl);
     addThreadsOption(app);
-    addStrictOption(app, strict);
+    if (!app.get_option_no_throw("--from")) addStrictOption(app, strict);
     app.add_flag("--linear", linear,
                  "write linear values to png and tiff files (and 8-bit streams) instead of "
                  "sRGB-encoded ones; exr is always linear");
@@ -184,6 +191,19 @@ struct RenderFlags {
     memory.add(app, "the output folder; the current folder with --stream");
   }
 
+  // synthesize: references instead of a scene, the warp back end's options.
+  void addSynthesizeOwn(CLI::App& app) {
+    app.add_option("--from", from,
+                   "RGB-D references: a set mvr render --depth wrote, or the HCI 4D light-field "
+                   "layout (parameters.cfg, input_Cam%03d.png, gt_depth_lowres[_Cam%03d].pfm)")
+        ->required();
+    app.add_option("--tau", warp.tau, "relative depth step of a discontinuity and of a nearer surface")
+        ->capture_default_str();
+    app.add_option("--penalty", warp.penalty, "growth a of the occlusion penalty (seed eq. 5-2)")
+        ->type_name("A")
+        ->capture_default_str();
+  }
+
   void addStreamOwn(CLI::App& app) {
     app.add_option("--to", stream, "where the stream goes")
         ->type_name("-|FILE|unix:PATH|tcp:HOST:PORT")
@@ -197,25 +217,47 @@ struct RenderFlags {
 
 }  // namespace
 
-int runRender(int argc, char** argv, bool streamCommand) {
+int runRender(int argc, char** argv, RenderCommand command) {
+  const bool streamCommand = command == RenderCommand::Stream, synthesize = command == RenderCommand::Synthesize;
   CLI::App app(streamCommand
                    ? "Renders like mvr render and sends each EPI as it completes in the raw "
                      "EPI-major stream (docs/EPI_STREAM.md). Sockets connect to a listening "
                      "consumer (mvr-consume). A bounded queue decouples rendering from sending; "
                      "when the consumer is slow the renderer waits (backpressure)."
+                   : synthesize
+                   ? "Renders a shearing-camera track or grid from RGB-D references with the depth-image "
+                     "warping back end (each view from its two nearest references), to the outputs "
+                     "mvr render writes. Views, rows and size default to the references' own grid."
                    : "Renders a scene's views with one back end to an image set.",
-               streamCommand ? "mvr stream" : "mvr render");
+               streamCommand ? "mvr stream" : synthesize ? "mvr synthesize" : "mvr render");
   RenderFlags f;
-  f.addShared(app);
+  if (synthesize) {
+    f.addSynthesizeOwn(app);
+    f.addOutputShape(app);
+  } else {
+    f.addShared(app);
+  }
   if (streamCommand) f.addStreamOwn(app);
   else f.addRenderOwn(app);
   if (!streamCommand)
     app.footer("Writes view_0000.png ... (view_r000_c0000.png for grids) and manifest.json.");
   if (auto exit = parseCommandLine(app, argc - 1, argv + 1)) return *exit;
 
-  const BackendOptions choice = f.backend.resolve();
+  const BackendOptions choice = synthesize ? BackendOptions{.backend = Backend::Warp} : f.backend.resolve();
+  if (synthesize) {
+    validate(f.warp);
+    if (f.depth) fail("--depth", "mvr synthesize writes colour only");
+  }
   const bool streaming = !f.stream.empty();
   const std::string scenePath = f.scene.empty() ? defaultScenePath() : f.scene;
+  // The references first: their grid is synthesize's default track and size.
+  std::optional<RgbdSet> references;
+  if (synthesize) {
+    references = loadRgbdSet(f.from);
+    if (!app.count("--views")) f.views = references->views;
+    if (!app.count("--rows")) f.rows = references->rows;
+    if (!app.count("--size")) f.size = {references->width, references->height};
+  }
   const int views = f.views, rows = f.rows, bits = f.bits.value_or(defaultBits(f.format));
   const auto [width, height] = f.size;
   const std::string &out = f.out, &format = f.format, &order = f.order;
@@ -240,14 +282,19 @@ int runRender(int argc, char** argv, bool streamCommand) {
   StageTimes startup;
   Stopwatch phase, sinceStart;
   // Input problems first, before any GL or file work.
-  Scene scene = loadInputScene(scenePath, f.strict);
+  Scene scene = synthesize ? Scene{} : loadInputScene(scenePath, f.strict);
   startup.add("scene", phase.restart());
   if (const shading::ShadingPlan plan = shading::planShading(scene); plan.texture || plan.reflection)
     preloadImageCodec();  // a stream of a textured scene reads images too
-  ShearingCamera camera(cameraFor(scene, width, height), width, height, views, rows);
+  CameraSpec spec = synthesize ? references->camera : cameraFor(scene, width, height);
+  if (synthesize && (width != references->width || height != references->height))
+    spec.planeHeight = 0.0;  // another size: the image plane's height from its aspect
+  ShearingCamera camera(spec, width, height, views, rows);
   auto context = GlContext::create(platform);
   startup.add("gl", phase.restart());
-  auto renderer = makeRenderer(choice, scene, type);
+  const size_t referenceCount = synthesize ? references->references.size() : 0;
+  auto renderer = synthesize ? makeWarpRenderer(std::move(references->references), type, f.warp)
+                             : makeRenderer(choice, scene, type);
   startup.add("renderer", phase.restart());
   // Frames held, decided before rendering starts: a reordering sink's row
   // within the memory budget (beyond it, a scratch file), a quilt whole.
@@ -326,8 +373,13 @@ int runRender(int argc, char** argv, bool streamCommand) {
 
   Manifest& manifest = writer.manifest();
   nlohmann::json& m = manifest.info;
-  m["scene"] = scene.source;
-  m["triangles"] = scene.triangleCount();
+  if (synthesize) {
+    m["references"] = {{"from", f.from}, {"layout", references->layout}, {"count", referenceCount},
+                       {"tau", f.warp.tau}, {"penalty", f.warp.penalty}};
+  } else {
+    m["scene"] = scene.source;
+    m["triangles"] = scene.triangleCount();
+  }
   m["backend"] = renderer->name();
   if (choice.hasPst()) m["pst"] = pstModeName(choice.pst());
   m["gl"] = {{"platform", glPlatformName(context->platform())},

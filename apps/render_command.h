@@ -1,10 +1,13 @@
 #pragma once
-// `mvr render` (scene + camera + back end -> image set with manifest) and
-// `mvr stream` (the same, as the raw EPI-major stream).
+// `mvr render` (scene + camera + back end -> image set with manifest),
+// `mvr stream` (the same, as the raw EPI-major stream) and `mvr
+// synthesize` (RGB-D references + camera -> the same outputs, by the
+// depth-image warping back end).
 namespace mvr::app {
 
-// streamCommand: `mvr stream` (EPIs to --to) rather than `mvr render`.
+enum class RenderCommand { Render, Stream, Synthesize };
+
 // argv[1] is the command's name.
-int runRender(int argc, char** argv, bool streamCommand = false);
+int runRender(int argc, char** argv, RenderCommand command = RenderCommand::Render);
 
 }  // namespace mvr::app

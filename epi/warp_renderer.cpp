@@ -39,7 +39,7 @@ class WarpRenderer final : public Renderer {
         type_(type),
         warp_(options.tau, options.penalty),
         sources_(scene ? makeSourceLayerRenderer(*scene) : nullptr) {
-    for (const RgbdView& view : captured) captured_.push_back({WarpReference::upload(view)});
+    for (const RgbdView& view : captured) captured_.push_back({WarpReference::upload(view, options_.tau)});
     if (!scene && captured_.empty()) fail("warp", "no references");
   }
 
@@ -133,7 +133,7 @@ class WarpRenderer final : public Renderer {
       for (size_t k = 0; k < view.depth.values.size(); ++k)
         view.depth.values[k] = cameraDepth(cam.spec(), layers[0].depth[k]);
     }
-    return {WarpReference::upload(view), x};
+    return {WarpReference::upload(view, options_.tau), x};
   }
 
   WarpOptions options_;

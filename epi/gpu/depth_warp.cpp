@@ -17,58 +17,43 @@ namespace {
 // its pixel's depth, so that warping to the reference itself covers every
 // pixel centre (the grid of centres alone ends half a pixel short, and
 // fill rules drop centres on its right and bottom edges). With SPLAT, the
-// corner of a silhouette pixel's own footprint (splats below).
+// corner of a silhouette pixel's own footprint (splats below). Labels and
+// the silhouette list are the reference's, made once (WarpReference).
 const char* const kWarpVertex = R"(
 #ifdef SPLAT
 const vec2 kCorners[6] = vec2[6](vec2(-0.5, -0.5), vec2(0.5, -0.5), vec2(-0.5, 0.5), vec2(0.5, -0.5),
                                  vec2(0.5, 0.5), vec2(-0.5, 0.5));
+layout(std430, binding = 0) readonly buffer Silhouettes { uint uSilhouettes[]; };
 #else
 layout(location = 0) in vec2 aPixel;
 #endif
 layout(binding = 1) uniform sampler2D uDepth;
+layout(binding = 2) uniform sampler2D uLabel;
 uniform mat4 uPixelToWorld;
 uniform mat4 uViewProjection;
-uniform float uTau;
 out vec2 vUv;
 out float vOcc;
 out float vValid;
 out float vDepth;
 
-float depthAt(ivec2 p) { return texelFetch(uDepth, p, 0).r; }
-// A neighbour with no sample, or one whose depth differs by more than tau
-// of the nearer: the vertex borders a disocclusion.
-bool jumps(float z, ivec2 p) {
-  float n = depthAt(p);
-  return !(n > 0.0) || abs(n - z) > uTau * min(z, n);
-}
-bool inside(ivec2 p, ivec2 last) { return all(greaterThanEqual(p, ivec2(0))) && all(lessThanEqual(p, last)); }
-
 void main() {
-  ivec2 last = textureSize(uDepth, 0) - 1;
+  ivec2 size = textureSize(uDepth, 0);
 #ifdef SPLAT
-  ivec2 p = ivec2(gl_InstanceID % (last.x + 1), gl_InstanceID / (last.x + 1));
+  uint index = uSilhouettes[gl_InstanceID];
+  ivec2 p = ivec2(int(index % uint(size.x)), int(index / uint(size.x)));
   vec2 centre = vec2(p) + 0.5, at = centre + kCorners[gl_VertexID];
-  float z = depthAt(p);
-  bool edge = false;
-  for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx)
-      edge = edge || (inside(p + ivec2(dx, dy), last) && !(depthAt(p + ivec2(dx, dy)) > 0.0));
-  if (!edge) z = 0.0;  // only silhouette pixels splat
-  bool occ = true;
 #else
-  ivec2 p = clamp(ivec2(floor(aPixel)), ivec2(0), last);
+  ivec2 p = clamp(ivec2(floor(aPixel)), ivec2(0), size - 1);
   vec2 centre = aPixel, at = aPixel;
-  float z = depthAt(p);
-  bool occ = (p.x > 0 && jumps(z, p - ivec2(1, 0))) || (p.x < last.x && jumps(z, p + ivec2(1, 0))) ||
-             (p.y > 0 && jumps(z, p - ivec2(0, 1))) || (p.y < last.y && jumps(z, p + ivec2(0, 1)));
 #endif
+  float z = texelFetch(uDepth, p, 0).r;
   vValid = z > 0.0 ? 1.0 : 0.0;
   vec4 world = uPixelToWorld * vec4(vec3(at, 1.0) * z, 1.0);
   // No sample: outside the clip volume; triangles touching it are dropped.
   gl_Position = z > 0.0 ? uViewProjection * world : vec4(0.0, 0.0, -2.0, 1.0);
   vDepth = gl_Position.w;  // the virtual camera's z
-  vOcc = occ ? 1.0 : 0.0;
-  vUv = centre / vec2(last + 1);
+  vOcc = texelFetch(uLabel, p, 0).r;
+  vUv = centre / vec2(size);
 }
 )";
 
@@ -142,6 +127,30 @@ gl::Texture texture2D(GLenum format, int w, int h, GLenum filter) {
 
 void setMatrix(const gl::Program& p, const char* name, const glm::dmat4& m) { gl::setUniform(p, name, glm::mat4(m)); }
 
+// Per pixel its occlusion label: 1 where a neighbour (4-connected, inside
+// the image) has no sample or a depth more than tau of the nearer away;
+// and the silhouette pixels: samples with an empty 8-neighbour.
+void labelPixels(const DepthImage& d, float tau, std::vector<float>& labels, std::vector<uint32_t>& silhouettes) {
+  const int w = d.width, h = d.height;
+  labels.assign(size_t(w) * h, 0.0f);
+  auto inside = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h; };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float z = d.at(x, y);
+      bool jump = false, edge = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          if ((dx == 0 && dy == 0) || !inside(x + dx, y + dy)) continue;
+          const float n = d.at(x + dx, y + dy);
+          const bool empty = !(n > 0.0f);
+          edge = edge || empty;
+          if (dx == 0 || dy == 0) jump = jump || empty || std::abs(n - z) > tau * std::min(z, n);
+        }
+      labels[size_t(y) * w + x] = jump ? 1.0f : 0.0f;
+      if (z > 0.0f && edge) silhouettes.push_back(uint32_t(y * w + x));
+    }
+}
+
 }  // namespace
 
 float warpWeight(float theta0, float theta1, float z0, float z1, float occ0, float occ1, float tau, float a) {
@@ -155,7 +164,7 @@ float warpWeight(float theta0, float theta1, float z0, float z1, float occ0, flo
   return std::clamp(w, 0.0f, 1.0f);
 }
 
-WarpReference WarpReference::upload(const RgbdView& view) {
+WarpReference WarpReference::upload(const RgbdView& view, float tau) {
   const int w = view.color.width, h = view.color.height;
   if (view.color.type != PixelType::F32) fail("RGB-D reference", "colour must be float");
   if (view.depth.width != w || view.depth.height != h)
@@ -168,6 +177,13 @@ WarpReference WarpReference::upload(const RgbdView& view) {
   gl::TextureSubImage2D(r.color.id(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, view.color.bytes.data());
   r.depth = texture2D(GL_R32F, w, h, GL_NEAREST);
   gl::TextureSubImage2D(r.depth.id(), 0, 0, 0, w, h, GL_RED, GL_FLOAT, view.depth.values.data());
+  std::vector<float> labels;
+  std::vector<uint32_t> silhouettes;
+  labelPixels(view.depth, tau, labels, silhouettes);
+  r.label = texture2D(GL_R32F, w, h, GL_NEAREST);
+  gl::TextureSubImage2D(r.label.id(), 0, 0, 0, w, h, GL_RED, GL_FLOAT, labels.data());
+  r.silhouettes = gl::makeBuffer(silhouettes.data(), silhouettes.size());
+  r.silhouetteCount = silhouettes.size();
   r.pixelToWorld = glm::mat4(RgbdView::pixelToWorld(view.K, view.V));
   r.center = glm::vec3(view.center());
   gl::checkError("uploading an RGB-D reference");
@@ -184,8 +200,6 @@ DepthWarp::DepthWarp(float tau, float a)
                                   {GL_FRAGMENT_SHADER, gl::glslHeader() + kComposite}})),
       grid_(gl::VertexArray::create()),
       empty_(gl::VertexArray::create()) {
-  gl::setUniform(warp_, "uTau", tau);
-  gl::setUniform(splat_, "uTau", tau);
   gl::setUniform(composite_, "uTau", tau);
   gl::setUniform(composite_, "uA", a);
 }
@@ -247,6 +261,8 @@ void DepthWarp::warp(const WarpReference& ref, const WarpCamera& view, const War
   gl::ClearNamedFramebufferfi(into.fbo.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
   gl::BindTextureUnit(0, ref.color.id());
   gl::BindTextureUnit(1, ref.depth.id());
+  gl::BindTextureUnit(2, ref.label.id());
+  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, ref.silhouettes.id());
   for (const gl::Program* p : {&warp_, &splat_}) {
     gl::UseProgram(p->id());
     gl::setUniform(*p, "uPixelToWorld", ref.pixelToWorld);
@@ -257,7 +273,7 @@ void DepthWarp::warp(const WarpReference& ref, const WarpCamera& view, const War
   gl::DrawElements(GL_TRIANGLES, GLsizei(gridIndexCount_), GL_UNSIGNED_INT, nullptr);
   gl::UseProgram(splat_.id());
   gl::BindVertexArray(empty_.id());
-  gl::DrawArraysInstanced(GL_TRIANGLES, 0, 6, GLsizei(ref.width) * ref.height);
+  if (ref.silhouetteCount) gl::DrawArraysInstanced(GL_TRIANGLES, 0, 6, GLsizei(ref.silhouetteCount));
 }
 
 DepthWarp::WarpedImage DepthWarp::read(const Warped& from) const {

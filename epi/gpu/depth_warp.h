@@ -3,10 +3,13 @@
 //   warp       one static grid of the references' W x H pixel centres
 //              (X, Y only), drawn once per reference into its own target:
 //              the vertex shader fetches the pixel's depth, unprojects it
-//              with K and V, projects it into the virtual view and labels
-//              it occluded where a neighbour's depth jumps (more than tau
-//              of the nearer depth, or no sample); the fragment shader
-//              writes colour, the label and the virtual camera's depth.
+//              with K and V, projects it into the virtual view and carries
+//              the pixel's occlusion label (1 where a neighbour's depth
+//              jumps by more than tau of the nearer depth, or it has no
+//              sample: view independent, so labelled once per reference
+//              instead of per vertex and view as the seed does); the
+//              fragment shader writes colour, label and the virtual
+//              camera's depth.
 //              Triangles touching a pixel without a sample are dropped;
 //              those across a jump (rubber sheets) are drawn and labelled.
 //              A pixel beside one without a sample (a silhouette) is also
@@ -44,11 +47,15 @@ float warpWeight(float theta0, float theta1, float z0, float z1, float occ0, flo
 // A reference resident on the GPU.
 struct WarpReference {
   int width = 0, height = 0;
-  gl::Texture color, depth;  // RGBA32F linear, R32F camera z
+  gl::Texture color, depth, label;  // RGBA32F linear, R32F camera z, R32F occlusion label
+  gl::Buffer silhouettes;           // indices of pixels with an empty 8-neighbour
+  size_t silhouetteCount = 0;
   glm::mat4 pixelToWorld{1.0f};
   glm::vec3 center{0.0f};
 
-  static WarpReference upload(const RgbdView& view);  // needs a current GL context
+  // The labels are view independent: made here once, with tau (DepthWarp).
+  // Needs a current GL context.
+  static WarpReference upload(const RgbdView& view, float tau);
 };
 
 // The virtual camera of one view.

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mvr/io/compare.h"
 #include "mvr/io/image_file.h"
 #include "mvr/io/manifest.h"
 #include "tests/support/cli.h"
@@ -131,7 +132,13 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
                            "render --views 8 --size 4096x4096 --memory 100M --out " + d.string(),
                            "render --memory 12X --out " + d.string(),
                            "render --depth --order epi --out " + d.string(),
-                           "render --depth --stream " + (d / "s.epis").string(), "frobnicate"}) {
+                           "render --depth --stream " + (d / "s.epis").string(),
+                           "render --backend svr --tau 0.1 --out " + d.string(),
+                           "render --backend warp --acquire center --out " + d.string(),
+                           "synthesize --out " + d.string(),
+                           "synthesize --from /nonexistent --out " + d.string(),
+                           "synthesize --from " + test::assetsDir() + " --tau 2 --out " + d.string(),
+                           "frobnicate"}) {
     Result r = run(args);
     EXPECT_NE(r.status, 0) << args;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
@@ -317,6 +324,33 @@ TEST(Cli, DepthMapsBesideEveryView) {
     }
   EXPECT_GT(covered, 1000u);
   EXPECT_GE(double(agree) / double(covered), 0.999);
+}
+
+// RGB-D out, then in: three svr views with depth, synthesized into nine
+// views and a quilt by the warp back end; the views at the references are
+// the references, those between close to svr's.
+TEST(Cli, SynthesizesATrackFromRgbdReferences) {
+  const fs::path refs = outDir("syn_refs"), out = outDir("syn_out"), svr = outDir("syn_svr");
+  Result r = run("render --backend svr --views 3 --size 128x96 --depth --out " + refs.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("synthesize --from " + refs.string() + " --views 9 --quilt auto --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("render --backend svr --views 9 --size 128x96 --out " + svr.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  expectSet(out, 9, "warp");
+  const auto m = nlohmann::json::parse(std::ifstream(out / "manifest.json"));
+  EXPECT_EQ(m["references"]["layout"], "mvr");
+  EXPECT_EQ(m["references"]["count"], 3);
+  EXPECT_EQ(m["width"], 128);  // the references' size by default
+  EXPECT_TRUE(fs::exists(out / m["quilt"].get<std::string>()));
+  for (int view = 0; view < 9; ++view) {
+    char name[32];
+    std::snprintf(name, sizeof name, "view_%04d.png", view);
+    const mvr::ImageDifference diff =
+        mvr::compareImages(mvr::readImage((svr / name).string()), mvr::readImage((out / name).string()));
+    if (view % 4 == 0) EXPECT_GE(diff.closeFraction, 0.999) << name;  // a reference
+    EXPECT_GE(diff.psnr, 26.0) << name;  // 8-bit references: 28.3 dB measured at the worst view
+  }
 }
 
 TEST(Cli, BenchPlotsAgainFromItsJson) {

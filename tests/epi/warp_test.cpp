@@ -117,7 +117,7 @@ TEST_F(Warp, OcclusionLabelsAtADepthStep) {
   ref.K = cam.intrinsics(1);
   ref.V = cam.worldToCamera(1);
   DepthWarp warp(kTau, kA);
-  const WarpReference gpu = WarpReference::upload(ref);
+  const WarpReference gpu = WarpReference::upload(ref, kTau);
   const WarpCamera self{cam.viewProjection(1), RgbdView::pixelToWorld(ref.K, ref.V), cam.eye(1)};
   const auto w = warp.warped(gpu, self, 16, 8);
   for (int y = 0; y < 8; ++y)
