@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/backend_flags.h"
+#include "apps/camera_flags.h"
 #include "apps/cli.h"
 #include "apps/memory_check.h"
 #include "epi/epi_stream.h"
@@ -40,7 +41,8 @@ bool isPlainFile(const std::string& endpoint) {
 // EPIs to a file, stdout or socket as they complete, through a bounded
 // queue. A file is written under a temporary name and renamed when done.
 int streamTo(Renderer& renderer, const ShearingCamera& cam, const std::string& endpoint,
-             PixelType type, int queue, const ReorderMemory& memory) {
+             PixelType type, int queue, const ReorderMemory& memory,
+             const std::optional<glm::vec4>& background) {
   namespace fs = std::filesystem;
   std::signal(SIGPIPE, SIG_IGN);  // a vanished consumer is an error, not a kill
   std::signal(SIGXFSZ, SIG_IGN);  // so is a file-size limit
@@ -61,10 +63,12 @@ int streamTo(Renderer& renderer, const ShearingCamera& cam, const std::string& e
     if (renderer.order() == FrameOrder::View)
       adaptor = std::make_unique<ViewsToEpis>(stream, cam.width(), cam.height(), cam.views(), type,
                                               memory);
-    FrameSink& sink = adaptor ? static_cast<FrameSink&>(*adaptor) : stream;
+    FrameSink* sink = adaptor ? static_cast<FrameSink*>(adaptor.get()) : &stream;
+    std::optional<BackgroundSink> over;
+    if (background) sink = &over.emplace(*sink, *background);
     RenderStats stats;
-    renderer.render(cam, sink, stats);
-    sink.finish();
+    renderer.render(cam, *sink, stats);
+    sink->finish();
     highWater = stream.highWater();
     if (adaptor) note = adaptor->transpose().scratchNote();
     buffer.reset();  // closed before the rename
@@ -133,6 +137,7 @@ struct RenderFlags {
   MemoryFlags memory;
   std::string from;  // synthesize: the references' folder
   WarpOptions warp;
+  CameraFlags camera;
 
   void addShared(CLI::App& app) {
     app.add_option("SCENE", scene,
@@ -144,6 +149,7 @@ struct RenderFlags {
   void addOutputShape(CLI::App& app) {
     addViewCountOptions(app, views, rows);
     addSizeOption(app, "size", size, "image size in pixels");
+    camera.add(app);
     app.add_option("--format", format, "image format: png, exr or tiff (exr renders in float)")
         ->capture_default_str();
     addGlOption(app, gl);
@@ -244,9 +250,11 @@ int runRender(int argc, char** argv, RenderCommand command) {
   if (auto exit = parseCommandLine(app, argc - 1, argv + 1)) return *exit;
 
   const BackendOptions choice = synthesize ? BackendOptions{.backend = Backend::Warp} : f.backend.resolve();
+  f.camera.validate();
   if (synthesize) {
     validate(f.warp);
     if (f.depth) fail("--depth", "mvr synthesize writes colour only");
+    if (!f.camera.focal.empty()) fail("--focal", "the references fix the display plane");
   }
   const bool streaming = !f.stream.empty();
   const std::string scenePath = f.scene.empty() ? defaultScenePath() : f.scene;
@@ -286,10 +294,11 @@ int runRender(int argc, char** argv, RenderCommand command) {
   startup.add("scene", phase.restart());
   if (const shading::ShadingPlan plan = shading::planShading(scene); plan.texture || plan.reflection)
     preloadImageCodec();  // a stream of a textured scene reads images too
+  const double imagePlaneZ = f.camera.placeFocalPlane(scene);
   CameraSpec spec = synthesize ? references->camera : cameraFor(scene, width, height);
   if (synthesize && (width != references->width || height != references->height))
     spec.planeHeight = 0.0;  // another size: the image plane's height from its aspect
-  ShearingCamera camera(spec, width, height, views, rows);
+  ShearingCamera camera(f.camera.adjust(spec, width, height), width, height, views, rows);
   auto context = GlContext::create(platform);
   startup.add("gl", phase.restart());
   const size_t referenceCount = synthesize ? references->references.size() : 0;
@@ -325,7 +334,8 @@ int runRender(int argc, char** argv, RenderCommand command) {
                          ", fewer views or a smaller size");
   if (scratch && streaming) checkScratchFits(rowBytes, reorder.scratchDir);
 
-  if (streaming) return streamTo(*renderer, camera, f.stream, type, f.queue, reorder);
+  const std::optional<glm::vec4> background = f.camera.backgroundColor();
+  if (streaming) return streamTo(*renderer, camera, f.stream, type, f.queue, reorder, background);
 
   ImageSetWriter writer(out, Manifest{.views = views, .rows = rows, .width = width, .height = height,
                                      .format = format, .order = order, .bits = bits,
@@ -348,6 +358,7 @@ int runRender(int argc, char** argv, RenderCommand command) {
   std::vector<std::unique_ptr<FrameSink>> chain;
   FrameSink* sink = &writer;
   if (quilt) sink = chain.emplace_back(std::make_unique<TeeSink>(std::vector<FrameSink*>{&writer, quilt.get()})).get();
+  if (background) sink = chain.emplace_back(std::make_unique<BackgroundSink>(*sink, *background)).get();
   // Reorder only when the renderer's natural order is not the one asked for.
   const FrameTranspose* transpose = nullptr;
   if (renderer->order() == FrameOrder::Epi && order == "view") {
@@ -385,7 +396,8 @@ int runRender(int argc, char** argv, RenderCommand command) {
   m["gl"] = {{"platform", glPlatformName(context->platform())},
              {"version", context->version()},
              {"renderer", context->renderer()}};
-  manifest.setCamera(camera);
+  manifest.setCamera(camera, imagePlaneZ);
+  if (background) m["background"] = {(*background).r, (*background).g, (*background).b, (*background).a};
   m["timings_s"] = stats.times.seconds;
   m["timings_s"]["total"] = total.seconds();
   startup.add("image_module_load", imageCodecLoadSeconds());

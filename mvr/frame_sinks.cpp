@@ -85,6 +85,17 @@ Image PredistortSink::apply(const Image& in) const {
   return out;
 }
 
+Image BackgroundSink::apply(const Image& in) const {
+  Image out(in.width, in.height, in.type);
+  for (int y = 0; y < in.height; ++y)
+    for (int x = 0; x < in.width; ++x) {
+      const glm::vec4 c = in.linear(x, y);
+      const glm::vec3 rgb = glm::vec3(c) * c.a + glm::vec3(background_) * (1.0f - c.a);
+      out.setLinear(x, y, glm::vec4(rgb, c.a + background_.a * (1.0f - c.a)));
+    }
+  return out;
+}
+
 std::vector<float> loadPredistortionTable(const std::string& path, int width) {
   std::ifstream in(path);
   if (!in) fail(path, "cannot open predistortion table");

@@ -55,6 +55,22 @@ class PredistortSink final : public FrameSink {
   std::vector<float> lut_;
 };
 
+// Every view or EPI over a background colour (linear RGBA, straight
+// alpha), in linear light: colour c a + b (1 - a), alpha a + b.a (1 - a);
+// with b.a = 1 the images are opaque.
+class BackgroundSink final : public FrameSink {
+ public:
+  BackgroundSink(FrameSink& inner, const glm::vec4& background) : inner_(inner), background_(background) {}
+  void putView(int row, int view, const Image& image) override { inner_.putView(row, view, apply(image)); }
+  void putEpi(int row, int scanline, const Image& epi) override { inner_.putEpi(row, scanline, apply(epi)); }
+  void finish() override { inner_.finish(); }
+
+ private:
+  Image apply(const Image& in) const;
+  FrameSink& inner_;
+  glm::vec4 background_;
+};
+
 // One number per output column, whitespace or comma separated. Throws
 // naming the file when it is missing, malformed or of the wrong length.
 std::vector<float> loadPredistortionTable(const std::string& path, int width);

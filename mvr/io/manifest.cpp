@@ -1,10 +1,13 @@
 #include "mvr/io/manifest.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <utility>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "mvr/error.h"
 #include "mvr/io/atomic_file.h"
@@ -59,9 +62,13 @@ std::string Manifest::epiName(int row, int scanline) const {
   return name + "." + format;
 }
 
-void Manifest::setCamera(const ShearingCamera& cam) {
+void Manifest::setCamera(const ShearingCamera& cam, double imagePlaneZ) {
   const CameraSpec& s = cam.spec();
+  const double degrees = 180.0 / 3.14159265358979323846;
   info["camera"] = {{"distance", s.distance},
+                    {"image_plane_z", imagePlaneZ},
+                    {"cone_deg", 2.0 * std::atan(0.5 * std::abs(s.trackRight - s.trackLeft) / s.distance) * degrees},
+                    {"fov_deg", 2.0 * std::atan(0.5 * cam.planeWidth() / s.distance) * degrees},
                     {"image_plane", {cam.planeWidth(), cam.planeHeight()}},
                     {"track", {s.trackLeft, s.trackRight}},
                     {"rows_track", {s.rowTop, s.rowBottom}},
@@ -70,15 +77,19 @@ void Manifest::setCamera(const ShearingCamera& cam) {
                     {"view_spacing", cam.viewSpacing()},
                     {"units", "the scene's world units"},
                     {"axes", "world x right, y up, z toward the viewer; views look along -z from the "
-                             "camera plane z = distance to the image plane z = 0"}};
+                             "camera plane z = image_plane_z + distance to the image plane z = "
+                             "image_plane_z"}};
+  // The rig renders with its image plane at z = 0 (the scene moved by
+  // -imagePlaneZ); V and the eyes are given in the scene's own coordinates.
+  const glm::dmat4 toRig = glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, -imagePlaneZ));
   // Every view as a pinhole camera (ShearingCamera::intrinsics and
   // worldToCamera), matrices row by row.
   nlohmann::json list = nlohmann::json::array();
   for (int row = 0; row < cam.rows(); ++row)
     for (int view = 0; view < cam.views(); ++view) {
       const glm::dmat3 k = cam.intrinsics(view, row);
-      const glm::dmat4 v = cam.worldToCamera(view, row);
-      const glm::dvec3 e = cam.eye(view, row);
+      const glm::dmat4 v = cam.worldToCamera(view, row) * toRig;
+      const glm::dvec3 e = cam.eye(view, row) + glm::dvec3(0.0, 0.0, imagePlaneZ);
       nlohmann::json kRows = nlohmann::json::array(), vRows = nlohmann::json::array();
       for (int r = 0; r < 3; ++r) kRows.push_back({k[0][r], k[1][r], k[2][r]});
       for (int r = 0; r < 4; ++r) vRows.push_back({v[0][r], v[1][r], v[2][r], v[3][r]});

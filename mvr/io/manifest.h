@@ -46,8 +46,11 @@ class Manifest {
   // "srgb" or "linear", as the files hold colour.
   std::string colorEncoding() const { return srgb && format != "exr" ? "srgb" : "linear"; }
 
-  // The camera as the manifest records it (distance, image plane, track).
-  void setCamera(const ShearingCamera& camera);
+  // The camera as the manifest records it (distance, image plane, track,
+  // cone and field of view) and every view's K, V and eye. imagePlaneZ:
+  // where the rig's image plane lies in the scene's coordinates (render
+  // --focal); V and the eyes are given in those.
+  void setCamera(const ShearingCamera& camera, double imagePlaneZ = 0.0);
 
   nlohmann::json toJson() const;
   // Throws mvr::Error naming `where` for a missing or impossible field.

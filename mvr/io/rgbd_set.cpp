@@ -6,6 +6,8 @@
 #include <fstream>
 #include <map>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "mvr/error.h"
 #include "mvr/io/image_file.h"
 #include "mvr/io/manifest.h"
@@ -84,12 +86,16 @@ RgbdSet loadMvrSet(const std::string& dir) {
   } catch (const nlohmann::json::exception&) {
     fail(where, "the camera block is incomplete");
   }
+  // V in the rig's coordinates, whose image plane is z = 0 (render --focal
+  // records its plane's z and V in the scene's).
+  const double planeZ = c.value("image_plane_z", 0.0);
+  const glm::dmat4 toScene = glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, planeZ));
   for (const nlohmann::json& v : list) {
     const int row = v.value("row", -1), view = v.value("view", -1);
     if (row < 0 || row >= m.rows || view < 0 || view >= m.views) fail(where, "a camera names no view of the set");
     RgbdView r = readReference(path(dir, m.viewName(row, view)), path(dir, m.depthName(row, view)));
     r.K = matrixFrom<3>(v.value("K", nlohmann::json()), where);
-    r.V = matrixFrom<4>(v.value("V", nlohmann::json()), where);
+    r.V = matrixFrom<4>(v.value("V", nlohmann::json()), where) * toScene;
     set.references.push_back(std::move(r));
   }
   return set;

@@ -353,6 +353,59 @@ TEST(Cli, SynthesizesATrackFromRgbdReferences) {
   }
 }
 
+// A display user's camera from the command line (issue 19): a quad at
+// z = 0.5, its centre put on the display plane (--focal center), a 40
+// degree cone, an opaque grey background. On the display plane the quad
+// has no disparity: every view is the same image. The manifest gives the
+// cone and the plane, and V in the mesh's own coordinates.
+TEST(Cli, CameraInDisplayTerms) {
+  const fs::path d = outDir("display_camera"), mesh = outDir("display_mesh") / "quad.obj";
+  fs::create_directories(mesh.parent_path());
+  std::ofstream(mesh) << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3\nf 1 3 4\n";
+  // A scene file, as a bare mesh is centred on load.
+  const fs::path scene = mesh.parent_path() / "quad.json";
+  std::ofstream(scene) << R"({"meshes": [{"file": "quad.obj", "transform": {"translate": [0, 0, 0.5]}}]})";
+  Result r = run("render " + scene.string() + " --backend mvr --pst cpu --views 5 --size 48x36 --cone 40 "
+                 "--focal center --background 0.25,0.25,0.25 --opaque --quilt auto --out " + d.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto m = nlohmann::json::parse(std::ifstream(d / "manifest.json"));
+  EXPECT_NEAR(m["camera"]["cone_deg"].get<double>(), 40.0, 1e-9);
+  EXPECT_NEAR(m["camera"]["image_plane_z"].get<double>(), 0.5, 1e-7);
+  EXPECT_EQ(m["background"][3], 1.0);
+  // V takes the quad's centre to the camera's axis at the camera distance.
+  const nlohmann::json& v = m["cameras"]["views"][2]["V"];
+  EXPECT_NEAR(v[2][0].get<double>() * 0 + v[2][2].get<double>() * 0.5 + v[2][3].get<double>(),
+              m["camera"]["distance"].get<double>(), 1e-6);
+  EXPECT_NEAR(m["cameras"]["views"][2]["eye"][2].get<double>(), 0.5 + m["camera"]["distance"].get<double>(), 1e-6);
+  const mvr::Image first = mvr::readImage((d / "view_0000.png").string());
+  for (int view = 1; view < 5; ++view) {
+    char name[32];
+    std::snprintf(name, sizeof name, "view_%04d.png", view);
+    const mvr::ImageDifference diff = mvr::compareImages(first, mvr::readImage((d / name).string()));
+    EXPECT_GE(diff.closeFraction, 0.995) << name;  // no disparity, up to edge pixels
+  }
+  // Opaque: the background where the quad is not, alpha 1 everywhere.
+  const glm::vec4 corner = first.linear(0, 0);
+  EXPECT_NEAR(corner.r, 0.25f, 0.01f);
+  EXPECT_EQ(corner.a, 1.0f);
+  // The field of view sizes the image plane; depthiness scales the track:
+  // a 40 degree cone twice as deep is 2 atan(2 tan 20) wide.
+  r = run("render " + scene.string() + " --views 3 --size 48x36 --cone 40 --fov 90 --depthiness 2 --out " +
+          d.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto m2 = nlohmann::json::parse(std::ifstream(d / "manifest.json"));
+  const double pi = 3.14159265358979323846;
+  EXPECT_NEAR(m2["camera"]["fov_deg"].get<double>(), 90.0, 1e-9);
+  EXPECT_NEAR(m2["camera"]["cone_deg"].get<double>(), 2.0 * std::atan(2.0 * std::tan(20.0 * pi / 180.0)) * 180.0 / pi,
+              1e-9);
+  for (const char* bad : {"--cone 180", "--fov 0", "--focal near", "--depthiness -1", "--background 2,0,0",
+                          "--background red"}) {
+    Result e = run(std::string("render --views 2 --size 16x12 ") + bad + " --out " + d.string());
+    EXPECT_NE(e.status, 0) << bad;
+    EXPECT_EQ(std::count(e.err.begin(), e.err.end(), '\n'), 1) << bad << ": " << e.err;
+  }
+}
+
 TEST(Cli, BenchPlotsAgainFromItsJson) {
   const fs::path d = outDir("replot");
   fs::create_directories(d);
