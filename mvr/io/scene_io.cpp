@@ -214,7 +214,7 @@ class SceneReader {
   }
 
   CameraSpec readCamera(const Json& j) const {
-    expectObject(j, "camera", {"distance", "image_plane", "track", "rows", "near", "far"});
+    expectObject(j, "camera", {"distance", "image_plane", "fov", "track", "cone", "rows", "near", "far"});
     CameraSpec c;
     auto pair = [&](const char* key, double& a, double& b) {
       const Json& v = j[key];
@@ -222,18 +222,35 @@ class SceneReader {
       a = number(v[0], std::string("camera.") + key);
       b = number(v[1], std::string("camera.") + key);
     };
-    for (const char* key : {"distance", "image_plane", "track", "near", "far"})
+    for (const char* key : {"distance", "near", "far"})
       if (!j.contains(key)) bad("camera", std::string("no \"") + key + "\"");
+    // One of each pair: the plane or the field of view, the track or the cone.
+    for (auto [a, b] : {std::pair{"image_plane", "fov"}, std::pair{"track", "cone"}})
+      if (j.contains(a) == j.contains(b))
+        bad("camera", std::string("give \"") + a + "\" or \"" + b + "\" (one of them)");
     c.distance = number(j["distance"], "camera.distance");
-    const Json& plane = j["image_plane"];
-    if (plane.is_number()) {
+    // Degrees in (0, 180) as tan of the half angle, times the distance.
+    auto halfWidth = [&](const char* key) {
+      const double deg = number(j[key], std::string("camera.") + key);
+      if (!(deg > 0.0 && deg < 180.0)) bad(std::string("camera.") + key, "degrees must lie in (0, 180)");
+      return c.distance * std::tan(0.5 * deg * 3.14159265358979323846 / 180.0);
+    };
+    const Json& plane = j.contains("fov") ? j["fov"] : j["image_plane"];
+    if (j.contains("fov")) {
+      c.planeWidth = 2.0 * halfWidth("fov");
+    } else if (plane.is_number()) {
       c.planeWidth = number(plane, "camera.image_plane");
     } else {
       pair("image_plane", c.planeWidth, c.planeHeight);
       // A height of 0 would silently mean "from the aspect ratio".
       if (!(c.planeHeight > 0)) bad("camera.image_plane", "height must be positive");
     }
-    pair("track", c.trackLeft, c.trackRight);
+    if (j.contains("cone")) {
+      c.trackRight = halfWidth("cone");
+      c.trackLeft = -c.trackRight;
+    } else {
+      pair("track", c.trackLeft, c.trackRight);
+    }
     if (j.contains("rows")) pair("rows", c.rowTop, c.rowBottom);
     c.nearDistance = number(j["near"], "camera.near");
     c.farDistance = number(j["far"], "camera.far");

@@ -250,6 +250,21 @@ TEST_F(SceneIo, ImpossibleCamera) {
               "distance must be positive");
 }
 
+// A camera in angles: fov 90 degrees makes the plane 2 D wide, a cone of
+// 90 degrees a track from -D to D; one of each pair, in (0, 180).
+TEST_F(SceneIo, CameraInDegrees) {
+  const std::string camera = ", \"camera\": {\"distance\": 4, \"near\": 1, \"far\": 9, ";
+  const Scene s = loadScene(cubeJson(camera + "\"fov\": 90, \"cone\": 90}"));
+  ASSERT_TRUE(s.camera.has_value());
+  EXPECT_NEAR(s.camera->planeWidth, 8.0, 1e-12);
+  EXPECT_NEAR(s.camera->trackLeft, -4.0, 1e-12);
+  EXPECT_NEAR(s.camera->trackRight, 4.0, 1e-12);
+  expectError(cubeJson(camera + "\"fov\": 90, \"image_plane\": 2, \"cone\": 40}"),
+              "camera: give \"image_plane\" or \"fov\" (one of them)");
+  expectError(cubeJson(camera + "\"fov\": 90}"), "camera: give \"track\" or \"cone\" (one of them)");
+  expectError(cubeJson(camera + "\"fov\": 180, \"cone\": 40}"), "camera.fov: degrees must lie in (0, 180)");
+}
+
 TEST_F(SceneIo, ColoursLightsAndImagePlaneOutOfRange) {
   const std::string camera = ", \"camera\": {\"distance\": 4, \"track\": [-1, 1], \"near\": 1, \"far\": 9, ";
   expectError(cubeJson(camera + "\"image_plane\": [3.2, 0]}"), "camera.image_plane: height must be positive");
