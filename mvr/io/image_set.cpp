@@ -5,6 +5,7 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <set>
 
 #include "mvr/error.h"
 #include "mvr/io/image_file.h"
@@ -94,9 +95,29 @@ void ImageSetWriter::putEpi(int row, int scanline, const Image& epi) {
   put(manifest_.epiName(row, scanline), epi);
 }
 
+// Files of an earlier set in the folder (view_*, epi_*, depth_*, quilt_*
+// images) that this one did not write: the folder holds one set, so they
+// go before the manifest says the set is complete.
+size_t ImageSetWriter::removeStale() const {
+  std::set<std::string> ours;
+  for (const std::string& path : written_) ours.insert(fs::path(path).filename().string());
+  size_t removed = 0;
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir_, ec)) {
+    const std::string name = e.path().filename().string(), ext = e.path().extension().string();
+    const bool image = ext == ".png" || ext == ".exr" || ext == ".tif" || ext == ".tiff";
+    const bool setFile = name.rfind("view_", 0) == 0 || name.rfind("epi_", 0) == 0 ||
+                         name.rfind("depth_", 0) == 0 || name.rfind("quilt_", 0) == 0;
+    if (image && setFile && e.is_regular_file(ec) && !ours.count(name) && fs::remove(e.path(), ec))
+      ++removed;
+  }
+  return removed;
+}
+
 void ImageSetWriter::commit() {
   flush();
   manifest_.info["files"] = written_.size();
+  if (const size_t stale = removeStale()) manifest_.info["stale_files_removed"] = stale;
   manifest_.write(dir_);
   committed_ = true;
 }

@@ -1,6 +1,7 @@
 #pragma once
 // Writes a rendered set to a folder: view_0000.png ... (view_r000_c0000.png
-// for grids), epi_0000.png ..., and manifest.json last. Images are encoded
+// for grids), epi_0000.png ..., and manifest.json last; the images of an
+// earlier set there that this one does not overwrite are removed. Images are encoded
 // on the thread pool while rendering goes on (a bounded number queued, so
 // memory stays bounded); each file appears complete or not at all. Until
 // commit() the set is incomplete: if the writer is destroyed first (an
@@ -36,13 +37,15 @@ class ImageSetWriter final : public FrameSink {
   // Waits until every image put so far is on disk; rethrows an encoding
   // error.
   void flush() { encoder_.wait(); }
-  // Writes the manifest, last: from now on the set is complete.
+  // Removes the images of an earlier set this one did not overwrite, then
+  // writes the manifest, last: from now on the set is complete.
   void commit();
 
   size_t filesWritten() const { return written_.size(); }
 
  private:
   void put(const std::string& name, const Image& image);
+  size_t removeStale() const;
   // Encodes on the pool; the file is removed with the rest on failure.
   void submit(const std::string& name, std::function<void(const std::string& path)> write);
   // Copies of the caller's frames, recycled: a fresh multi-megabyte

@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -404,6 +405,24 @@ TEST(Cli, CameraInDisplayTerms) {
     EXPECT_NE(e.status, 0) << bad;
     EXPECT_EQ(std::count(e.err.begin(), e.err.end(), '\n'), 1) << bad << ": " << e.err;
   }
+}
+
+// A folder holds one set: a smaller render into a folder that held a
+// larger one, with a quilt and depth maps, leaves only its own files.
+TEST(Cli, RerenderingLeavesNoStaleFiles) {
+  const fs::path d = outDir("stale");
+  Result r = run("render --backend svr --views 6 --size 32x24 --depth --quilt auto --out " + d.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ofstream(d / "notes.txt") << "the user's own file";
+  r = run("render --backend svr --views 3 --size 32x24 --out " + d.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(d)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"manifest.json", "notes.txt", "view_0000.png", "view_0001.png",
+                                             "view_0002.png"}));
+  const auto m = nlohmann::json::parse(std::ifstream(d / "manifest.json"));
+  EXPECT_EQ(m["stale_files_removed"], 10);  // 3 views, 6 depth maps, a quilt
 }
 
 TEST(Cli, BenchPlotsAgainFromItsJson) {
