@@ -14,6 +14,7 @@
 #include "apps/camera_flags.h"
 #include "apps/cli.h"
 #include "apps/memory_check.h"
+#include "apps/quilt_layout.h"
 #include "epi/epi_stream.h"
 #include "epi/backend.h"
 #include "epi/stream_queue.h"
@@ -180,9 +181,11 @@ struct RenderFlags {
                    "files (none, lzw, zip); default zip")
         ->type_name("NAME");
     app.add_option("--quilt", quilt,
-                   "also write all views tiled in one quilt image, "
-                   "quilt_qs{C}x{R}a{aspect}.{format} (auto: near square)")
-        ->type_name("auto|CxR");
+                   "also write all views tiled in one quilt image, quilt_qs{C}x{R}a{aspect}.{format}, "
+                   "with its layout in EXIF UserComment (auto: near square; a display preset sets the "
+                   "views and tile size: go, portrait, 16-landscape, 16-portrait, 32-landscape, "
+                   "32-portrait, 65)")
+        ->type_name("auto|CxR|DISPLAY");
     app.add_flag("--depth", depth,
                  "also write each view's depth map, depth_0000.exr (one float channel Z): the "
                  "distance along the view axis in world units, 0 where nothing is seen; the same "
@@ -258,6 +261,15 @@ int runRender(int argc, char** argv, RenderCommand command) {
   }
   const bool streaming = !f.stream.empty();
   const std::string scenePath = f.scene.empty() ? defaultScenePath() : f.scene;
+  // A display's quilt preset sets the views and the tile size unless given.
+  std::optional<QuiltLayout> quiltLayout;
+  if (!f.quilt.empty()) {
+    quiltLayout = parseQuilt(f.quilt);
+    if (!quiltLayout->preset.empty()) {
+      if (!app.count("--views")) f.views = quiltLayout->columns * quiltLayout->rows;
+      if (!app.count("--size")) f.size = {quiltLayout->tileWidth(), quiltLayout->tileHeight()};
+    }
+  }
   // The references first: their grid is synthesize's default track and size.
   std::optional<RgbdSet> references;
   if (synthesize) {
@@ -298,7 +310,12 @@ int runRender(int argc, char** argv, RenderCommand command) {
   CameraSpec spec = synthesize ? references->camera : cameraFor(scene, width, height);
   if (synthesize && (width != references->width || height != references->height))
     spec.planeHeight = 0.0;  // another size: the image plane's height from its aspect
-  ShearingCamera camera(f.camera.adjust(spec, width, height), width, height, views, rows);
+  spec = f.camera.adjust(spec, width, height);
+  if (quiltLayout && quiltLayout->aspect > 0.0) {
+    // The display stretches the tiles to its aspect: the plane has it.
+    spec.planeHeight = spec.planeWidth / quiltLayout->aspect;
+  }
+  ShearingCamera camera(spec, width, height, views, rows);
   auto context = GlContext::create(platform);
   startup.add("gl", phase.restart());
   const size_t referenceCount = synthesize ? references->references.size() : 0;
@@ -347,13 +364,12 @@ int runRender(int argc, char** argv, RenderCommand command) {
   std::vector<float> lut;
   if (!f.predistort.empty()) lut = loadPredistortionTable(f.predistort, width);
   std::unique_ptr<QuiltSink> quilt;
-  if (!f.quilt.empty()) {
-    int qc = 0, qr = 0;
-    const std::string& q = f.quilt;
-    if (!q.empty() && q != "auto" && std::sscanf(q.c_str(), "%dx%d", &qc, &qr) != 2)
-      fail("--quilt", "'" + q + "' is not COLSxROWS");
+  if (quiltLayout) {
     if (order != "view") fail("--quilt", "needs --order view");
-    quilt = std::make_unique<QuiltSink>(width, height, views, rows, type, qc, qr);
+    quilt = std::make_unique<QuiltSink>(width, height, views, rows, type, quiltLayout->columns, quiltLayout->rows);
+    if (const long tiles = long(quilt->columns()) * quilt->tileRows(); tiles > long(views) * rows)
+      std::fprintf(stderr, "mvr: warning: the %dx%d quilt leaves %ld of its tiles empty\n", quilt->columns(),
+                   quilt->tileRows(), tiles - long(views) * rows);
   }
   std::vector<std::unique_ptr<FrameSink>> chain;
   FrameSink* sink = &writer;
@@ -376,7 +392,11 @@ int runRender(int argc, char** argv, RenderCommand command) {
   Stopwatch total;
   renderer->render(camera, *sink, stats);
   sink->finish();
-  if (quilt) writer.putExtra(quilt->fileName(format), quilt->quilt());
+  const double quiltAspect = quiltLayout && quiltLayout->aspect > 0.0 ? quiltLayout->aspect : double(width) / height;
+  if (quilt)
+    writer.putExtra(quilt->fileName(format, quiltAspect), quilt->quilt(),
+                    {{"Exif:UserComment",
+                      quiltMetadata(views * rows, quilt->columns(), quilt->tileRows(), quiltAspect)}});
   const double colorSeconds = total.seconds();
   RenderStats depthStats;
   if (f.depth) renderDepth(choice, scene, camera, writer, depthReorder, depthStats);
@@ -405,7 +425,15 @@ int runRender(int argc, char** argv, RenderCommand command) {
   m["counters"] = stats.counters;
   m["notes"] = stats.notes;
   m["pixel_origin"] = "top-left; view i at camera x = track[0] + i * view_spacing";
-  if (quilt) m["quilt"] = quilt->fileName(format);
+  if (quilt) {
+    m["quilt"] = quilt->fileName(format, quiltAspect);
+    m["quilt_layout"] = {{"columns", quilt->columns()},
+                         {"rows", quilt->tileRows()},
+                         {"aspect", quiltAspect},
+                         {"order", rows > 1 ? "grid row 0 at the top, views left to right"
+                                            : "view 0 at the bottom left, left to right, then upwards"}};
+    if (!quiltLayout->preset.empty()) m["quilt_layout"]["preset"] = quiltLayout->preset;
+  }
   if (transpose)
     m["reorder"] = {{"budget_bytes", reorder.budget},
                     {"scratch_file", transpose->usesScratch()},

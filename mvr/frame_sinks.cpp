@@ -55,10 +55,10 @@ void QuiltSink::putView(int row, int view, const Image& image) {
                 image.rowBytes());
 }
 
-std::string QuiltSink::fileName(const std::string& ext) const {
+std::string QuiltSink::fileName(const std::string& ext, double aspect) const {
   char buf[96];
   std::snprintf(buf, sizeof buf, "quilt_qs%dx%da%.2f.%s", columns_, tileRows_,
-                double(width_) / height_, ext.c_str());
+                aspect > 0.0 ? aspect : double(width_) / height_, ext.c_str());
   return buf;
 }
 

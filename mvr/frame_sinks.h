@@ -31,8 +31,11 @@ class QuiltSink final : public FrameSink {
             int tileRows = 0);
   void putView(int row, int view, const Image& image) override;
   const Image& quilt() const { return quilt_; }
-  // e.g. "quilt_qs8x6a1.33.png" (the _qs{cols}x{rows}a{aspect} convention).
-  std::string fileName(const std::string& ext) const;
+  // e.g. "quilt_qs8x6a1.33.png" (the _qs{cols}x{rows}a{aspect} convention);
+  // aspect: the display's width / height, 0 for the tiles'.
+  std::string fileName(const std::string& ext, double aspect = 0.0) const;
+  int columns() const { return columns_; }
+  int tileRows() const { return tileRows_; }
 
  private:
   int width_, height_, views_, rows_, columns_, tileRows_;

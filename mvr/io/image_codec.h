@@ -32,6 +32,8 @@ struct ImageCodec {
   // What a file says of its storage: bits per channel, its
   // "compression" attribute, and whether it says it is linear.
   std::string (*describe)(const std::string& path, int& bits, std::string& compression, bool& linear);
+  // A string attribute of the file ("" when absent).
+  std::string (*attribute)(const std::string& path, const std::string& name, std::string& value);
 };
 
 // The codec: loaded now, or when a preload is running, once it is done.

@@ -113,6 +113,12 @@ ImageEncoding readImageEncoding(const std::string& path) {
   return e;
 }
 
+std::string readImageAttribute(const std::string& path, const std::string& name) {
+  std::string value;
+  if (std::string error = imageCodec().attribute(path, name, value); !error.empty()) fail(path, error);
+  return value;
+}
+
 Image readImage(const std::string& path) {
   Image img;
   if (std::string error = imageCodec().decode(path, img); !error.empty()) fail(path, error);

@@ -1,6 +1,8 @@
 #pragma once
 // Image files through OpenImageIO.
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "mvr/image.h"
 
@@ -25,6 +27,9 @@ struct ImageEncoding {
   int pngLevel = kDefaultPngCompression;
   std::string codec;
   bool srgb = true;
+  // Metadata written with the pixels, as OpenImageIO names it (e.g.
+  // "Exif:UserComment"): string attributes.
+  std::vector<std::pair<std::string, std::string>> attributes = {};
 };
 
 // "" for png, "zip" for tiff and exr.
@@ -49,6 +54,9 @@ Image readImage(const std::string& path);
 void writeDepthImage(const DepthImage& depth, const std::string& path, const ImageEncoding& encoding = {});
 // The first channel of any file OpenImageIO reads (exr Z, PFM, ...).
 DepthImage readDepthImage(const std::string& path);
+
+// A string attribute of a file as OpenImageIO reads it ("" when absent).
+std::string readImageAttribute(const std::string& path, const std::string& name);
 
 // What a file stores, as writeImage describes it (bits per channel, the
 // codec OpenImageIO reports, "" for png, and whether it says sRGB).

@@ -71,10 +71,13 @@ void ImageSetWriter::submit(const std::string& name, std::function<void(const st
   });
 }
 
-void ImageSetWriter::put(const std::string& name, const Image& image) {
+void ImageSetWriter::put(const std::string& name, const Image& image,
+                         std::vector<std::pair<std::string, std::string>> attributes) {
   auto copy = copyOf(image);  // the caller's image is gone after return
-  submit(name, [this, copy](const std::string& path) mutable {
-    writeImage(*copy, path, manifest_.encoding());
+  submit(name, [this, copy, attributes = std::move(attributes)](const std::string& path) mutable {
+    ImageEncoding encoding = manifest_.encoding();
+    encoding.attributes = attributes;
+    writeImage(*copy, path, encoding);
     recycle(std::move(copy));
   });
 }
@@ -89,7 +92,10 @@ void ImageSetWriter::putView(int row, int view, const Image& image) {
   put(manifest_.viewName(row, view), image);
 }
 
-void ImageSetWriter::putExtra(const std::string& name, const Image& image) { put(name, image); }
+void ImageSetWriter::putExtra(const std::string& name, const Image& image,
+                              std::vector<std::pair<std::string, std::string>> attributes) {
+  put(name, image, std::move(attributes));
+}
 
 void ImageSetWriter::putEpi(int row, int scanline, const Image& epi) {
   put(manifest_.epiName(row, scanline), epi);

@@ -30,8 +30,10 @@ class ImageSetWriter final : public FrameSink {
   void putEpi(int row, int scanline, const Image& epi) override;
   // A view's depth map (Manifest::depthName), float exr.
   void putDepth(int row, int view, const DepthImage& depth);
-  // An extra image in the set (a quilt), removed like the rest on failure.
-  void putExtra(const std::string& name, const Image& image);
+  // An extra image in the set (a quilt), removed like the rest on failure,
+  // with metadata attributes (ImageEncoding::attributes).
+  void putExtra(const std::string& name, const Image& image,
+                std::vector<std::pair<std::string, std::string>> attributes = {});
   // What commit() writes; fill its info before.
   Manifest& manifest() { return manifest_; }
   // Waits until every image put so far is on disk; rethrows an encoding
@@ -44,7 +46,7 @@ class ImageSetWriter final : public FrameSink {
   size_t filesWritten() const { return written_.size(); }
 
  private:
-  void put(const std::string& name, const Image& image);
+  void put(const std::string& name, const Image& image, std::vector<std::pair<std::string, std::string>> attributes = {});
   size_t removeStale() const;
   // Encodes on the pool; the file is removed with the rest on failure.
   void submit(const std::string& name, std::function<void(const std::string& path)> write);

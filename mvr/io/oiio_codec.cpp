@@ -38,6 +38,7 @@ std::string encode(const Image& pixels, const std::string& format, const ImageEn
   } else {
     spec.attribute("compression", encoding.codec.empty() ? defaultCodec(format) : encoding.codec);
   }
+  for (const auto& [name, value] : encoding.attributes) spec.attribute(name, value);
   const OIIO::TypeDesc memType = isByteType(pixels.type) ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
   out.clear();
   OIIO::Filesystem::IOVecOutput proxy(out);
@@ -106,7 +107,14 @@ std::string describe(const std::string& path, int& bits, std::string& compressio
   return "";
 }
 
-const ImageCodec kCodec{encode, encodeDepth, decode, describe};
+std::string attribute(const std::string& path, const std::string& name, std::string& value) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return "cannot read image: " + OIIO::geterror();
+  value = in->spec().get_string_attribute(name);
+  return "";
+}
+
+const ImageCodec kCodec{encode, encodeDepth, decode, describe, attribute};
 
 }  // namespace
 }  // namespace mvr

@@ -425,6 +425,37 @@ TEST(Cli, RerenderingLeavesNoStaleFiles) {
   EXPECT_EQ(m["stale_files_removed"], 10);  // 3 views, 6 depth maps, a quilt
 }
 
+// Quilts (issue 19, deliverable 2): a display preset sets views and
+// layout, the file carries Looking Glass's metadata in EXIF UserComment
+// (read back through OpenImageIO), grids parse strictly, and a grid with
+// empty tiles says so.
+TEST(Cli, QuiltPresetsMetadataAndStrictGrids) {
+  const fs::path d = outDir("quilt_preset");
+  Result r = run("render --backend mvr --pst cpu --quilt portrait --size 42x56 --out " + d.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto m = nlohmann::json::parse(std::ifstream(d / "manifest.json"));
+  EXPECT_EQ(m["views"], 48);  // 8 x 6
+  EXPECT_EQ(m["quilt"], "quilt_qs8x6a0.75.png");
+  EXPECT_EQ(m["quilt_layout"]["preset"], "portrait");
+  const std::string comment = mvr::readImageAttribute((d / "quilt_qs8x6a0.75.png").string(), "Exif:UserComment");
+  ASSERT_FALSE(comment.empty());
+  const auto lkg = nlohmann::json::parse(comment);
+  EXPECT_EQ(lkg["LKGNumViews"], 48);
+  EXPECT_EQ(lkg["LKGColumns"], 8);
+  EXPECT_EQ(lkg["LKGRows"], 6);
+  EXPECT_EQ(lkg["LKGAspect"], 0.75);
+  // 10 views in an 8x6 grid (X accepted as x): done, with a warning.
+  r = run("render --backend svr --views 10 --size 16x12 --quilt 8X6 --out " + d.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("leaves 38 of its tiles empty"), std::string::npos) << r.err;
+  for (const char* bad : {"8x6.5", "8x6x3360", "0x6", "-8x6", "8x", "lookingglass"}) {
+    Result e = run(std::string("render --views 2 --size 16x12 --quilt ") + bad + " --out " + d.string());
+    EXPECT_NE(e.status, 0) << bad;
+    EXPECT_NE(e.err.find("--quilt"), std::string::npos) << bad << ": " << e.err;
+    EXPECT_EQ(std::count(e.err.begin(), e.err.end(), '\n'), 1) << bad << ": " << e.err;
+  }
+}
+
 TEST(Cli, BenchPlotsAgainFromItsJson) {
   const fs::path d = outDir("replot");
   fs::create_directories(d);
