@@ -134,7 +134,7 @@ struct RenderFlags {
   std::pair<int, int> size{320, 240};
   std::string out = "out", format = "png", order = "view", gl = "auto";
   std::string stream, quilt, predistort, codec;
-  bool strict = false, linear = false, depth = false;
+  bool strict = false, linear = false, depth = false, quiltOnly = false;
   MemoryFlags memory;
   std::string from;  // synthesize: the references' folder
   WarpOptions warp;
@@ -186,6 +186,7 @@ struct RenderFlags {
                    "views and tile size: go, portrait, 16-landscape, 16-portrait, 32-landscape, "
                    "32-portrait, 65)")
         ->type_name("auto|CxR|DISPLAY");
+    app.add_flag("--quilt-only", quiltOnly, "write the quilt (and manifest) without the view images");
     app.add_flag("--depth", depth,
                  "also write each view's depth map, depth_0000.exr (one float channel Z): the "
                  "distance along the view axis in world units, 0 where nothing is seen; the same "
@@ -263,6 +264,8 @@ int runRender(int argc, char** argv, RenderCommand command) {
   const std::string scenePath = f.scene.empty() ? defaultScenePath() : f.scene;
   // A display's quilt preset sets the views and the tile size unless given.
   std::optional<QuiltLayout> quiltLayout;
+  if (f.quiltOnly && f.quilt.empty()) f.quilt = "auto";
+  if (f.quiltOnly && (f.depth || streaming)) fail("--quilt-only", "writes a quilt: not with --depth or --stream");
   if (!f.quilt.empty()) {
     quiltLayout = parseQuilt(f.quilt);
     if (!quiltLayout->preset.empty()) {
@@ -373,7 +376,8 @@ int runRender(int argc, char** argv, RenderCommand command) {
   }
   std::vector<std::unique_ptr<FrameSink>> chain;
   FrameSink* sink = &writer;
-  if (quilt) sink = chain.emplace_back(std::make_unique<TeeSink>(std::vector<FrameSink*>{&writer, quilt.get()})).get();
+  if (quilt && f.quiltOnly) sink = quilt.get();
+  else if (quilt) sink = chain.emplace_back(std::make_unique<TeeSink>(std::vector<FrameSink*>{&writer, quilt.get()})).get();
   if (background) sink = chain.emplace_back(std::make_unique<BackgroundSink>(*sink, *background)).get();
   // Reorder only when the renderer's natural order is not the one asked for.
   const FrameTranspose* transpose = nullptr;

@@ -444,6 +444,14 @@ TEST(Cli, QuiltPresetsMetadataAndStrictGrids) {
   EXPECT_EQ(lkg["LKGColumns"], 8);
   EXPECT_EQ(lkg["LKGRows"], 6);
   EXPECT_EQ(lkg["LKGAspect"], 0.75);
+  // --quilt-only: the quilt and the manifest, no views (the earlier set's
+  // views are gone too).
+  r = run("render --backend svr --views 6 --size 16x12 --quilt-only --out " + d.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(d)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"manifest.json", "quilt_qs2x3a1.33.png"}));
   // 10 views in an 8x6 grid (X accepted as x): done, with a warning.
   r = run("render --backend svr --views 10 --size 16x12 --quilt 8X6 --out " + d.string());
   ASSERT_EQ(r.status, 0) << r.err;
