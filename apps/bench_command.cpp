@@ -60,6 +60,7 @@ struct Config {
   int repeat = 1, errorViews = 8, rows = 1;
   // What `mvr render` writes by default (8-bit sRGB); --linear: 8-bit linear.
   PixelType type = PixelType::Srgb8;
+  Supersampling aa;  // every back end renders the samples and filters them alike
 };
 
 struct Run {
@@ -68,14 +69,17 @@ struct Run {
   std::map<int, Image> samples;
 };
 
-Run measure(Renderer& renderer, const ShearingCamera& cam, int repeat, const std::vector<int>& sampled,
-            PixelType type) {
+// The filter's time counts: it is part of anti-aliasing's cost.
+Run measure(Renderer& renderer, const ShearingCamera& cam, const Supersampling& aa, int repeat,
+            const std::vector<int>& sampled, PixelType type) {
   Run best;
+  const ShearingCamera samples = aa.active() ? supersampledCamera(cam, aa) : cam;
   for (int k = 0; k < repeat; ++k) {
     SampleSink sink(sampled, cam.width(), cam.height(), type);
+    SupersampleSink filter(sink, aa, cam.width(), cam.height(), cam.views());
     RenderStats stats;
     Stopwatch watch;
-    renderer.render(cam, sink, stats);
+    renderer.render(samples, aa.active() ? static_cast<FrameSink&>(filter) : sink, stats);
     const double s = watch.seconds();
     if (s < best.seconds) best = {s, stats, sink.samples()};
   }
@@ -153,13 +157,15 @@ void benchScene(const std::string& name, const Scene& scene, const Config& cfg,
     // The fixed cost: every back end at one view.
     std::vector<double> fixed;
     const ShearingCamera one(cameraFor(scene, w, h), w, h, 1, 1);
-    for (auto& r : renderers) fixed.push_back(measure(*r, one, cfg.repeat, {0}, cfg.type).seconds);
+    const Supersampling oneAa{.spatial = cfg.aa.spatial};  // one view has no track to sample
+    for (auto& r : renderers) fixed.push_back(measure(*r, one, oneAa, cfg.repeat, {0}, cfg.type).seconds);
     for (int n : cfg.views) {
       ShearingCamera cam(cameraFor(scene, w, h), w, h, n, cfg.rows);
-      const double floor = readbackFloor(w, h, long(n) * cfg.rows, cfg.repeat);
+      const double floor = readbackFloor(w * cfg.aa.spatial, h * cfg.aa.spatial,
+                                         long(n) * cfg.aa.views * cfg.rows, cfg.repeat);
       const std::vector<int> sampled = spreadViews(n, cfg.errorViews);
       std::vector<Run> runs;
-      for (auto& r : renderers) runs.push_back(measure(*r, cam, cfg.repeat, sampled, cfg.type));
+      for (auto& r : renderers) runs.push_back(measure(*r, cam, cfg.aa, cfg.repeat, sampled, cfg.type));
       const Run* svr = nullptr;
       const Run* layered = nullptr;
       for (size_t k = 0; k < runs.size(); ++k) {
@@ -261,6 +267,7 @@ int runBench(int argc, char** argv) {
   app.add_option("--plots", plots, "write gnuplot scripts and PNG plots (needs gnuplot)")->type_name("DIR");
   app.add_option("--replot", replot, "only plot an earlier run's --json FILE into --plots DIR")
       ->type_name("FILE");
+  addAntialiasingOptions(app, cfg.aa);
   addGlOption(app, gl);
   addThreadsOption(app);
   bool strict = false;
@@ -299,9 +306,13 @@ int runBench(int argc, char** argv) {
 
   auto context = GlContext::create(parseGlPlatform(gl));
   BenchMachine machine{context->describe(), cpuModel(), unsigned(threadCount())};
+  if (cfg.aa.active()) machine.antialiasing = describe(cfg.aa);
   std::printf("# mvr bench\n# GL: %s\n# CPU: %s, %u cores, %u pool threads\n# output: 8-bit %s\n",
               machine.gl.c_str(), machine.cpu.c_str(), std::thread::hardware_concurrency(),
               machine.threads, cfg.type == PixelType::Srgb8 ? "sRGB" : "linear");
+  if (cfg.aa.active())
+    std::printf("# anti-aliasing: %s; times include the filter, errors compare filtered views\n",
+                describe(cfg.aa).c_str());
   std::printf("%-16s %-9s %6s %-24s %10s %10s %8s %9s %8s %7s %10s %7s %10s\n", "scene", "size",
               "views", "backend", "total_s", "ms/view", "x_svr", "x_layered", "PSNR_dB", "SSIM",
               "identical", "holes", "slices");

@@ -100,6 +100,7 @@ void writeBenchJson(const std::string& path, const BenchMachine& machine,
   auto num = [](double v) { return std::isfinite(v) ? json(v) : json(); };
   json j{{"gl", machine.gl}, {"cpu", machine.cpu}, {"threads", machine.threads},
          {"peak_rss_mib", machine.peakRssMiB}, {"results", json::array()}, {"break_even", json::array()}};
+  if (!machine.antialiasing.empty()) j["antialiasing"] = machine.antialiasing;
   for (const BenchRecord& r : records)
     j["results"].push_back({{"scene", r.scene}, {"triangles", r.triangles}, {"width", r.width},
                             {"height", r.height}, {"views", r.views}, {"rows", r.rows}, {"backend", r.backend},

@@ -27,6 +27,7 @@ struct BenchMachine {
   std::string gl, cpu;
   unsigned threads = 0;
   double peakRssMiB = 0;
+  std::string antialiasing;  // the run's supersampling; empty: none
 };
 
 // Where a back end's total time drops below per-view SVR's.

@@ -57,6 +57,21 @@ void addViewCountOptions(CLI::App& app, int& views, int& rows) {
       ->capture_default_str();
 }
 
+void addAntialiasingOptions(CLI::App& app, Supersampling& aa) {
+  app.add_option("--aa", aa.spatial,
+                 "anti-aliasing: S x S samples per pixel, box-filtered in linear light (the back end "
+                 "renders S times the width and height)")
+      ->type_name("S")
+      ->check(CLI::Range(1, 8))
+      ->capture_default_str();
+  app.add_option("--aa-views", aa.views,
+                 "perspective anti-aliasing: P samples per view spread over its share of the track "
+                 "(P times the views; cheap for mvr, P times the work for per-view back ends)")
+      ->type_name("P")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
+}
+
 CLI::Option* addGlOption(CLI::App& app, std::string& platform) {
   return app.add_option("--gl", platform, "GL platform: " + alternatives(kGlPlatformNames) +
                                               " (auto: egl, else osmesa)")

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "mvr/scene.h"
+#include "mvr/supersampling.h"
 
 
 namespace mvr::app {
@@ -26,6 +27,10 @@ CLI::Option* addSizeOption(CLI::App& app, const std::string& name, std::pair<int
 
 // --views N (views per row) and --rows M (full parallax), bounded by Limits.
 void addViewCountOptions(CLI::App& app, int& views, int& rows);
+
+// --aa S (S x S samples per pixel) and --aa-views P (P samples per view
+// along the track) into aa: box-filtered supersampling, every back end.
+void addAntialiasingOptions(CLI::App& app, Supersampling& aa);
 
 // --gl egl|osmesa|glfw|auto into platform.
 CLI::Option* addGlOption(CLI::App& app, std::string& platform);

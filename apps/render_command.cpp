@@ -29,6 +29,7 @@
 #include "mvr/io/rgbd_set.h"
 #include "mvr/io/scene_io.h"
 #include "mvr/parallel.h"
+#include "mvr/supersampling.h"
 #include "shading/shading_plan.h"
 
 namespace mvr::app {
@@ -41,8 +42,8 @@ bool isPlainFile(const std::string& endpoint) {
 
 // EPIs to a file, stdout or socket as they complete, through a bounded
 // queue. A file is written under a temporary name and renamed when done.
-int streamTo(Renderer& renderer, const ShearingCamera& cam, const std::string& endpoint,
-             PixelType type, int queue, const ReorderMemory& memory,
+int streamTo(Renderer& renderer, const ShearingCamera& cam, const Supersampling& aa,
+             const std::string& endpoint, PixelType type, int queue, const ReorderMemory& memory,
              const std::optional<glm::vec4>& background) {
   namespace fs = std::filesystem;
   std::signal(SIGPIPE, SIG_IGN);  // a vanished consumer is an error, not a kill
@@ -67,8 +68,10 @@ int streamTo(Renderer& renderer, const ShearingCamera& cam, const std::string& e
     FrameSink* sink = adaptor ? static_cast<FrameSink*>(adaptor.get()) : &stream;
     std::optional<BackgroundSink> over;
     if (background) sink = &over.emplace(*sink, *background);
+    std::optional<SupersampleSink> filter;
+    if (aa.active()) sink = &filter.emplace(*sink, aa, cam.width(), cam.height(), cam.views());
     RenderStats stats;
-    renderer.render(cam, *sink, stats);
+    renderer.render(aa.active() ? supersampledCamera(cam, aa) : cam, *sink, stats);
     sink->finish();
     highWater = stream.highWater();
     if (adaptor) note = adaptor->transpose().scratchNote();
@@ -139,6 +142,7 @@ struct RenderFlags {
   std::string from;  // synthesize: the references' folder
   WarpOptions warp;
   CameraFlags camera;
+  Supersampling aa;
 
   void addShared(CLI::App& app) {
     app.add_option("SCENE", scene,
@@ -151,6 +155,7 @@ struct RenderFlags {
     addViewCountOptions(app, views, rows);
     addSizeOption(app, "size", size, "image size in pixels");
     camera.add(app);
+    addAntialiasingOptions(app, aa);
     app.add_option("--format", format, "image format: png, exr or tiff (exr renders in float)")
         ->capture_default_str();
     addGlOption(app, gl);
@@ -319,6 +324,9 @@ int runRender(int argc, char** argv, RenderCommand command) {
     spec.planeHeight = spec.planeWidth / quiltLayout->aspect;
   }
   ShearingCamera camera(spec, width, height, views, rows);
+  if (f.aa.views > 1 && views < 2) fail("--aa-views", "needs at least 2 views: one view has no track to sample");
+  // Anti-aliasing: the back end renders the samples, a sink filters them.
+  const ShearingCamera renderCamera = f.aa.active() ? supersampledCamera(camera, f.aa) : camera;
   auto context = GlContext::create(platform);
   startup.add("gl", phase.restart());
   const size_t referenceCount = synthesize ? references->references.size() : 0;
@@ -355,7 +363,7 @@ int runRender(int argc, char** argv, RenderCommand command) {
   if (scratch && streaming) checkScratchFits(rowBytes, reorder.scratchDir);
 
   const std::optional<glm::vec4> background = f.camera.backgroundColor();
-  if (streaming) return streamTo(*renderer, camera, f.stream, type, f.queue, reorder, background);
+  if (streaming) return streamTo(*renderer, camera, f.aa, f.stream, type, f.queue, reorder, background);
 
   ImageSetWriter writer(out, Manifest{.views = views, .rows = rows, .width = width, .height = height,
                                      .format = format, .order = order, .bits = bits,
@@ -391,10 +399,12 @@ int runRender(int argc, char** argv, RenderCommand command) {
     sink = chain.emplace_back(std::move(reorderer)).get();
   }
   if (!lut.empty()) sink = chain.emplace_back(std::make_unique<PredistortSink>(*sink, lut)).get();
+  if (f.aa.active())
+    sink = chain.emplace_back(std::make_unique<SupersampleSink>(*sink, f.aa, width, height, views)).get();
   RenderStats stats;
   startup.add("before_render", sinceStart.seconds());
   Stopwatch total;
-  renderer->render(camera, *sink, stats);
+  renderer->render(renderCamera, *sink, stats);
   sink->finish();
   const double quiltAspect = quiltLayout && quiltLayout->aspect > 0.0 ? quiltLayout->aspect : double(width) / height;
   if (quilt)
@@ -421,6 +431,11 @@ int runRender(int argc, char** argv, RenderCommand command) {
              {"version", context->version()},
              {"renderer", context->renderer()}};
   manifest.setCamera(camera, imagePlaneZ);
+  if (f.aa.active())
+    m["antialiasing"] = {{"filter", "box, in linear light, colour weighted by alpha"},
+                         {"samples_per_pixel", f.aa.spatial * f.aa.spatial},
+                         {"samples_per_view", f.aa.views},
+                         {"depth", "not filtered: depth maps sample pixel centres"}};
   if (background) m["background"] = {(*background).r, (*background).g, (*background).b, (*background).a};
   m["timings_s"] = stats.times.seconds;
   m["timings_s"]["total"] = total.seconds();

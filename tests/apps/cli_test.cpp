@@ -464,6 +464,33 @@ TEST(Cli, QuiltPresetsMetadataAndStrictGrids) {
   }
 }
 
+// Anti-aliasing (issue 19, deliverable 4): the images keep the asked-for
+// size, edges get partial alpha, the manifest says how; bad counts fail.
+TEST(Cli, AntialiasingKeepsTheSizeAndSaysHow) {
+  const fs::path d = outDir("aa");
+  Result r = run("render --backend mvr --pst cpu --views 4 --size 32x24 --aa 2 --aa-views 2 --quilt auto --out " +
+                 d.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const mvr::Image view = mvr::readImage((d / "view_0002.png").string());
+  EXPECT_EQ(view.width, 32);
+  EXPECT_EQ(view.height, 24);
+  int partial = 0;
+  for (int y = 0; y < view.height; ++y)
+    for (int x = 0; x < view.width; ++x) partial += view.row(y)[x * 4 + 3] % 255 != 0;
+  EXPECT_GT(partial, 10);
+  const auto m = nlohmann::json::parse(std::ifstream(d / "manifest.json"));
+  EXPECT_EQ(m["antialiasing"]["samples_per_pixel"], 4);
+  EXPECT_EQ(m["antialiasing"]["samples_per_view"], 2);
+  EXPECT_EQ(m["views"], 4);
+  for (const char* bad : {"--aa 0", "--aa 9", "--aa-views 17", "--aa-views 2 --views 1"}) {
+    Result e = run(std::string("render --size 16x12 ") + bad + " --out " + d.string());
+    EXPECT_NE(e.status, 0) << bad;
+    EXPECT_NE(e.err.find("--aa"), std::string::npos) << bad << ": " << e.err;
+    EXPECT_EQ(std::count(e.err.begin(), e.err.end(), '\n'), 1) << bad << ": " << e.err;
+  }
+  EXPECT_TRUE(fs::exists(d / "view_0003.png")) << "a failed render leaves the set alone";
+}
+
 TEST(Cli, BenchPlotsAgainFromItsJson) {
   const fs::path d = outDir("replot");
   fs::create_directories(d);

@@ -1,0 +1,131 @@
+#include "mvr/supersampling.h"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <stdexcept>
+
+#include "mvr/color.h"
+#include "mvr/error.h"
+#include "mvr/parallel.h"
+
+namespace mvr {
+
+ShearingCamera supersampledCamera(const ShearingCamera& camera, const Supersampling& aa) {
+  const int s = aa.spatial, p = aa.views;
+  if (s < 1 || p < 1) fail("anti-aliasing", "sample counts must be positive");
+  if (p > 1 && camera.views() < 2) fail("anti-aliasing", "perspective samples need at least 2 views");
+  if (long(camera.width()) * s > Limits::kMaxSide || long(camera.height()) * s > Limits::kMaxSide)
+    fail("anti-aliasing", std::to_string(s) + "x" + std::to_string(s) + " samples make the image wider than " +
+                              std::to_string(Limits::kMaxSide) + " pixels");
+  if (long(camera.views()) * p > Limits::kMaxViews)
+    fail("anti-aliasing", std::to_string(p) + " samples per view make more than " +
+                              std::to_string(Limits::kMaxViews) + " views");
+  CameraSpec spec = camera.spec();
+  spec.planeHeight = camera.planeHeight();  // the same rectangle, whatever the rounding
+  // The first and last samples lie (P - 1) s / (2P) outside the end views.
+  const double reach = 0.5 * camera.viewSpacing() * (p - 1) / p;
+  spec.trackLeft -= reach;
+  spec.trackRight += reach;
+  return ShearingCamera(spec, camera.width() * s, camera.height() * s, camera.views() * p, camera.rows());
+}
+
+namespace {
+
+// Adds row y of in, premultiplied and in linear light, into out: input
+// pixel x lands in output pixel x / s. The hot loop of anti-aliasing.
+void addRow(const Image& in, int y, int s, float* out) {
+  const uint8_t* bytes = in.row(y);
+  const std::array<float, 256>& srgb = detail::srgb8Table().decoded;
+  for (int x = 0; x < in.width; ++x) {
+    float c[4];
+    if (in.type == PixelType::F32) {
+      std::memcpy(c, bytes + size_t(x) * 16, sizeof c);
+    } else {
+      const uint8_t* p = bytes + size_t(x) * 4;
+      const bool encoded = in.type == PixelType::Srgb8;
+      for (int i = 0; i < 3; ++i) c[i] = encoded ? srgb[p[i]] : p[i] / 255.0f;
+      c[3] = p[3] / 255.0f;
+    }
+    float* o = out + (x / s) * 4;
+    o[0] += c[0] * c[3];
+    o[1] += c[1] * c[3];
+    o[2] += c[2] * c[3];
+    o[3] += c[3];
+  }
+}
+
+}  // namespace
+
+SupersampleSink::SupersampleSink(FrameSink& inner, const Supersampling& aa, int width, int height, int views)
+    : inner_(inner), aa_(aa), width_(width), height_(height), views_(views) {}
+
+SupersampleSink::Pending& SupersampleSink::pending(std::map<std::pair<int, int>, Pending>& frames, int row,
+                                                   int index, size_t pixels) {
+  Pending& p = frames[{row, index}];
+  if (p.sums.empty()) p.sums.assign(pixels * 4, 0.0f);
+  return p;
+}
+
+void SupersampleSink::accumulate(Pending& p, const Image& in, int outWidth, int outHeight, int rowFactor) {
+  const int s = aa_.spatial;
+  if (in.width != outWidth * s || in.height != outHeight * rowFactor)
+    throw std::logic_error("supersampled frame of the wrong size");
+  // Output rows are independent: each takes rowFactor input rows.
+  constexpr int kRowsPerTask = 16;
+  parallelFor(0, (outHeight + kRowsPerTask - 1) / kRowsPerTask, [&](int task) {
+    const int end = std::min(outHeight, (task + 1) * kRowsPerTask);
+    for (int y = task * kRowsPerTask; y < end; ++y) {
+      float* out = p.sums.data() + size_t(y) * outWidth * 4;
+      for (int k = 0; k < rowFactor; ++k) addRow(in, y * rowFactor + k, s, out);
+    }
+  });
+  ++p.frames;
+}
+
+Image SupersampleSink::resolve(const Pending& p, int outWidth, int outHeight, PixelType type) const {
+  Image out(outWidth, outHeight, type);
+  const float samples = float(aa_.samplesPerPixel());
+  for (int y = 0; y < outHeight; ++y)
+    for (int x = 0; x < outWidth; ++x) {
+      const float* c = p.sums.data() + (size_t(y) * outWidth + x) * 4;
+      const glm::vec3 rgb = c[3] > 0.0f ? glm::vec3(c[0], c[1], c[2]) / c[3] : glm::vec3(0.0f);
+      out.setLinear(x, y, glm::vec4(rgb, c[3] / samples));
+    }
+  return out;
+}
+
+void SupersampleSink::putView(int row, int view, const Image& image) {
+  // A view's P sample views each bring S x S samples per pixel.
+  const int index = view / aa_.views;
+  Pending& p = pending(viewFrames_, row, index, size_t(width_) * height_);
+  accumulate(p, image, width_, height_, aa_.spatial);
+  if (p.frames < aa_.views) return;
+  const Image out = resolve(p, width_, height_, image.type);
+  viewFrames_.erase({row, index});
+  inner_.putView(row, index, out);
+}
+
+void SupersampleSink::putEpi(int row, int scanline, const Image& epi) {
+  // An EPI's S sample EPIs each bring S x P samples per pixel (x by views).
+  const int index = scanline / aa_.spatial;
+  Pending& p = pending(epiFrames_, row, index, size_t(width_) * views_);
+  accumulate(p, epi, width_, views_, aa_.views);
+  if (p.frames < aa_.spatial) return;
+  const Image out = resolve(p, width_, views_, epi.type);
+  epiFrames_.erase({row, index});
+  inner_.putEpi(row, index, out);
+}
+
+void SupersampleSink::finish() {
+  if (!viewFrames_.empty() || !epiFrames_.empty())
+    throw std::logic_error("supersampling: frames still wait for samples at finish");
+  inner_.finish();
+}
+
+std::string describe(const Supersampling& aa) {
+  return std::to_string(aa.spatial) + "x" + std::to_string(aa.spatial) + " samples per pixel, " +
+         std::to_string(aa.views) + " per view (box filter)";
+}
+
+}  // namespace mvr
