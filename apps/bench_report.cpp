@@ -287,14 +287,14 @@ void writeBenchPlots(const std::string& dir, const std::vector<BenchRecord>& rec
     plotPsnr(dir, w, h, records);
   }
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
-    std::fprintf(stderr, "mvr bench: gnuplot not found; plot scripts are in %s\n", dir.c_str());
+    std::fprintf(stderr, "mvr: gnuplot not found; plot scripts are in %s\n", dir.c_str());
     return;
   }
   for (const auto& entry : fs::directory_iterator(dir))
     if (entry.path().extension() == ".gp") {
       const std::string cmd = "gnuplot '" + entry.path().string() + "' 2>/dev/null";
       if (std::system(cmd.c_str()) != 0)
-        std::fprintf(stderr, "mvr bench: gnuplot failed on %s\n", entry.path().string().c_str());
+        std::fprintf(stderr, "mvr: gnuplot failed on %s\n", entry.path().string().c_str());
     }
 }
 

@@ -1,4 +1,5 @@
-// The `mvr` command line: info, render, compare (DESIGN.md's contract).
+// The `mvr` command line: info, render, stream, synthesize, view, compare,
+// bench (README).
 // Every user error is an mvr::Error caught here: one line, exit status 1.
 #include <cmath>
 #include <cstdio>

@@ -29,6 +29,7 @@
 #include "mvr/io/rgbd_set.h"
 #include "mvr/io/scene_io.h"
 #include "mvr/parallel.h"
+#include "mvr/progress.h"
 #include "mvr/supersampling.h"
 #include "shading/shading_plan.h"
 
@@ -70,9 +71,11 @@ int streamTo(Renderer& renderer, const ShearingCamera& cam, const Supersampling&
     if (background) sink = &over.emplace(*sink, *background);
     std::optional<SupersampleSink> filter;
     if (aa.active()) sink = &filter.emplace(*sink, aa, cam.width(), cam.height(), cam.views());
+    const ShearingCamera rendered = aa.active() ? supersampledCamera(cam, aa) : cam;
+    ProgressSink progress(*sink, rendered, long(cam.views()) * cam.rows(), renderer.name());
     RenderStats stats;
-    renderer.render(aa.active() ? supersampledCamera(cam, aa) : cam, *sink, stats);
-    sink->finish();
+    renderer.render(rendered, progress, stats);
+    progress.finish();
     highWater = stream.highWater();
     if (adaptor) note = adaptor->transpose().scratchNote();
     buffer.reset();  // closed before the rename
@@ -120,8 +123,9 @@ void renderDepth(const BackendOptions& choice, const Scene& scene, const Shearin
   FrameSink* sink = &depthSink;
   if (renderer->order() == FrameOrder::Epi)
     sink = &reorderer.emplace(depthSink, cam.width(), cam.height(), cam.views(), PixelType::F32, reorder);
-  renderer->render(cam, *sink, stats);
-  sink->finish();
+  ProgressSink progress(*sink, cam, long(cam.views()) * cam.rows(), renderer->name() + ", depth");
+  renderer->render(cam, progress, stats);
+  progress.finish();
 }
 
 }  // namespace
@@ -197,7 +201,7 @@ struct RenderFlags {
                  "distance along the view axis in world units, 0 where nothing is seen; the same "
                  "back end renders the scene a second time");
     app.add_option("--predistort", predistort,
-                   "resample every row through a table of source x per column")
+                   "resample every row through a table of source x per column (docs/CONVENTIONS.md)")
         ->type_name("LUT");
     app.add_option("--stream", stream,
                    "write the raw EPI-major stream (docs/EPI_STREAM.md) to a file or stdout "
@@ -404,8 +408,10 @@ int runRender(int argc, char** argv, RenderCommand command) {
   RenderStats stats;
   startup.add("before_render", sinceStart.seconds());
   Stopwatch total;
-  renderer->render(renderCamera, *sink, stats);
-  sink->finish();
+  const std::string label = renderer->name() + (choice.hasPst() ? std::string(" ") + pstModeName(choice.pst()) : "");
+  ProgressSink progress(*sink, renderCamera, long(views) * rows, label);
+  renderer->render(renderCamera, progress, stats);
+  progress.finish();
   const double quiltAspect = quiltLayout && quiltLayout->aspect > 0.0 ? quiltLayout->aspect : double(width) / height;
   if (quilt)
     writer.putExtra(quilt->fileName(format, quiltAspect), quilt->quilt(),
@@ -467,9 +473,9 @@ int runRender(int argc, char** argv, RenderCommand command) {
                   {"timings_s", depthStats.times.seconds}};
   }
   writer.commit();
-  std::fprintf(stderr, "mvr: %s rendered %d view(s) of %dx%d to %s in %.3f s%s\n",
-               renderer->name().c_str(), views * rows, width, height, out.c_str(),
-               total.seconds(), transpose ? transpose->scratchNote().c_str() : "");
+  std::fprintf(stderr, "mvr: rendered %d view%s of %dx%d with %s to %s in %.3f s%s\n", views * rows,
+               views * rows == 1 ? "" : "s", width, height, label.c_str(), out.c_str(), total.seconds(),
+               transpose ? transpose->scratchNote().c_str() : "");
   return 0;
 }
 

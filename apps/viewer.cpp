@@ -153,7 +153,7 @@ class Viewer {
         char name[64];
         std::snprintf(name, sizeof name, "mvr_screenshot_%04d.png", shots++);
         writeImage(screenshot(), name);
-        std::fprintf(stderr, "mvr view: saved %s\n", name);
+        std::fprintf(stderr, "mvr: saved %s\n", name);
         saveRequested_ = false;
       }
       glfwSwapBuffers(w);

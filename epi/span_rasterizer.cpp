@@ -11,7 +11,6 @@
 #include "mvr/color.h"
 #include "mvr/error.h"
 #include "mvr/parallel.h"
-#include "mvr/progress.h"
 #include "shading/view_dependent.h"
 
 namespace mvr {
@@ -42,15 +41,11 @@ class SpanRasterizer final : public EpiRasterizer {
     const int batch = std::max(1, std::min(height, 2 * threadCount()));
     std::array<std::vector<Image>, 2> halves;
     for (std::vector<Image>& half : halves) half.assign(size_t(batch), Image(cam.width(), cam.views(), type_));
-    Progress progress("mvr cpu", height);
     struct Filled {
       int half = 0, first = 0, count = 0;
     } pending;
     auto handOn = [&](const Filled& f) {
-      for (int k = 0; k < f.count; ++k) {
-        sink.putEpi(row, f.first + k, halves[f.half][k]);
-        progress.step();
-      }
+      for (int k = 0; k < f.count; ++k) sink.putEpi(row, f.first + k, halves[f.half][k]);
     };
     for (int first = 0, b = 0; first < height; first += batch, ++b) {
       const Filled now{b % 2, first, std::min(batch, height - first)};

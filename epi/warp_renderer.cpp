@@ -50,7 +50,7 @@ class WarpRenderer final : public Renderer {
     RenderTarget target(cam.width(), cam.height(), type_);
     int loadedRow = -1;
     std::vector<Reference> rowSources;
-    renderEachView(cam, target, "warp", sink, stats, [&](int row, int view) {
+    renderEachView(cam, target, sink, stats, [&](int row, int view) {
       if (sources_ && row != loadedRow) {
         ScopedStage s(stats.times, "sources");
         rowSources = acquire(cam, row, stats);

@@ -1,5 +1,5 @@
 #pragma once
-// The regular-shearing camera (Halle 1997, ch. 3 and 5; DESIGN.md):
+// The regular-shearing camera (Halle 1997, ch. 3 and 5; docs/CONVENTIONS.md):
 // image plane z = 0 holding a plane_width x plane_height rectangle centred
 // on the origin; cameras on the plane z = distance looking along -z, view i
 // at x = track_left + i (track_right - track_left) / (N - 1). Every view's

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <string_view>
@@ -18,27 +19,62 @@ bool gEnabled = fromEnvironment();
 
 void setProgressEnabled(bool enabled) { gEnabled = enabled; }
 
-Progress::Progress(std::string label, long total)
-    : label_(std::move(label)), total_(total), tty_(isatty(STDERR_FILENO)) {}
+Progress::Progress(std::string label, long total, long views, const Stopwatch& since)
+    : label_(std::move(label)), total_(std::max(1L, total)), views_(views), tty_(isatty(STDERR_FILENO)),
+      clock_(since) {}
 
 Progress::~Progress() {
   if (printed_ && tty_) std::fputc('\n', stderr);
 }
 
+std::string progressLine(const std::string& label, double fraction, long views, double seconds) {
+  const double rate = seconds > 0 ? fraction * double(views) / seconds : 0.0;
+  const double left = fraction > 0 ? seconds * (1.0 - fraction) / fraction : 0.0;
+  char text[256];
+  std::snprintf(text, sizeof text, "mvr: %d%% of %ld views (%s), %.1f views/s, %.1f s left", int(100 * fraction),
+                views, label.c_str(), rate, left);
+  return text;
+}
+
 void Progress::step(long n) {
   done_ += n;
-  int tenth = int(10 * done_ / total_);
+  const int tenth = int(10 * done_ / total_);
   if (!gEnabled || clock_.seconds() < 1.0) {
     lastTenth_ = tenth;
     return;
   }
+  const std::string line = progressLine(label_, double(done_) / double(total_), views_, clock_.seconds());
   if (tty_) {
-    std::fprintf(stderr, "\r%s: %ld/%ld", label_.c_str(), done_, total_);
+    std::fprintf(stderr, "\r%s   ", line.c_str());
     printed_ = true;
   } else if (tenth > lastTenth_) {
-    std::fprintf(stderr, "%s: %d%%\n", label_.c_str(), tenth * 10);
+    std::fprintf(stderr, "%s\n", line.c_str());
   }
   lastTenth_ = tenth;
+}
+
+ProgressSink::ProgressSink(FrameSink& inner, const ShearingCamera& rendered, long views, std::string label)
+    : inner_(inner),
+      viewFrames_(long(rendered.views()) * rendered.rows()),
+      epiFrames_(long(rendered.height()) * rendered.rows()),
+      views_(views),
+      label_(std::move(label)) {}
+
+void ProgressSink::putView(int row, int view, const Image& image) {
+  inner_.putView(row, view, image);
+  if (!progress_) progress_.emplace(label_, viewFrames_, views_, since_);
+  progress_->step();
+}
+
+void ProgressSink::putEpi(int row, int scanline, const Image& epi) {
+  inner_.putEpi(row, scanline, epi);
+  if (!progress_) progress_.emplace(label_, epiFrames_, views_, since_);
+  progress_->step();
+}
+
+void ProgressSink::finish() {
+  progress_.reset();  // ends a live line before what follows
+  inner_.finish();
 }
 
 }  // namespace mvr

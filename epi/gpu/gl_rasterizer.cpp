@@ -32,7 +32,6 @@
 #include "mvr/gl/gl_program.h"
 #include "mvr/gl/readback_ring.h"
 #include "mvr/gl/render_target.h"
-#include "mvr/progress.h"
 #include "shading/gpu_materials.h"
 #include "shading/texture_vector.h"
 
@@ -128,7 +127,6 @@ class GlRasterizer final : public EpiRasterizer {
     const glm::vec3 eye0(cam.eye(0, row)), eyeStep(cam.eye(1, row) - cam.eye(0, row));
     gl::Enable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
     if (materials_) materials_->bind(EpiPass::kTextureUnit);
-    Progress progress("mvr " + std::string(pstModeName(mode_)), h);
     for (int first = 0; first < h; first += batch) {
       const int count = std::min(batch, h - first);
       if (pulled()) {
@@ -155,11 +153,8 @@ class GlRasterizer final : public EpiRasterizer {
                           reinterpret_cast<std::byte*>((*epis)[k].row(view0)));
         }
         if (c + 1 < chunks) continue;
-        ring.submit([=, &sink, &progress] {
-          for (int k = 0; k < count; ++k) {
-            sink.putEpi(row, first + k, (*epis)[k]);
-            progress.step();
-          }
+        ring.submit([=, &sink] {
+          for (int k = 0; k < count; ++k) sink.putEpi(row, first + k, (*epis)[k]);
         });
       }
     }

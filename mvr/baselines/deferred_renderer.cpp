@@ -18,7 +18,7 @@ class DeferredRenderer final : public Renderer {
     RenderTarget target(cam.width(), cam.height(), type_);
     const GBuffer gbuffer = pipeline_.makeGBuffer(cam.width(), cam.height());
     pipeline_.begin(cam.width(), cam.height());
-    renderEachView(cam, target, "deferred", sink, stats, [&](int row, int view) {
+    renderEachView(cam, target, sink, stats, [&](int row, int view) {
       const glm::dmat4 viewProj = cam.viewProjection(view, row);
       {
         ScopedStage s(stats.times, "geometry");

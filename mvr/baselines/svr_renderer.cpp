@@ -11,7 +11,6 @@
 #include "mvr/gl/readback_ring.h"
 #include "mvr/gl/render_target.h"
 #include "mvr/gl/scene_buffers.h"
-#include "mvr/progress.h"
 #include "shading/gpu_materials.h"
 #include "shading/lighting.h"
 #include "shading/shading_plan.h"
@@ -198,7 +197,7 @@ class SvrRenderer final : public Renderer {
     gl::UseProgram(program_.id());
     materials_.bind(0);
     buffers_.bind();
-    renderEachView(cam, target, "svr", sink, stats, [&](int row, int view) {
+    renderEachView(cam, target, sink, stats, [&](int row, int view) {
       ScopedStage s(stats.times, "draw");
       gl::setUniform(program_, "uViewProj", glm::mat4(cam.viewProjection(view, row)));
       gl::setUniform(program_, "uEye", glm::vec3(cam.eye(view, row)));
@@ -259,7 +258,6 @@ class LayeredSvrRenderer final : public Renderer {
     target.bind();
     gl::UseProgram(program_.id());
     buffers_.bind();
-    Progress progress("svr-layered", long(matrices.size()));
     const int total = int(matrices.size());
     const size_t layerBytes = size_t(cam.width()) * cam.height() * 4 * Image::channelBytes(type_);
     ReadbackRing ring(size_t(batch) * layerBytes);
@@ -277,11 +275,8 @@ class LayeredSvrRenderer final : public Renderer {
         for (int k = 0; k < count; ++k)
           ring.readLayer(target, k, reinterpret_cast<std::byte*>((*images)[k].row(0)));
       }
-      ring.submit([=, views = cam.views(), &sink, &progress] {
-        for (int k = 0; k < count; ++k) {
-          sink.putView((first + k) / views, (first + k) % views, (*images)[k]);
-          progress.step();
-        }
+      ring.submit([=, views = cam.views(), &sink] {
+        for (int k = 0; k < count; ++k) sink.putView((first + k) / views, (first + k) % views, (*images)[k]);
       });
     }
     ring.drain();

@@ -1,21 +1,19 @@
 #pragma once
 // The view-major loop the baselines share: draw a view, read it back
 // through a readback ring (the next views are drawn while earlier ones
-// travel), hand each to the sink in order, report progress.
+// travel), hand each to the sink in order.
 #include <memory>
 
 #include "mvr/gl/readback_ring.h"
 #include "mvr/gl/render_target.h"
-#include "mvr/progress.h"
 #include "mvr/renderer.h"
 
 namespace mvr {
 
 // draw(row, view) renders one view into target.
 template <class Draw>
-void renderEachView(const ShearingCamera& cam, const RenderTarget& target, const char* label,
+void renderEachView(const ShearingCamera& cam, const RenderTarget& target,
                     FrameSink& sink, RenderStats& stats, Draw&& draw) {
-  Progress progress(label, long(cam.rows()) * cam.views());
   const PixelType type = target.type();
   ReadbackRing ring(size_t(target.width()) * target.height() * 4 * Image::channelBytes(type));
   for (int row = 0; row < cam.rows(); ++row) {
@@ -26,10 +24,7 @@ void renderEachView(const ShearingCamera& cam, const RenderTarget& target, const
         ScopedStage s(stats.times, "readback");
         ring.readRows(target, 0, target.height(), reinterpret_cast<std::byte*>(img->row(0)));
       }
-      ring.submit([img, row, view, &sink, &progress] {
-        sink.putView(row, view, *img);
-        progress.step();
-      });
+      ring.submit([img, row, view, &sink] { sink.putView(row, view, *img); });
     }
   }
   ring.drain();

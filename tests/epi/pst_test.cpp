@@ -1,4 +1,4 @@
-// PSTs worked out by hand (DESIGN.md: corners at r = 0 and r = N).
+// PSTs worked out by hand (docs/CONVENTIONS.md: corners at r = 0 and r = N).
 #include <gtest/gtest.h>
 
 #include "epi/pst.h"

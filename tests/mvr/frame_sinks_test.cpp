@@ -5,6 +5,7 @@
 
 #include "mvr/error.h"
 #include "mvr/frame_sinks.h"
+#include "mvr/progress.h"
 #include "tests/support/capture_sink.h"
 
 namespace mvr {
@@ -63,6 +64,23 @@ TEST(PredistortSink, TableFilesAreValidated) {
   EXPECT_THROW(loadPredistortionTable(good, 5), Error);
   EXPECT_THROW(loadPredistortionTable(bad, 3), Error);
   EXPECT_THROW(loadPredistortionTable((dir / "absent_lut.txt").string(), 3), Error);
+}
+
+// Progress in the user's unit: a share of the views, the rate, the time left.
+TEST(Progress, LineCountsViewsWithRateAndTimeLeft) {
+  EXPECT_EQ(progressLine("svr", 0.25, 100, 2.0), "mvr: 25% of 100 views (svr), 12.5 views/s, 6.0 s left");
+  EXPECT_EQ(progressLine("mvr strip", 1.0, 8, 4.0), "mvr: 100% of 8 views (mvr strip), 2.0 views/s, 0.0 s left");
+}
+
+TEST(ProgressSink, HandsEveryFrameOn) {
+  test::CaptureSink capture;
+  const ShearingCamera cam(CameraSpec{}, 4, 3, 2);
+  ProgressSink sink(capture, cam, 2, "test");
+  sink.putEpi(0, 1, tagged(4, 2, 1));
+  sink.putView(0, 0, tagged(4, 3, 0));
+  sink.finish();
+  EXPECT_EQ(capture.epis.count({0, 1}), 1u);
+  EXPECT_EQ(capture.views.count({0, 0}), 1u);
 }
 
 }  // namespace
