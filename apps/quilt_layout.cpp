@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mvr/error.h"
+#include "mvr/io/image_file.h"
 
 namespace mvr::app {
 
@@ -33,6 +34,27 @@ QuiltLayout parseQuilt(const std::string& text) {
   for (const QuiltLayout& p : quiltPresets()) names += ", " + p.preset;
   fail("--quilt", "'" + text + "' is not auto, COLSxROWS (positive whole numbers) or a display (" + names.substr(2) +
                       ")");
+}
+
+QuiltFile readQuiltLayout(const std::string& path, int imageWidth, int imageHeight) {
+  static const std::regex name(".*_qs([1-9][0-9]{0,4})x([1-9][0-9]{0,4})a([0-9]+(\\.[0-9]+)?)\\.[A-Za-z0-9]+");
+  std::smatch m;
+  if (!std::regex_match(path, m, name)) fail(path, "not a quilt: the name has no _qs{COLS}x{ROWS}a{ASPECT} layout");
+  QuiltFile q{std::stoi(m[1]), std::stoi(m[2]), 0, std::stod(m[3])};
+  if (imageWidth % q.columns || imageHeight % q.rows)
+    fail(path, std::to_string(imageWidth) + "x" + std::to_string(imageHeight) + " pixels do not divide into " +
+                   std::to_string(q.columns) + "x" + std::to_string(q.rows) + " tiles");
+  q.views = q.columns * q.rows;
+  // The metadata may say fewer views (the last tiles empty).
+  if (const std::string comment = readImageAttribute(path, "Exif:UserComment"); !comment.empty()) {
+    const auto j = nlohmann::json::parse(comment, nullptr, /*allow_exceptions=*/false);
+    if (j.is_object() && j.contains("LKGNumViews") && j["LKGNumViews"].is_number_integer()) {
+      const int views = j["LKGNumViews"].get<int>();
+      if (views < 1 || views > q.views) fail(path, "LKGNumViews " + std::to_string(views) + " does not fit the tiles");
+      q.views = views;
+    }
+  }
+  return q;
 }
 
 std::string quiltMetadata(int views, int columns, int rows, double aspect) {

@@ -27,6 +27,16 @@ struct QuiltLayout {
 QuiltLayout parseQuilt(const std::string& text);
 const std::vector<QuiltLayout>& quiltPresets();
 
+// The layout a quilt's file name states (..._qs{C}x{R}a{aspect}.ext), and
+// its view count: LKGNumViews of its EXIF UserComment where present, else
+// C x R. Throws mvr::Error naming the file when the name has no layout or
+// the image does not divide into C x R tiles.
+struct QuiltFile {
+  int columns = 0, rows = 0, views = 0;
+  double aspect = 0.0;
+};
+QuiltFile readQuiltLayout(const std::string& path, int imageWidth, int imageHeight);
+
 // The EXIF UserComment JSON Looking Glass tools read a quilt's layout from
 // (LKGNumViews, LKGRows, LKGColumns, LKGAspect, LKGType).
 std::string quiltMetadata(int views, int columns, int rows, double aspect);

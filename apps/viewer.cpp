@@ -10,11 +10,13 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
 #include "apps/backend_flags.h"
 #include "apps/cli.h"
+#include "apps/quilt_layout.h"
 #include "epi/volume.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
@@ -22,7 +24,6 @@
 #include "mvr/io/image_file.h"
 #include "mvr/io/manifest.h"
 #include "mvr/io/scene_io.h"
-#include "mvr/progress.h"
 
 namespace mvr::app {
 
@@ -53,6 +54,40 @@ ViewSet loadSet(const std::string& dir) {
   return set;
 }
 
+// A quilt's tiles as a set of one row: view 0 at the bottom left, left to
+// right, then upwards (docs/CONVENTIONS.md).
+ViewSet loadQuilt(const std::string& path) {
+  const Image quilt = readImage(path);
+  const QuiltFile layout = readQuiltLayout(path, quilt.width, quilt.height);
+  ViewSet set;
+  set.views = layout.views;
+  set.width = quilt.width / layout.columns;
+  set.height = quilt.height / layout.rows;
+  set.images.resize(1);
+  for (int v = 0; v < set.views; ++v) {
+    Image tile(set.width, set.height, quilt.type);
+    const int x0 = (v % layout.columns) * set.width, y0 = (layout.rows - 1 - v / layout.columns) * set.height;
+    for (int y = 0; y < set.height; ++y)
+      std::memcpy(tile.row(y), quilt.row(y0 + y) + size_t(x0) * 4 * Image::channelBytes(quilt.type), tile.rowBytes());
+    set.images[0].push_back(std::move(tile));
+  }
+  return set;
+}
+
+// The middle of the rows where a view shows anything: the scanline whose
+// EPI crosses the object. The image's middle when it is empty.
+int objectMiddleRow(const Image& view) {
+  int first = -1, last = -1;
+  for (int y = 0; y < view.height; ++y)
+    for (int x = 0; x < view.width; ++x)
+      if (view.pixel(x, y).a > 0.0f) {
+        if (first < 0) first = y;
+        last = y;
+        break;
+      }
+  return first < 0 ? view.height / 2 : (first + last) / 2;
+}
+
 // Collects rendered views in memory, converted to 8 bits for display.
 class ViewCollector final : public FrameSink {
  public:
@@ -62,6 +97,10 @@ class ViewCollector final : public FrameSink {
  private:
   ViewSet& set_;
 };
+
+const char* const kKeys =
+    "left/right view, up/down row, mouse over the view picks the scanline, drag scrubs views, "
+    "S saves mvr_screenshot_NNNN.png, H lists keys, Q or Esc quits";
 
 // Top: the view, 1:1. Below: the EPI (views down), scaled to the panel.
 const char* const kPanelFragment = R"(
@@ -73,16 +112,18 @@ uniform int uPanelRows;  // window rows given to the EPI
 uniform int uWindowRows;
 uniform ivec2 uMarker;   // x: view row in the EPI, y: scanline; -1: none
 layout(location = 0) out vec4 oColor;
+// Over black, opaque: what a display shows, and screenshots without holes.
+vec4 opaque(vec4 c) { return vec4(c.rgb * c.a, 1.0); }
 void main() {
   int x = int(gl_FragCoord.x);
   int fromTop = uWindowRows - 1 - int(gl_FragCoord.y);
   if (fromTop < uViewSize.y) {
-    oColor = texelFetch(uView, ivec2(x, fromTop), 0);
+    oColor = opaque(texelFetch(uView, ivec2(x, fromTop), 0));
     if (fromTop == uMarker.y) oColor = mix(oColor, vec4(1, 1, 0, 1), 0.5);
   } else {
     int e = fromTop - uViewSize.y;
     int src = min(uEpiRows - 1, e * uEpiRows / uPanelRows);
-    oColor = texelFetch(uEpi, ivec2(x, src), 0);
+    oColor = opaque(texelFetch(uEpi, ivec2(x, src), 0));
     if (src == uMarker.x) oColor = mix(oColor, vec4(1, 1, 0, 1), 0.5);
   }
 }
@@ -144,10 +185,14 @@ class Viewer {
     });
     glfwShowWindow(w);
     int shots = 0;
+    double lastX = 0, lastY = 0;
+    glfwGetCursorPos(w, &lastX, &lastY);  // where it rests at start does not pick a scanline
     while (!glfwWindowShouldClose(w)) {
       double cx = 0, cy = 0;
       glfwGetCursorPos(w, &cx, &cy);
-      onCursor(cx, cy, glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS);
+      const bool dragging = glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+      if (cx != lastX || cy != lastY || dragging) onCursor(cx, cy, dragging);
+      lastX = cx, lastY = cy;
       draw();
       if (saveRequested_) {
         char name[64];
@@ -169,6 +214,10 @@ class Viewer {
       case GLFW_KEY_UP: --row_; break;
       case GLFW_KEY_DOWN: ++row_; break;
       case GLFW_KEY_S: saveRequested_ = true; return;
+      case GLFW_KEY_H:
+        std::fprintf(stderr, "mvr: keys: %s\n", kKeys);
+        glfwSetWindowTitle(window_.handle(), kKeys);
+        return;
       case GLFW_KEY_Q:
       case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_.handle(), GLFW_TRUE); return;
       default: return;
@@ -236,6 +285,14 @@ void toDisplay(ViewSet& set) {
     }
 }
 
+// A start outside the set is an error, not a silent clamp.
+void checkStart(const ViewSet& set, const std::optional<int>& view, const std::optional<int>& scanline) {
+  if (view && *view >= set.views)
+    fail("--view", std::to_string(*view) + " is beyond the set's views 0.." + std::to_string(set.views - 1));
+  if (scanline && *scanline >= set.height)
+    fail("--scanline", std::to_string(*scanline) + " is beyond the set's scanlines 0.." + std::to_string(set.height - 1));
+}
+
 }  // namespace
 
 int runView(int argc, char** argv) {
@@ -243,15 +300,18 @@ int runView(int argc, char** argv) {
                "one scanline below it. Given a scene instead, renders it first (--views, "
                "--size, --backend and its options as for render).",
                "mvr view");
-  app.footer("Keys: left/right view, up/down row, mouse over the view picks the scanline, drag "
-             "scrubs views, S saves mvr_screenshot_NNNN.png, Q or Esc quits.");
+  app.footer(std::string("Keys: ") + kKeys + ".");
   std::string source, screenshot;
-  int views = 32, rows = 1, startView = 0, startScanline = 0;
+  int views = 32, rows = 1;
+  std::optional<int> startView, startScanline;
   std::pair<int, int> size{320, 240};
   BackendFlags backend;
-  app.add_option("DIR|SCENE", source, "a rendered set or a scene to render")->required();
-  app.add_option("--view", startView, "start at this view")->check(CLI::NonNegativeNumber);
-  app.add_option("--scanline", startScanline, "start at this scanline")->check(CLI::NonNegativeNumber);
+  app.add_option("DIR|QUILT|SCENE", source,
+                 "a rendered set, a quilt image (..._qs{C}x{R}a{aspect}.png) or a scene to render")
+      ->required();
+  app.add_option("--view", startView, "start at this view (default: the middle one)")->check(CLI::NonNegativeNumber);
+  app.add_option("--scanline", startScanline, "start at this scanline (default: the middle of the object)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--screenshot", screenshot, "draw one frame, save it, exit (for tests, under Xvfb)")
       ->type_name("FILE");
   addViewCountOptions(app, views, rows);
@@ -262,8 +322,10 @@ int runView(int argc, char** argv) {
   const bool shot = !screenshot.empty();
   ViewSet set;
   std::unique_ptr<GlfwWindow> window;
-  if (fs::is_directory(source)) {
-    set = loadSet(source);
+  const bool quilt = fs::is_regular_file(source) && fs::path(source).filename().string().find("_qs") != std::string::npos;
+  if (fs::is_directory(source) || quilt) {
+    set = quilt ? loadQuilt(source) : loadSet(source);
+    checkStart(set, startView, startScanline);
     window = GlfwWindow::open(set.width, set.height + std::min(set.views, 512), "mvr view", false);
   } else {  // live: render the scene in this window's context
     const BackendOptions options = backend.resolve();
@@ -274,6 +336,7 @@ int runView(int argc, char** argv) {
     set.width = w;
     set.height = h;
     set.images.assign(set.rows, std::vector<Image>(set.views));
+    checkStart(set, startView, startScanline);
     window = GlfwWindow::open(w, h + std::min(set.views, 512), "mvr view", false);
     ShearingCamera cam(cameraFor(scene, w, h), w, h, set.views, set.rows);
     auto renderer = makeRenderer(options, scene, PixelType::Srgb8);
@@ -285,7 +348,9 @@ int runView(int argc, char** argv) {
     renderer->render(cam, reorder ? static_cast<FrameSink&>(*reorder) : collect, stats);
   }
   toDisplay(set);
-  Viewer viewer(std::move(set), *window, startView, startScanline, !shot);
+  const int view = startView.value_or(set.views / 2);
+  const int scanline = startScanline.value_or(objectMiddleRow(set.images[0][view]));
+  Viewer viewer(std::move(set), *window, view, scanline, !shot);
   if (shot) {
     viewer.draw();
     writeImage(viewer.screenshot(), screenshot);

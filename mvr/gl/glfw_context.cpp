@@ -18,7 +18,7 @@ GlfwWindow::~GlfwWindow() {
 
 std::unique_ptr<GlfwWindow> GlfwWindow::open(int width, int height, const std::string& title,
                                              bool visible) {
-  if (!glfwInit()) fail("glfw", "cannot initialise (no display? set DISPLAY or use --gl egl)");
+  if (!glfwInit()) fail("glfw", "cannot initialise: no display (set DISPLAY, or run under xvfb-run; rendering alone needs no display with --gl egl)");
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);

@@ -12,8 +12,21 @@
 namespace mvr {
 namespace {
 
+// What the viewer shows of a stored pixel: over black, opaque (the sets
+// here have hard edges, alpha 0 or 1).
+Image overBlack(const Image& in) {
+  Image out = in;
+  for (size_t i = 0; i < out.bytes.size(); i += 4) {
+    if (out.bytes[i + 3] == 0) out.bytes[i] = out.bytes[i + 1] = out.bytes[i + 2] = 0;
+    out.bytes[i + 3] = 255;
+  }
+  return out;
+}
+
+bool haveXvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0; }
+
 TEST(Viewer, ScreenshotShowsTheViewAndItsEpi) {
-  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "no xvfb-run";
+  if (!haveXvfb()) GTEST_SKIP() << "no xvfb-run";
   auto set = test::freshDir("viewer_set");
   ASSERT_EQ(test::runMvr("render --views 7 --size 64x48 --out " + set.string()).status, 0);
   const std::string shot = (set / "shot.png").string();
@@ -23,14 +36,61 @@ TEST(Viewer, ScreenshotShowsTheViewAndItsEpi) {
   Image s = readImage(shot);
   ASSERT_EQ(s.width, 64);
   ASSERT_EQ(s.height, 48 + 7);
-  Image view = readImage((set / "view_0003.png").string());
+  Image view = overBlack(readImage((set / "view_0003.png").string()));
   for (int y = 0; y < 48; ++y) ASSERT_EQ(0, std::memcmp(s.row(y), view.row(y), view.rowBytes())) << y;
   for (int i = 0; i < 7; ++i) {
     char name[32];
     std::snprintf(name, sizeof name, "view_%04d.png", i);
-    Image vi = readImage((set / name).string());
+    Image vi = overBlack(readImage((set / name).string()));
     ASSERT_EQ(0, std::memcmp(s.row(48 + i), vi.row(30), vi.rowBytes())) << "EPI row " << i;
   }
+}
+
+// A quilt opens as its views; with no --view or --scanline the viewer
+// starts on the middle view and the middle of the object's rows.
+TEST(Viewer, OpensAQuiltOnTheMiddleOfTheObject) {
+  if (!haveXvfb()) GTEST_SKIP() << "no xvfb-run";
+  auto set = test::freshDir("viewer_quilt");
+  ASSERT_EQ(test::runMvr("render --views 6 --size 32x24 --quilt 3x2 --out " + set.string()).status, 0);
+  const std::string shot = (set / "shot.png").string();
+  auto r = test::shell("xvfb-run -a " + test::mvrBinary() + " view " + (set / "quilt_qs3x2a1.33.png").string() +
+                       " --screenshot " + shot);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Image s = readImage(shot);
+  ASSERT_EQ(s.width, 32);
+  ASSERT_EQ(s.height, 24 + 6);
+  const Image middle = overBlack(readImage((set / "view_0003.png").string()));
+  for (int y = 0; y < 24; ++y) ASSERT_EQ(0, std::memcmp(s.row(y), middle.row(y), middle.rowBytes())) << y;
+  const Image stored = readImage((set / "view_0003.png").string());
+  int first = -1, last = -1;
+  for (int y = 0; y < stored.height; ++y)
+    for (int x = 0; x < stored.width; ++x)
+      if (stored.row(y)[x * 4 + 3] != 0) {
+        if (first < 0) first = y;
+        last = y;
+        break;
+      }
+  ASSERT_GE(first, 0);
+  const int scanline = (first + last) / 2;
+  for (int i = 0; i < 6; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "view_%04d.png", i);
+    const Image vi = overBlack(readImage((set / name).string()));
+    ASSERT_EQ(0, std::memcmp(s.row(24 + i), vi.row(scanline), vi.rowBytes())) << "EPI row " << i;
+  }
+}
+
+TEST(Viewer, StartsOutsideTheSetAreErrors) {
+  auto set = test::freshDir("viewer_clamp");
+  ASSERT_EQ(test::runMvr("render --views 4 --size 32x24 --out " + set.string()).status, 0);
+  for (const char* bad : {"--view 4", "--scanline 24"}) {
+    auto r = test::runMvr("view " + set.string() + " " + bad + " --screenshot " + (set / "x.png").string());
+    EXPECT_NE(r.status, 0) << bad;
+    EXPECT_NE(r.err.find(std::string(bad).substr(0, std::string(bad).find(' '))), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("beyond"), std::string::npos) << r.err;
+  }
+  auto r = test::runMvr("view " + (set / "view_0000.png").string());
+  EXPECT_NE(r.status, 0);
 }
 
 TEST(Viewer, NotASetIsAnError) {
