@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <istream>
 #include <new>
+#include <optional>
 
 #include "apps/cli.h"
 #include "apps/memory_check.h"
@@ -42,6 +43,8 @@ int consume(int argc, char** argv) {
   mvr::preloadImageCodec();  // loads while the stream arrives
   const mvr::EpiStreamHeader& h = reader.header();
   const mvr::PixelType type = h.pixelType();
+  std::optional<mvr::ShearingCamera> camera;  // checked before any output
+  if (h.camera) camera.emplace(h.camera->spec, int(h.width), int(h.height), int(h.views), int(h.rows));
   if (format.empty()) format = mvr::isByteType(type) ? "png" : "exr";
   const size_t viewBytes = h.epiBytes() / h.views * h.height, rowBytes = h.epiBytes() * h.height;
   const mvr::ReorderMemory reorder =
@@ -61,6 +64,8 @@ int consume(int argc, char** argv) {
   }
   writer.manifest().info = {{"source", "stream " + from},
                             {"timings_s", {{"total", watch.seconds()}}}};
+  // The producer's camera: the same per-view cameras as its own manifest.
+  if (camera) writer.manifest().setCamera(*camera, h.camera->imagePlaneZ);
   writer.commit();
   std::fprintf(stderr, "mvr-consume: %zu EPIs -> %u views in %s%s\n", frames, h.views * h.rows,
                out.c_str(), views.transpose().scratchNote().c_str());

@@ -43,7 +43,7 @@ bool isPlainFile(const std::string& endpoint) {
 
 // EPIs to a file, stdout or socket as they complete, through a bounded
 // queue. A file is written under a temporary name and renamed when done.
-int streamTo(Renderer& renderer, const ShearingCamera& cam, const Supersampling& aa,
+int streamTo(Renderer& renderer, const ShearingCamera& cam, double imagePlaneZ, const Supersampling& aa,
              const std::string& endpoint, PixelType type, int queue, const ReorderMemory& memory,
              const std::optional<glm::vec4>& background) {
   namespace fs = std::filesystem;
@@ -54,6 +54,8 @@ int streamTo(Renderer& renderer, const ShearingCamera& cam, const Supersampling&
   EpiStreamHeader header{uint32_t(cam.width()), uint32_t(cam.height()), uint32_t(cam.views()),
                          uint32_t(cam.rows()), 4, uint32_t(Image::channelBytes(type)),
                          type == PixelType::Srgb8};
+  header.camera = StreamCamera{cam.spec(), imagePlaneZ};
+  header.camera->spec.planeHeight = cam.planeHeight();
   Stopwatch watch;
   size_t highWater = 0;
   std::string note;
@@ -367,7 +369,7 @@ int runRender(int argc, char** argv, RenderCommand command) {
   if (scratch && streaming) checkScratchFits(rowBytes, reorder.scratchDir);
 
   const std::optional<glm::vec4> background = f.camera.backgroundColor();
-  if (streaming) return streamTo(*renderer, camera, f.aa, f.stream, type, f.queue, reorder, background);
+  if (streaming) return streamTo(*renderer, camera, imagePlaneZ, f.aa, f.stream, type, f.queue, reorder, background);
 
   ImageSetWriter writer(out, Manifest{.views = views, .rows = rows, .width = width, .height = height,
                                      .format = format, .order = order, .bits = bits,

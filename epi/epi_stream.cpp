@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 
 #include "mvr/camera.h"
@@ -12,6 +13,10 @@ namespace {
 
 constexpr char kMagic[8] = {'M', 'V', 'R', 'E', 'P', 'I', '0', '1'};
 constexpr uint32_t kHeaderBytes = 64;
+// The camera block after the fixed header: distance, plane width and
+// height, track left and right, row top and bottom, near, far, image plane z.
+constexpr uint32_t kCameraValues = 10;
+constexpr uint32_t kHeaderWithCameraBytes = kHeaderBytes + 8 * kCameraValues;
 
 void putU32(uint8_t* p, uint32_t v) {
   for (int i = 0; i < 4; ++i) p[i] = uint8_t(v >> (8 * i));
@@ -19,17 +24,49 @@ void putU32(uint8_t* p, uint32_t v) {
 uint32_t getU32(const uint8_t* p) {
   return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
 }
+void putF64(uint8_t* p, double v) {
+  uint64_t bits = 0;
+  std::memcpy(&bits, &v, 8);
+  for (int i = 0; i < 8; ++i) p[i] = uint8_t(bits >> (8 * i));
+}
+double getF64(const uint8_t* p) {
+  uint64_t bits = 0;
+  for (int i = 0; i < 8; ++i) bits |= uint64_t(p[i]) << (8 * i);
+  double v = 0;
+  std::memcpy(&v, &bits, 8);
+  return v;
+}
+
+std::array<double, kCameraValues> cameraValues(const StreamCamera& c) {
+  const CameraSpec& s = c.spec;
+  return {s.distance, s.planeWidth, s.planeHeight, s.trackLeft, s.trackRight,
+          s.rowTop,   s.rowBottom,  s.nearDistance, s.farDistance, c.imagePlaneZ};
+}
+
+StreamCamera cameraOf(const std::array<double, kCameraValues>& v) {
+  for (double x : v)
+    if (!std::isfinite(x)) fail("stream", "header camera holds a value that is not a finite number");
+  StreamCamera c;
+  c.spec = {v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]};
+  c.imagePlaneZ = v[9];
+  return c;
+}
 
 }  // namespace
 
 EpiStreamWriter::EpiStreamWriter(std::ostream& out, const EpiStreamHeader& h)
     : out_(out), header_(h) {
-  std::array<uint8_t, kHeaderBytes> bytes{};
+  std::array<uint8_t, kHeaderWithCameraBytes> bytes{};
+  const uint32_t size = h.camera ? kHeaderWithCameraBytes : kHeaderBytes;
   std::memcpy(bytes.data(), kMagic, 8);
-  const uint32_t fields[] = {kHeaderBytes, h.width, h.height, h.views, h.rows, h.channels,
+  const uint32_t fields[] = {size, h.width, h.height, h.views, h.rows, h.channels,
                              h.bytesPerChannel, h.srgb};
   for (size_t i = 0; i < std::size(fields); ++i) putU32(bytes.data() + 8 + 4 * i, fields[i]);
-  out_.write(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  if (h.camera) {
+    const auto values = cameraValues(*h.camera);
+    for (uint32_t i = 0; i < kCameraValues; ++i) putF64(bytes.data() + kHeaderBytes + 8 * i, values[i]);
+  }
+  out_.write(reinterpret_cast<const char*>(bytes.data()), size);
   if (!out_) fail("stream", "cannot write header");
 }
 
@@ -55,7 +92,9 @@ EpiStreamReader::EpiStreamReader(std::istream& in) : in_(in) {
   std::array<uint8_t, kHeaderBytes> bytes{};
   in_.read(reinterpret_cast<char*>(bytes.data()), bytes.size());
   if (!in_ || std::memcmp(bytes.data(), kMagic, 8) != 0) fail("stream", "not an MVREPI01 stream");
-  if (getU32(bytes.data() + 8) != kHeaderBytes) fail("stream", "unsupported header size");
+  const uint32_t size = getU32(bytes.data() + 8);
+  if (size != kHeaderBytes && size != kHeaderWithCameraBytes)
+    fail("stream", "unsupported header size " + std::to_string(size) + " (64 or 144)");
   header_.width = getU32(bytes.data() + 12);
   header_.height = getU32(bytes.data() + 16);
   header_.views = getU32(bytes.data() + 20);
@@ -79,6 +118,14 @@ EpiStreamReader::EpiStreamReader(std::istream& in) : in_(in) {
   within("height", header_.height, Limits::kMaxSide);
   within("views", header_.views, Limits::kMaxViews);
   within("rows", header_.rows, Limits::kMaxRows);
+  if (size == kHeaderWithCameraBytes) {
+    std::array<uint8_t, 8 * kCameraValues> block{};
+    in_.read(reinterpret_cast<char*>(block.data()), block.size());
+    if (size_t(in_.gcount()) != block.size()) fail("stream", "truncated header camera");
+    std::array<double, kCameraValues> values{};
+    for (uint32_t i = 0; i < kCameraValues; ++i) values[i] = getF64(block.data() + 8 * i);
+    header_.camera = cameraOf(values);
+  }
 }
 
 std::optional<EpiStreamReader::Frame> EpiStreamReader::next() {

@@ -3,9 +3,11 @@
 // process can consume them while rendering goes on and memory stays at one
 // EPI. Format (all integers little-endian uint32), docs/EPI_STREAM.md:
 //
-//   header, 64 bytes: "MVREPI01", header_bytes (64), width, height
+//   header, 64 bytes: "MVREPI01", header_bytes (64 or 144), width, height
 //                     (scanlines), views, rows, channels (4: RGBA),
-//                     bytes_per_channel (1: uint8, 4: float32), zero padding
+//                     bytes_per_channel (1: uint8, 4: float32),
+//                     color_encoding, zero padding; with 144, the camera
+//                     follows as ten little-endian float64 values
 //   then per row of views, per scanline in order:
 //                     row, scanline, then views x width x channels values:
 //                     EPI row i is view i's scanline, left to right.
@@ -14,14 +16,23 @@
 #include <optional>
 #include <ostream>
 
+#include "mvr/camera.h"
 #include "mvr/renderer.h"
 
 namespace mvr {
+
+// The camera a stream was rendered with, so a consumer can write the same
+// manifest (per-view cameras) the producer would have.
+struct StreamCamera {
+  CameraSpec spec;           // plane height resolved, never 0
+  double imagePlaneZ = 0.0;  // where the rig's image plane sits in the scene (--focal)
+};
 
 struct EpiStreamHeader {
   uint32_t width = 0, height = 0, views = 0, rows = 1, channels = 4, bytesPerChannel = 1;
   // 1: 8-bit colour is sRGB-encoded (Srgb8); 0: linear. Floats are linear.
   uint32_t srgb = 0;
+  std::optional<StreamCamera> camera;  // absent in 64-byte headers
   PixelType pixelType() const {
     return bytesPerChannel == 4 ? PixelType::F32 : srgb ? PixelType::Srgb8 : PixelType::U8;
   }

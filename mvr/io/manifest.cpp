@@ -71,7 +71,6 @@ void Manifest::setCamera(const ShearingCamera& cam, double imagePlaneZ) {
                     {"fov_deg", 2.0 * std::atan(0.5 * cam.planeWidth() / s.distance) * degrees},
                     {"image_plane", {cam.planeWidth(), cam.planeHeight()}},
                     {"track", {s.trackLeft, s.trackRight}},
-                    {"rows_track", {s.rowTop, s.rowBottom}},
                     {"near", s.nearDistance},
                     {"far", s.farDistance},
                     {"view_spacing", cam.viewSpacing()},
@@ -79,6 +78,9 @@ void Manifest::setCamera(const ShearingCamera& cam, double imagePlaneZ) {
                     {"axes", "world x right, y up, z toward the viewer; views look along -z from the "
                              "camera plane z = image_plane_z + distance to the image plane z = "
                              "image_plane_z"}};
+  // One row has one camera y, not a track.
+  if (cam.rows() > 1) info["camera"]["rows_track"] = {s.rowTop, s.rowBottom};
+  else info["camera"]["row_y"] = cam.rowY(0);
   // The rig renders with its image plane at z = 0 (the scene moved by
   // -imagePlaneZ); V and the eyes are given in the scene's own coordinates.
   const glm::dmat4 toRig = glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, -imagePlaneZ));

@@ -79,8 +79,12 @@ RgbdSet loadMvrSet(const std::string& dir) {
     set.camera.planeHeight = c.at("image_plane").at(1).get<double>();
     set.camera.trackLeft = c.at("track").at(0).get<double>();
     set.camera.trackRight = c.at("track").at(1).get<double>();
-    set.camera.rowTop = c.at("rows_track").at(0).get<double>();
-    set.camera.rowBottom = c.at("rows_track").at(1).get<double>();
+    if (c.contains("row_y")) {
+      set.camera.rowTop = set.camera.rowBottom = c.at("row_y").get<double>();
+    } else {
+      set.camera.rowTop = c.at("rows_track").at(0).get<double>();
+      set.camera.rowBottom = c.at("rows_track").at(1).get<double>();
+    }
     set.camera.nearDistance = c.at("near").get<double>();
     set.camera.farDistance = c.at("far").get<double>();
   } catch (const nlohmann::json::exception&) {

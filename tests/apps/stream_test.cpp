@@ -2,6 +2,10 @@
 // assembles equal the image set `mvr render` writes.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
 #include "mvr/io/compare.h"
 #include "tests/support/cli.h"
 
@@ -25,6 +29,24 @@ TEST(Stream, PipeProducerToConsumer) {
   expectSameSet(ref, got);
 }
 
+// The consumer's manifest carries the producer's camera: the same per-view
+// cameras `mvr render` records for the same command line.
+TEST(Stream, ConsumerManifestHasTheRenderCameras) {
+  auto ref = test::freshDir("stream_cam_ref"), got = test::freshDir("stream_cam_got");
+  const std::string args = kArgs + " --cone 30 --focal center";
+  ASSERT_EQ(test::runMvr("render" + args + " --out " + ref.string()).status, 0);
+  auto r = test::shell(test::mvrBinary() + " stream" + args + " --to - | " + test::consumeBinary() +
+                       " --from - --out " + got.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto a = nlohmann::json::parse(std::ifstream(ref / "manifest.json"));
+  const auto b = nlohmann::json::parse(std::ifstream(got / "manifest.json"));
+  ASSERT_TRUE(b.contains("cameras")) << b.dump();
+  EXPECT_EQ(a["cameras"], b["cameras"]);
+  EXPECT_EQ(a["camera"], b["camera"]);
+  EXPECT_FALSE(b["camera"].contains("rows_track"));  // one row: its y, not a track
+  EXPECT_TRUE(b["camera"].contains("row_y"));
+}
+
 TEST(Stream, UnixSocketProducerToListeningConsumer) {
   auto ref = test::freshDir("sock_ref"), got = test::freshDir("sock_got");
   const std::string sock = (std::filesystem::temp_directory_path() /
@@ -45,7 +67,7 @@ TEST(Stream, FileStreamAndTruncationIsReported) {
   ASSERT_EQ(test::runMvr("stream" + kArgs + " --to " + path).status, 0);
   EXPECT_FALSE(std::filesystem::exists(path + ".part"));
   const auto size = std::filesystem::file_size(path);
-  EXPECT_EQ(size, 64u + 40u * (8u + 56u * 6u * 4u));
+  EXPECT_EQ(size, 144u + 40u * (8u + 56u * 6u * 4u));  // the header with the camera
   std::filesystem::resize_file(path, size - 100);
   auto r = test::shell(test::consumeBinary() + " --from " + path + " --out " + (file / "out").string());
   EXPECT_NE(r.status, 0);

@@ -102,5 +102,46 @@ TEST(EpiStream, HostileStreamsAreOneLineErrors) {
     EXPECT_EQ(e.find('\n'), std::string::npos) << e;
 }
 
+// The camera travels in a 144-byte header; a 64-byte header has none.
+TEST(EpiStream, CameraTravelsInTheHeader) {
+  EpiStreamHeader h{4, 2, 3, 1, 4, 1};
+  CameraSpec spec;
+  spec.distance = 5.5, spec.planeWidth = 1.5, spec.planeHeight = 1.25, spec.trackLeft = -0.75;
+  spec.trackRight = 0.5, spec.rowTop = 0.25, spec.rowBottom = -0.125, spec.nearDistance = 0.5;
+  spec.farDistance = 9.0;
+  h.camera = StreamCamera{spec, 0.375};
+  std::stringstream s;
+  {
+    EpiStreamWriter w(s, h);
+    w.putEpi(0, 0, Image(4, 3, PixelType::U8));
+    w.putEpi(0, 1, Image(4, 3, PixelType::U8));
+  }
+  const std::string bytes = s.str();
+  EXPECT_EQ(bytes.size(), 144u + 2u * (8u + 4u * 3u * 4u));
+  std::stringstream in(bytes);
+  EpiStreamReader r(in);
+  ASSERT_TRUE(r.header().camera);
+  const CameraSpec& got = r.header().camera->spec;
+  EXPECT_EQ(got.distance, 5.5);
+  EXPECT_EQ(got.planeHeight, 1.25);
+  EXPECT_EQ(got.trackLeft, -0.75);
+  EXPECT_EQ(got.rowBottom, -0.125);
+  EXPECT_EQ(got.farDistance, 9.0);
+  EXPECT_EQ(r.header().camera->imagePlaneZ, 0.375);
+  int frames = 0;
+  while (r.next()) ++frames;
+  EXPECT_EQ(frames, 2);
+  std::stringstream plain(streamOf({{0, 0}, {0, 1}}));
+  EXPECT_FALSE(EpiStreamReader(plain).header().camera);
+  // A camera value that is not a number, and a header of another size.
+  std::string nan = bytes;
+  for (int k = 0; k < 8; ++k) nan[64 + k] = char(0xFF);
+  EXPECT_NE(errorOf(nan).find("not a finite number"), std::string::npos) << errorOf(nan);
+  std::string odd = bytes;
+  odd[8] = char(100);
+  EXPECT_NE(errorOf(odd).find("unsupported header size 100"), std::string::npos) << errorOf(odd);
+  EXPECT_NE(errorOf(bytes.substr(0, 100)).find("truncated header camera"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace mvr
