@@ -491,6 +491,31 @@ TEST(Cli, AntialiasingKeepsTheSizeAndSaysHow) {
   EXPECT_TRUE(fs::exists(d / "view_0003.png")) << "a failed render leaves the set alone";
 }
 
+// Issue 19's done-when: a bare mesh to a Looking Glass quilt with a 40
+// degree cone and the focal plane through the object's centre, in one
+// command; the quilt carries its metadata and the viewer opens it.
+TEST(Cli, FromABareMeshToALookingGlassQuiltInOneCommand) {
+  const fs::path d = outDir("lkg_one_command");
+  Result r = run("render " + test::assetsDir() + "/teacup_4k.ply --quilt portrait --size 42x56 --cone 40 "
+                 "--focal center --quilt-only --out " + d.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto m = nlohmann::json::parse(std::ifstream(d / "manifest.json"));
+  EXPECT_NEAR(m["camera"]["cone_deg"].get<double>(), 40.0, 1e-9);
+  EXPECT_EQ(m["views"], 48);
+  const fs::path quilt = d / m["quilt"].get<std::string>();
+  const auto lkg = nlohmann::json::parse(mvr::readImageAttribute(quilt.string(), "Exif:UserComment"));
+  EXPECT_EQ(lkg["LKGNumViews"], 48);
+  EXPECT_EQ(lkg["LKGColumns"], 8);
+  EXPECT_EQ(lkg["LKGRows"], 6);
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "no xvfb-run";
+  const auto viewed = test::shell("xvfb-run -a " + test::mvrBinary() + " view " + quilt.string() +
+                                  " --screenshot " + (d / "shot.png").string());
+  ASSERT_EQ(viewed.status, 0) << viewed.err;
+  const mvr::Image shot = mvr::readImage((d / "shot.png").string());
+  EXPECT_EQ(shot.width, 42);
+  EXPECT_EQ(shot.height, 56 + 48);
+}
+
 TEST(Cli, BenchPlotsAgainFromItsJson) {
   const fs::path d = outDir("replot");
   fs::create_directories(d);
