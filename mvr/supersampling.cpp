@@ -33,26 +33,54 @@ ShearingCamera supersampledCamera(const ShearingCamera& camera, const Supersampl
 namespace {
 
 // Adds row y of in, premultiplied and in linear light, into out: input
-// pixel x lands in output pixel x / s. The hot loop of anti-aliasing.
-void addRow(const Image& in, int y, int s, float* out) {
+// pixels s x .. s x + s - 1 land in output pixel x. The hot loop of
+// anti-aliasing: the decode is chosen once per row, not per sample.
+template <class Decode>
+void addRowAs(const Image& in, int y, int s, float* out, Decode&& decode) {
   const uint8_t* bytes = in.row(y);
-  const std::array<float, 256>& srgb = detail::srgb8Table().decoded;
-  for (int x = 0; x < in.width; ++x) {
-    float c[4];
-    if (in.type == PixelType::F32) {
-      std::memcpy(c, bytes + size_t(x) * 16, sizeof c);
-    } else {
-      const uint8_t* p = bytes + size_t(x) * 4;
-      const bool encoded = in.type == PixelType::Srgb8;
-      for (int i = 0; i < 3; ++i) c[i] = encoded ? srgb[p[i]] : p[i] / 255.0f;
-      c[3] = p[3] / 255.0f;
+  const int outWidth = in.width / s;
+  for (int x = 0, i = 0; x < outWidth; ++x) {
+    float* o = out + size_t(x) * 4;
+    for (int k = 0; k < s; ++k, ++i) {
+      float c[4];
+      decode(bytes, i, c);
+      o[0] += c[0] * c[3];
+      o[1] += c[1] * c[3];
+      o[2] += c[2] * c[3];
+      o[3] += c[3];
     }
-    float* o = out + (x / s) * 4;
-    o[0] += c[0] * c[3];
-    o[1] += c[1] * c[3];
-    o[2] += c[2] * c[3];
-    o[3] += c[3];
   }
+}
+
+void addRow(const Image& in, int y, int s, float* out) {
+  switch (in.type) {
+    case PixelType::F32:
+      addRowAs(in, y, s, out, [](const uint8_t* b, int i, float* c) { std::memcpy(c, b + size_t(i) * 16, 16); });
+      break;
+    case PixelType::Srgb8: {
+      const std::array<float, 256>& srgb = detail::srgb8Table().decoded;
+      addRowAs(in, y, s, out, [&srgb](const uint8_t* b, int i, float* c) {
+        const uint8_t* p = b + size_t(i) * 4;
+        c[0] = srgb[p[0]], c[1] = srgb[p[1]], c[2] = srgb[p[2]], c[3] = p[3] * (1.0f / 255);
+      });
+      break;
+    }
+    default:
+      addRowAs(in, y, s, out, [](const uint8_t* b, int i, float* c) {
+        const uint8_t* p = b + size_t(i) * 4;
+        for (int j = 0; j < 4; ++j) c[j] = p[j] * (1.0f / 255);
+      });
+  }
+}
+
+// body(y) for every row y in [0, rows), in blocks of rows on the pool.
+template <class Body>
+void forRowBlocks(int rows, Body&& body) {
+  constexpr int kRowsPerTask = 16;
+  parallelFor(0, (rows + kRowsPerTask - 1) / kRowsPerTask, [&](int task) {
+    const int end = std::min(rows, (task + 1) * kRowsPerTask);
+    for (int y = task * kRowsPerTask; y < end; ++y) body(y);
+  });
 }
 
 }  // namespace
@@ -72,13 +100,9 @@ void SupersampleSink::accumulate(Pending& p, const Image& in, int outWidth, int 
   if (in.width != outWidth * s || in.height != outHeight * rowFactor)
     throw std::logic_error("supersampled frame of the wrong size");
   // Output rows are independent: each takes rowFactor input rows.
-  constexpr int kRowsPerTask = 16;
-  parallelFor(0, (outHeight + kRowsPerTask - 1) / kRowsPerTask, [&](int task) {
-    const int end = std::min(outHeight, (task + 1) * kRowsPerTask);
-    for (int y = task * kRowsPerTask; y < end; ++y) {
-      float* out = p.sums.data() + size_t(y) * outWidth * 4;
-      for (int k = 0; k < rowFactor; ++k) addRow(in, y * rowFactor + k, s, out);
-    }
+  forRowBlocks(outHeight, [&](int y) {
+    float* out = p.sums.data() + size_t(y) * outWidth * 4;
+    for (int k = 0; k < rowFactor; ++k) addRow(in, y * rowFactor + k, s, out);
   });
   ++p.frames;
 }
@@ -86,12 +110,13 @@ void SupersampleSink::accumulate(Pending& p, const Image& in, int outWidth, int 
 Image SupersampleSink::resolve(const Pending& p, int outWidth, int outHeight, PixelType type) const {
   Image out(outWidth, outHeight, type);
   const float samples = float(aa_.samplesPerPixel());
-  for (int y = 0; y < outHeight; ++y)
+  forRowBlocks(outHeight, [&](int y) {
     for (int x = 0; x < outWidth; ++x) {
       const float* c = p.sums.data() + (size_t(y) * outWidth + x) * 4;
       const glm::vec3 rgb = c[3] > 0.0f ? glm::vec3(c[0], c[1], c[2]) / c[3] : glm::vec3(0.0f);
       out.setLinear(x, y, glm::vec4(rgb, c[3] / samples));
     }
+  });
   return out;
 }
 
