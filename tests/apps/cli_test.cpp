@@ -541,7 +541,25 @@ TEST(Cli, BenchPlotsAgainFromItsJson) {
 }
 
 TEST(Cli, HelpForEverySubcommand) {
-  for (std::string c : {"info", "render", "compare", "bench"}) EXPECT_EQ(run(c + " --help").status, 0) << c;
+  for (std::string c : {"info", "render", "stream", "synthesize", "view", "compare", "bench"})
+    EXPECT_EQ(run(c + " --help").status, 0) << c;
+}
+
+// Issue 19's small things: a repeated option and an option that swallows
+// the next one are one-line errors naming it; the summary names views and
+// the back end once, after one prefix.
+TEST(Cli, RepeatedOptionsAndTheSummaryLine) {
+  const fs::path d = outDir("polish");
+  for (const char* bad : {"--views 3 --views 4", "--views --out"}) {
+    Result e = run(std::string("render --size 16x12 ") + bad + " " + d.string());
+    EXPECT_NE(e.status, 0) << bad;
+    EXPECT_EQ(e.err.rfind("mvr: --views", 0), 0u) << bad << ": " << e.err;
+    EXPECT_EQ(std::count(e.err.begin(), e.err.end(), '\n'), 1) << bad << ": " << e.err;
+  }
+  Result r = run("render --backend svr --views 2 --size 16x12 --out " + d.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.rfind("mvr: rendered 2 views of 16x12 with svr to ", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.find("mvr: mvr"), std::string::npos) << r.err;
 }
 
 TEST(Cli, VersionPrintsTheProjectVersion) {
