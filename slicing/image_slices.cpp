@@ -63,6 +63,7 @@ class LayerSlicer {
         options_.coalesce > 0.0f
             ? std::min(coalesceDepthRange(cam_, layer.eye.x, options_.coalesce), std::numeric_limits<float>::max())
             : -1.0f;
+    join_ = std::min(coalesceDepthRange(cam_, layer.eye.x, options_.join), std::numeric_limits<float>::max());
     const bool split = highlights_ && layer.normals.size() == layer.depth.size();
     std::vector<uint8_t> alone(split ? w : 0);
     for (int j = first; j < last; ++j) {
@@ -94,17 +95,17 @@ class LayerSlicer {
   void addRun(const SourceLayer& layer, int j, int x, int n) {
     const float* depth = layer.depth.data() + size_t(j) * cam_.width();
     const float d0 = depth[x], slope = n > 1 ? (depth[x + n - 1] - d0) / float(n - 1) : 0.0f;
-    const float o = options_.overlap;
+    const float oL = widening(depth, x, x - 1), oR = widening(depth, x + n - 1, x + n);
     texels_.clear();
     for (int k = 0; k < n; ++k) texels_.push_back(glm::vec4(glm::vec3(layer.color.pixel(x + k, j)), 1.0f));
     const auto base = uint32_t(out_.vertices.vertexCount());
     const glm::vec3 c(texels_[0]);
-    for (float at : {-o, float(n) + o})  // pixel offsets of the two ends from x
+    for (float at : {-oL, float(n) + oR})  // pixel offsets of the two ends from x
       transform_.add(cam_.unprojectAt(layer.eye.x, layer.eye.y, {x + at, j + 0.5, d0 + (at - 0.5f) * slope}),
                      c, c, nullptr);
     out_.vertices.triangles.push_back({base, base + 1, base + 1});
-    SliceVector vector{out_.vertices.vectorTexels.addTexels(texels_), n, -o / float(n),
-                       1.0f + o / float(n)};
+    SliceVector vector{out_.vertices.vectorTexels.addTexels(texels_), n, -oL / float(n),
+                       1.0f + oR / float(n)};
     if (n == 1 && highlights_ && !layer.normals.empty()) {
       const glm::vec4 normal = layer.normals[size_t(j) * cam_.width() + x];
       const glm::vec3 p(cam_.unprojectAt(layer.eye.x, layer.eye.y, {x + 0.5, j + 0.5, d0}));
@@ -118,6 +119,16 @@ class LayerSlicer {
     out_.pixels += size_t(n);
   }
 
+  // The overlap toward pixel `to` from the run's end pixel `from`: only
+  // where `to` is covered and continues the surface or lies in front
+  // (reversed Z: a larger window depth is nearer). Beyond the image's
+  // edge the surface may go on: widened as before.
+  float widening(const float* depth, int from, int to) const {
+    if (to < 0 || to >= cam_.width()) return options_.overlap;
+    if (depth[to] == 0.0f) return 0.0f;
+    return depth[to] >= depth[from] || depth[from] - depth[to] <= join_ ? options_.overlap : 0.0f;
+  }
+
   static uint32_t materialOf(const glm::vec4& normal) { return uint32_t(std::max(0.0f, normal.w) + 0.5f); }
 
   const ShearingCamera& cam_;
@@ -126,6 +137,7 @@ class LayerSlicer {
   ExtremeTransform transform_;
   std::optional<HighlightSplitter> highlights_;
   std::vector<glm::vec4> texels_;
+  float join_ = 0.0f;  // the layer's depth step between neighbours of one surface
 };
 
 }  // namespace

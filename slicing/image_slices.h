@@ -7,9 +7,16 @@
 // the depth test resolving overlaps between pixels and layers.
 //
 // A slice spans its pixels' footprint at their own depth, widened by
-// `overlap` pixels on each side so that neighbours at slightly different
-// depths do not open one-pixel cracks as the view moves away from the
-// source; the depth test settles the overlap. Its colours are a 1-D
+// `overlap` pixels toward a neighbour that continues its surface or lies
+// in front of it, so that neighbours at slightly different depths do not
+// open one-pixel cracks as the view moves away from the source; the depth
+// test settles the overlap. Toward an empty pixel, or one farther away
+// than a surface could be (a depth discontinuity), the slice ends on its
+// pixel's boundary: silhouettes stay where the source saw them instead of
+// growing by the overlap in every view (issue 18). At the image's edge the
+// slice widens, as the surface may go on beyond it. A neighbour continues
+// the surface when the two move apart by at most `join` pixels over the
+// track (the measure coalescing uses). Its colours are a 1-D
 // texture vector of its pixels (Halle 6.5.3): a slice's screen parameter
 // names the same surface point in every view, so the run's pixels, taken
 // at their source-view screen positions, are already that vector.
@@ -31,7 +38,7 @@
 namespace mvr {
 
 struct ImageSliceOptions {
-  float overlap = 0.25f;  // footprint widening per side, pixels
+  float overlap = 0.25f;  // footprint widening toward connected neighbours, pixels
   float coalesce = 0.0f;  // largest added displacement, pixels; 0: a slice per pixel
   // Split tracks for highlights (slicing/highlight_splits.h): with a scene
   // and layers that carry normals, every pixel of a specular material is
@@ -41,6 +48,7 @@ struct ImageSliceOptions {
   // Scanlines per task: bands are sliced in parallel and joined in
   // scanline order, so the table is the same for any band size.
   int bandRows = 8;
+  float join = 1.0f;  // relative motion over the track of one surface's neighbours, pixels
 };
 
 struct ImageSlices {

@@ -23,7 +23,9 @@ layout(std430, binding = 0) readonly buffer Depth { float uDepth[]; };
 layout(std430, binding = 1) readonly buffer Color { vec4 uColor[]; };
 layout(std430, binding = 2) buffer Mips { vec2 uMips[]; };  // per layer scanline: levels 1.. packed
 layout(std430, binding = 3) buffer Flags { uint uFlags[]; };
-layout(std430, binding = 4) readonly buffer Layers { dvec2 uLayers[]; };  // shift per unit Z/w, depth tolerance
+// Per layer: x shift per unit Z/w, coalescing's depth tolerance, the depth
+// step between neighbours of one surface (ImageSliceOptions::join).
+layout(std430, binding = 4) readonly buffer Layers { dvec4 uLayers[]; };
 uniform int uWidth;
 uniform int uHeight;
 uniform int uLayerCount;
@@ -116,6 +118,16 @@ void writeEnd(uint vertex, float x, float d, double shift, vec3 c) {
   for (uint c3 = 0u; c3 < 3u; ++c3) uRecords[at + 4u + c3] = uRecords[at + 7u + c3] = c[c3] * invW;
 }
 
+// The overlap toward pixel `to` from a run's end pixel `from`, as
+// LayerSlicer::widening: only toward a covered pixel that continues the
+// surface or lies in front (reversed Z).
+float widening(int k, int j, int from, int to) {
+  if (to < 0 || to >= uWidth) return uOverlap;
+  float a = uDepth[pixelIndex(k, j, from)], b = uDepth[pixelIndex(k, j, to)];
+  if (b == 0.0) return 0.0;
+  return b >= a || a - b <= float(uLayers[k].z) ? uOverlap : 0.0;
+}
+
 void main() {
   int x = int(gl_GlobalInvocationID.x), j = int(gl_GlobalInvocationID.y), k = int(gl_GlobalInvocationID.z);
   if (x >= uWidth) return;
@@ -124,15 +136,15 @@ void main() {
   uint slot = uFlags[flagIndex(k, j, x)], p = pixelIndex(k, j, x);
   int n = 1 << level;
   float d0 = uDepth[p], slope = n > 1 ? (uDepth[p + uint(n - 1)] - d0) / float(n - 1) : 0.0;
-  float o = uOverlap;
+  float oL = widening(k, j, x, x - 1), oR = widening(k, j, x + n - 1, x + n);
   double shift = uLayers[k].x;
   vec3 c = uColor[p].rgb;
-  writeEnd(2u * slot, float(x) - o, d0 + (-o - 0.5) * slope, shift, c);
-  writeEnd(2u * slot + 1u, float(x + n) + o, d0 + (float(n) + o - 0.5) * slope, shift, c);
+  writeEnd(2u * slot, float(x) - oL, d0 + (-oL - 0.5) * slope, shift, c);
+  writeEnd(2u * slot + 1u, float(x + n) + oR, d0 + (float(n) + oR - 0.5) * slope, shift, c);
   uSlices[slot] = uvec4(slot, 0u, 0u, 256u);  // a segment
   uTriangles[slot] = uvec4(2u * slot, 2u * slot + 1u, 2u * slot + 1u, 0u);
   uint base = uOwnTexels ? 2u * p : p;
-  uVectors[slot] = uvec4(base, uint(n), floatBitsToUint(-o / float(n)), floatBitsToUint(1.0 + o / float(n)));
+  uVectors[slot] = uvec4(base, uint(n), floatBitsToUint(-oL / float(n)), floatBitsToUint(1.0 + oR / float(n)));
   if (!uOwnTexels) return;
   // Level 0 and its box-filtered MIP chain (TextureVectors::addTexels).
   for (int i = 0; i < n; ++i) uTexels[base + uint(i)] = vec4(uColor[p + uint(i)].rgb, 1.0);
@@ -172,13 +184,14 @@ GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingC
   // depth range a run may span (coalesceDepthRange; never infinite, so
   // that a block with an empty pixel never passes).
   const double perPlane = w / cam.planeWidth(), left = cam.viewX(0);
-  std::vector<glm::dvec2> perLayer(std::max(count, 1));
+  std::vector<glm::dvec4> perLayer(std::max(count, 1));
   for (int k = 0; k < count; ++k) {
     const double x = layers.eye(k).x;
     const float tolerance = coalesce ? std::min(coalesceDepthRange(cam, x, options.coalesce),
                                                 std::numeric_limits<float>::max())
                                      : -1.0f;
-    perLayer[k] = glm::dvec2((x - left) * perPlane, tolerance);
+    const float join = std::min(coalesceDepthRange(cam, x, options.join), std::numeric_limits<float>::max());
+    perLayer[k] = glm::dvec4((x - left) * perPlane, tolerance, join, 0.0);
   }
   const gl::Buffer layerInfo = gl::makeBuffer(perLayer.data(), perLayer.size());
   const size_t pixels = layers.pixelsPerLayer() * size_t(count);

@@ -112,6 +112,26 @@ TEST(ImageSlices, CoalescingMergesAlignedRunsOfCloseDepth) {
   EXPECT_EQ(sliceSourceLayers({c.layer}, c.cam, 0, {.coalesce = 2.7f}).table.sliceCount(), 4u);
 }
 
+// Footprints widen only toward a neighbour of the same surface or one in
+// front: a silhouette pixel ends on its pixel boundary (issue 18).
+TEST(ImageSlices, SilhouettesKeepThePixelBoundary) {
+  RunCase c;
+  c.set(3, 0.0, 0.5f);  // alone between empty pixels
+  c.set(7, 0.0, 0.5f);
+  c.set(8, 0.0, 0.5f);  // continues 7: they widen toward each other
+  c.set(9, 1.0, 0.5f);  // a unit in front of 8, 8/3 pixels of parallax over the track
+  const ImageSlices s = sliceSourceLayers({c.layer}, c.cam, 0, {.overlap = 0.25f});
+  ASSERT_EQ(s.table.sliceCount(), 4u);
+  const float want[4][2] = {{3.0f, 4.0f}, {7.0f, 8.25f}, {7.75f, 9.25f}, {9.0f, 10.0f}};
+  for (int k = 0; k < 4; ++k) {
+    auto [e0, e1] = sliceEnds(s.vertices, s.table.scanline(0)[size_t(k)]);
+    EXPECT_NEAR(e0.x0 + e0.dx, want[k][0], 1e-4f) << k;  // the middle view is the source
+    EXPECT_NEAR(e1.x0 + e1.dx, want[k][1], 1e-4f) << k;
+    const SliceVector& v = s.vertices.vectors[size_t(k)];
+    EXPECT_FLOAT_EQ(v.u0, want[k][0] - std::floor(want[k][0] + 0.5f));
+  }
+}
+
 TEST(ImageSlices, ARunOnATiltedPlaneKeepsItsPixelsInPlace) {
   // Eight pixels of a plane tilted in depth: one slice whose ends sit on
   // the line through the first and last pixel centres, so every pixel's
