@@ -63,7 +63,7 @@ class LayerSlicer {
         options_.coalesce > 0.0f
             ? std::min(coalesceDepthRange(cam_, layer.eye.x, options_.coalesce), std::numeric_limits<float>::max())
             : -1.0f;
-    join_ = std::min(coalesceDepthRange(cam_, layer.eye.x, options_.join), std::numeric_limits<float>::max());
+    join_ = std::min(coalesceDepthRange(cam_, layer.eye.x, 2.0f * options_.overlap), std::numeric_limits<float>::max());
     const bool split = highlights_ && layer.normals.size() == layer.depth.size();
     std::vector<uint8_t> alone(split ? w : 0);
     for (int j = first; j < last; ++j) {
@@ -94,7 +94,7 @@ class LayerSlicer {
   // through the first and last pixel centres (exact for a plane).
   void addRun(const SourceLayer& layer, int j, int x, int n) {
     const float* depth = layer.depth.data() + size_t(j) * cam_.width();
-    const float d0 = depth[x], slope = n > 1 ? (depth[x + n - 1] - d0) / float(n - 1) : 0.0f;
+    const float d0 = depth[x], slope = n > 1 ? (depth[x + n - 1] - d0) / float(n - 1) : surfaceSlope(depth, x);
     const float oL = widening(depth, x, x - 1), oR = widening(depth, x + n - 1, x + n);
     texels_.clear();
     for (int k = 0; k < n; ++k) texels_.push_back(glm::vec4(glm::vec3(layer.color.pixel(x + k, j)), 1.0f));
@@ -120,13 +120,25 @@ class LayerSlicer {
   }
 
   // The overlap toward pixel `to` from the run's end pixel `from`: only
-  // where `to` is covered and continues the surface or lies in front
-  // (reversed Z: a larger window depth is nearer). Beyond the image's
-  // edge the surface may go on: widened as before.
+  // where `to` continues the surface; beyond the image's edge it may.
   float widening(const float* depth, int from, int to) const {
     if (to < 0 || to >= cam_.width()) return options_.overlap;
-    if (depth[to] == 0.0f) return 0.0f;
-    return depth[to] >= depth[from] || depth[from] - depth[to] <= join_ ? options_.overlap : 0.0f;
+    return joined(depth, from, to) ? options_.overlap : 0.0f;
+  }
+
+  bool joined(const float* depth, int from, int to) const {
+    return to >= 0 && to < cam_.width() && depth[to] != 0.0f && std::abs(depth[from] - depth[to]) <= join_;
+  }
+
+  // A lone pixel's depth slope along the scanline, the central difference
+  // of its neighbours where both continue its surface: its footprint then
+  // lies on the surface's tangent, so a pixel the source sees frontally
+  // shrinks where another view grazes the surface instead of standing out
+  // of the silhouette at its full width. A pixel at a silhouette or a step
+  // stays flat: extrapolated along a grazing tangent, its outer end would
+  // leave the surface.
+  float surfaceSlope(const float* depth, int x) const {
+    return joined(depth, x, x - 1) && joined(depth, x, x + 1) ? 0.5f * (depth[x + 1] - depth[x - 1]) : 0.0f;
   }
 
   static uint32_t materialOf(const glm::vec4& normal) { return uint32_t(std::max(0.0f, normal.w) + 0.5f); }

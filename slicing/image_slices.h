@@ -6,17 +6,21 @@
 // from its 3D position alone, and the same EPI rasterizers draw it, with
 // the depth test resolving overlaps between pixels and layers.
 //
-// A slice spans its pixels' footprint at their own depth, widened by
-// `overlap` pixels toward a neighbour that continues its surface or lies
-// in front of it, so that neighbours at slightly different depths do not
-// open one-pixel cracks as the view moves away from the source; the depth
-// test settles the overlap. Toward an empty pixel, or one farther away
-// than a surface could be (a depth discontinuity), the slice ends on its
+// A slice spans its pixels' footprint on the surface, widened by `overlap`
+// pixels toward a neighbour of the same surface, so that neighbours at
+// slightly different depths do not open cracks as the view moves away from
+// the source; the depth test settles the overlap. Neighbours are of one
+// surface when over the track they move apart by at most 2 x overlap
+// pixels (the measure coalescing uses), which the widening of both covers;
+// beyond that it could not close the crack and would only stick out.
+// Toward an empty pixel or across a depth step the slice ends on its
 // pixel's boundary: silhouettes stay where the source saw them instead of
-// growing by the overlap in every view (issue 18). At the image's edge the
-// slice widens, as the surface may go on beyond it. A neighbour continues
-// the surface when the two move apart by at most `join` pixels over the
-// track (the measure coalescing uses). Its colours are a 1-D
+// growing by the overlap in every view (issue 18). At the image's edge it
+// widens, as the surface may go on beyond it. A lone pixel between two
+// neighbours of its surface lies on their tangent (its depth slope the
+// central difference), so where another view grazes the surface its
+// footprint shrinks as the surface does instead of standing out of the
+// silhouette at its full width. Its colours are a 1-D
 // texture vector of its pixels (Halle 6.5.3): a slice's screen parameter
 // names the same surface point in every view, so the run's pixels, taken
 // at their source-view screen positions, are already that vector.
@@ -48,7 +52,6 @@ struct ImageSliceOptions {
   // Scanlines per task: bands are sliced in parallel and joined in
   // scanline order, so the table is the same for any band size.
   int bandRows = 8;
-  float join = 1.0f;  // relative motion over the track of one surface's neighbours, pixels
 };
 
 struct ImageSlices {

@@ -118,14 +118,21 @@ void writeEnd(uint vertex, float x, float d, double shift, vec3 c) {
   for (uint c3 = 0u; c3 < 3u; ++c3) uRecords[at + 4u + c3] = uRecords[at + 7u + c3] = c[c3] * invW;
 }
 
-// The overlap toward pixel `to` from a run's end pixel `from`, as
-// LayerSlicer::widening: only toward a covered pixel that continues the
-// surface or lies in front (reversed Z).
+// As LayerSlicer: pixel `to` continues the surface of pixel `from`; the
+// overlap toward it (beyond the image's edge the surface may go on); a
+// lone pixel's slope between two neighbours of its surface.
+bool joined(int k, int j, int from, int to) {
+  if (to < 0 || to >= uWidth) return false;
+  float b = uDepth[pixelIndex(k, j, to)];
+  return b != 0.0 && abs(uDepth[pixelIndex(k, j, from)] - b) <= float(uLayers[k].z);
+}
 float widening(int k, int j, int from, int to) {
   if (to < 0 || to >= uWidth) return uOverlap;
-  float a = uDepth[pixelIndex(k, j, from)], b = uDepth[pixelIndex(k, j, to)];
-  if (b == 0.0) return 0.0;
-  return b >= a || a - b <= float(uLayers[k].z) ? uOverlap : 0.0;
+  return joined(k, j, from, to) ? uOverlap : 0.0;
+}
+float surfaceSlope(int k, int j, int x) {
+  if (!joined(k, j, x, x - 1) || !joined(k, j, x, x + 1)) return 0.0;
+  return 0.5 * (uDepth[pixelIndex(k, j, x + 1)] - uDepth[pixelIndex(k, j, x - 1)]);
 }
 
 void main() {
@@ -135,7 +142,7 @@ void main() {
   if (level < 0) return;
   uint slot = uFlags[flagIndex(k, j, x)], p = pixelIndex(k, j, x);
   int n = 1 << level;
-  float d0 = uDepth[p], slope = n > 1 ? (uDepth[p + uint(n - 1)] - d0) / float(n - 1) : 0.0;
+  float d0 = uDepth[p], slope = n > 1 ? (uDepth[p + uint(n - 1)] - d0) / float(n - 1) : surfaceSlope(k, j, x);
   float oL = widening(k, j, x, x - 1), oR = widening(k, j, x + n - 1, x + n);
   double shift = uLayers[k].x;
   vec3 c = uColor[p].rgb;
@@ -190,7 +197,7 @@ GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingC
     const float tolerance = coalesce ? std::min(coalesceDepthRange(cam, x, options.coalesce),
                                                 std::numeric_limits<float>::max())
                                      : -1.0f;
-    const float join = std::min(coalesceDepthRange(cam, x, options.join), std::numeric_limits<float>::max());
+    const float join = std::min(coalesceDepthRange(cam, x, 2.0f * options.overlap), std::numeric_limits<float>::max());
     perLayer[k] = glm::dvec4((x - left) * perPlane, tolerance, join, 0.0);
   }
   const gl::Buffer layerInfo = gl::makeBuffer(perLayer.data(), perLayer.size());

@@ -8,6 +8,8 @@
 //               center at the ends of the track (content center never saw)
 #include <gtest/gtest.h>
 
+#include <glm/gtc/constants.hpp>
+
 #include <algorithm>
 #include <fstream>
 
@@ -119,10 +121,10 @@ TEST(ImageSlices, SilhouettesKeepThePixelBoundary) {
   c.set(3, 0.0, 0.5f);  // alone between empty pixels
   c.set(7, 0.0, 0.5f);
   c.set(8, 0.0, 0.5f);  // continues 7: they widen toward each other
-  c.set(9, 1.0, 0.5f);  // a unit in front of 8, 8/3 pixels of parallax over the track
+  c.set(9, 1.0, 0.5f);  // a unit in front of 8: 8/3 pixels of parallax over the track, a step
   const ImageSlices s = sliceSourceLayers({c.layer}, c.cam, 0, {.overlap = 0.25f});
   ASSERT_EQ(s.table.sliceCount(), 4u);
-  const float want[4][2] = {{3.0f, 4.0f}, {7.0f, 8.25f}, {7.75f, 9.25f}, {9.0f, 10.0f}};
+  const float want[4][2] = {{3.0f, 4.0f}, {7.0f, 8.25f}, {7.75f, 9.0f}, {9.0f, 10.0f}};
   for (int k = 0; k < 4; ++k) {
     auto [e0, e1] = sliceEnds(s.vertices, s.table.scanline(0)[size_t(k)]);
     EXPECT_NEAR(e0.x0 + e0.dx, want[k][0], 1e-4f) << k;  // the middle view is the source
@@ -447,6 +449,76 @@ TEST_F(InterpTest, OneViewAndBadOptions) {
   EXPECT_THROW(makeInterpRenderer(scene, PixelType::U8, {.coalesce = -1.0f}), Error);
   EXPECT_THROW(makeInterpRenderer(scene, PixelType::U8, {.budget = 1}), Error);
   EXPECT_THROW(makeInterpRenderer(scene, PixelType::U8, {.splits = -1}), Error);
+}
+
+// A UV sphere of radius r at the origin, unlit grey.
+Scene sphereScene(float r, int rings, int segments) {
+  Scene s;
+  const float pi = glm::pi<float>();
+  for (int i = 0; i <= rings; ++i)
+    for (int k = 0; k <= segments; ++k) {
+      const float th = pi * float(i) / float(rings), ph = 2.0f * pi * float(k) / float(segments);
+      const glm::vec3 n(std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph));
+      s.positions.push_back(r * n);
+      s.normals.push_back(n);
+      s.colors.push_back(glm::vec3(0.6f));
+    }
+  for (int i = 0; i < rings; ++i)
+    for (int k = 0; k < segments; ++k) {
+      const uint32_t a = uint32_t(i * (segments + 1) + k), b = a + 1, c = a + uint32_t(segments + 1), d = c + 1;
+      s.triangles.push_back({a, c, b});
+      s.triangles.push_back({b, c, d});
+    }
+  s.materialIds.assign(s.triangles.size(), 0);
+  Material m;
+  m.diffuse = glm::vec3(1);
+  s.materials = {m};
+  s.ambient = glm::vec3(1);
+  return s;
+}
+
+// How far outside the true silhouette a covered pixel's centre lies, along
+// its scanline: 0 where the reference covers the centre, else the distance
+// to the nearest covered sample of a reference `factor` times finer in x
+// (samples at (i + 0.5) / factor), in pixels; infinity when none is on the row.
+double outsideDistance(const Image& fine, int factor, int x, int y) {
+  const double centre = x + 0.5;
+  double best = INFINITY;
+  for (int i = 0; i < fine.width; ++i)
+    if (fine.row(y)[i * 4 + 3] != 0) best = std::min(best, std::abs((i + 0.5) / factor - centre));
+  return best;
+}
+
+// Issue 18: no interp pixel more than half a pixel outside the true
+// silhouette, against a coverage reference of svr 16 times finer in x.
+TEST_F(InterpTest, NoPixelMoreThanHalfAPixelOutsideTheSilhouette) {
+  constexpr int kFactor = 16;
+  const Scene cube = loadScene(test::assetPath("cube.json"));
+  const Scene sphere = sphereScene(0.6f, 48, 96);
+  for (const Scene* scene : {&cube, &sphere}) {
+    const CameraSpec spec = scene->camera ? *scene->camera : cameraFor(*scene, 80, 60);
+    ShearingCamera cam(spec, 80, 60, 9);
+    CameraSpec fineSpec = spec;
+    fineSpec.planeHeight = cam.planeHeight();
+    const ShearingCamera fine(fineSpec, 80 * kFactor, 60, 9);
+    const test::CaptureSink reference = test::renderViews(*makeSvrRenderer(*scene, PixelType::U8), fine);
+    for (Acquire acquire : {Acquire::Dual, Acquire::Hierarchical}) {
+      const test::CaptureSink got =
+          test::renderViews(*makeInterpRenderer(*scene, PixelType::U8, {.acquire = acquire, .mode = PstMode::Cpu}), cam);
+      double worst = 0.0;
+      long outside = 0;
+      for (const auto& [key, img] : got.views)
+        for (int y = 0; y < img.height; ++y)
+          for (int x = 0; x < img.width; ++x) {
+            if (img.row(y)[x * 4 + 3] == 0) continue;
+            const double d = outsideDistance(reference.views.at(key), kFactor, x, y);
+            worst = std::max(worst, d);
+            outside += d > 0.5 + 0.5 / kFactor;
+          }
+      EXPECT_EQ(outside, 0) << (scene == &cube ? "cube" : "sphere") << " " << int(acquire) << ": worst " << worst << " of " << got.views.size();
+      RecordProperty(std::string(scene == &cube ? "cube" : "sphere") + "_worst_outside_px", std::to_string(worst));
+    }
+  }
 }
 
 }  // namespace
