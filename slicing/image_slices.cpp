@@ -54,8 +54,11 @@ class LayerSlicer {
     if (options.scene && options.splits > 0) highlights_.emplace(*options.scene, cam, row, options.splits);
   }
 
-  // Scanlines [first, last) of the layer.
-  void slice(const SourceLayer& layer, int first, int last) {
+  // Scanlines [first, last) of the layer; other: the front layer of the
+  // nearest other source, whose outline the slices meet in its view
+  // (null: none).
+  void slice(const SourceLayer& layer, int first, int last, const SourceLayer* other = nullptr) {
+    other_ = other;
     const int w = cam_.width();
     // Off: even equal depths stay apart. Never infinite (a track with no
     // width): a block holding an empty pixel spans an infinite range.
@@ -100,9 +103,11 @@ class LayerSlicer {
     for (int k = 0; k < n; ++k) texels_.push_back(glm::vec4(glm::vec3(layer.color.pixel(x + k, j)), 1.0f));
     const auto base = uint32_t(out_.vertices.vertexCount());
     const glm::vec3 c(texels_[0]);
-    for (float at : {-oL, float(n) + oR})  // pixel offsets of the two ends from x
-      transform_.add(cam_.unprojectAt(layer.eye.x, layer.eye.y, {x + at, j + 0.5, d0 + (at - 0.5f) * slope}),
-                     c, c, nullptr);
+    const double ends[2] = {x - oL, x + n + oR};  // the ends' pixel x
+    float d[2] = {d0 + (-oL - 0.5f) * slope, d0 + (float(n) + oR - 0.5f) * slope};
+    if (other_) meetOtherOutline(layer, j, ends, d);
+    for (int e = 0; e < 2; ++e)
+      transform_.add(cam_.unprojectAt(layer.eye.x, layer.eye.y, {ends[e], j + 0.5, d[e]}), c, c, nullptr);
     out_.vertices.triangles.push_back({base, base + 1, base + 1});
     SliceVector vector{out_.vertices.vectorTexels.addTexels(texels_), n, -oL / float(n),
                        1.0f + oR / float(n)};
@@ -141,6 +146,49 @@ class LayerSlicer {
     return joined(depth, x, x - 1) && joined(depth, x, x + 1) ? 0.5f * (depth[x + 1] - depth[x - 1]) : 0.0f;
   }
 
+  // Where the other source sees nothing, nothing may be drawn in its view:
+  // its front layer's coverage is exact there. The ends of a slice that
+  // would cover, in that view, pixel centres the other source leaves empty
+  // slide along their own rays (their x in this source fixed, their depth
+  // changed) until the slice stops at the other source's outline, so
+  // silhouettes move between the two sources' outlines instead of riding
+  // fixed points (a contour slides over the surface as the eye moves).
+  // Moves of more than a pixel are left alone: a real surface point lies
+  // inside every view's outline, its footprint at most half a pixel out.
+  void meetOtherOutline(const SourceLayer& layer, int j, const double (&x)[2], float (&d)[2]) const {
+    const int w = cam_.width();
+    const float* theirs = other_->depth.data() + size_t(j) * w;
+    // A point at pixel x and window depth d of this source lands at
+    // x + delta Z/w(d) in the other's view; Z/w is affine in d (GpuImageSlicer's
+    // uZOverW: the same arithmetic, in double, on both back ends).
+    const CameraSpec& s = cam_.spec();
+    const double zx = s.distance * (s.farDistance - s.nearDistance) / (s.nearDistance * s.farDistance);
+    const double zy = s.distance / s.farDistance - 1.0;
+    const double perPlane = w / cam_.planeWidth(), left = cam_.viewX(0);
+    const double delta = (layer.eye.x - left) * perPlane - (other_->eye.x - left) * perPlane;
+    if (delta == 0.0) return;
+    const double at[2] = {x[0] + delta * (zx * double(d[0]) + zy), x[1] + delta * (zx * double(d[1]) + zy)};
+    const double l = at[0], r = at[1];
+    if (!(r > l)) return;
+    auto covered = [&](int i) { return i >= 0 && i < w && theirs[i] != 0.0f; };
+    // The pixels whose centres the slice covers there: (l, r).
+    const int first = int(std::ceil(l - 0.5)), last = int(std::ceil(r - 0.5)) - 1;
+    int a = first, b = last;
+    while (a <= b && !covered(a)) ++a;
+    while (b >= a && !covered(b)) --b;
+    double target[2] = {a > first ? double(a) : l, b < last ? double(b + 1) : r};
+    if (a > b) {  // only empty pixels of theirs: pulled back to the outline beside, if any
+      if (covered(first - 1)) target[0] = l, target[1] = std::max(l, double(first));
+      else if (covered(last + 1)) target[0] = std::min(r, double(last + 1)), target[1] = r;
+      else return;
+    }
+    for (int e = 0; e < 2; ++e) {
+      if (target[e] == at[e] || std::abs(target[e] - at[e]) > 1.0) continue;
+      const double moved = ((target[e] - x[e]) / delta - zy) / zx;
+      if (moved > 0.0 && moved <= 1.0) d[e] = float(moved);
+    }
+  }
+
   static uint32_t materialOf(const glm::vec4& normal) { return uint32_t(std::max(0.0f, normal.w) + 0.5f); }
 
   const ShearingCamera& cam_;
@@ -150,9 +198,23 @@ class LayerSlicer {
   std::optional<HighlightSplitter> highlights_;
   std::vector<glm::vec4> texels_;
   float join_ = 0.0f;  // the layer's depth step between neighbours of one surface
+  const SourceLayer* other_ = nullptr;
 };
 
 }  // namespace
+
+std::vector<int> nearestOtherSource(const std::vector<glm::dvec2>& eyes) {
+  std::vector<int> other(eyes.size(), -1);
+  for (size_t k = 0; k < eyes.size(); ++k) {
+    double nearest = INFINITY;
+    for (size_t m = 0; m < eyes.size(); ++m) {
+      const double apart = glm::length(eyes[m] - eyes[k]);
+      const bool front = m == 0 || eyes[m - 1] != eyes[m];
+      if (front && apart > 0.0 && apart < nearest) nearest = apart, other[k] = int(m);
+    }
+  }
+  return other;
+}
 
 float coalesceDepthRange(const ShearingCamera& cam, double eyeX, float pixels) {
   const TrackParallax parallax(cam);
@@ -169,6 +231,9 @@ ImageSlices sliceSourceLayers(const std::vector<SourceLayer>& layers, const Shea
       fail("sliceSourceLayers", "source layers must be float images of the output size");
   // Each band holds its scanlines' slices of every layer, layer by layer,
   // so joined in band order each scanline lists them as one pass would.
+  std::vector<glm::dvec2> eyes;
+  for (const SourceLayer& layer : layers) eyes.push_back(layer.eye);
+  const std::vector<int> other = nearestOtherSource(eyes);
   const int bandRows = std::max(1, options.bandRows), bands = (h + bandRows - 1) / bandRows;
   std::vector<ImageSlices> parts(size_t(std::max(1, bands)));
   std::vector<std::vector<uint32_t>> scanlines(parts.size());
@@ -183,7 +248,8 @@ ImageSlices sliceSourceLayers(const std::vector<SourceLayer>& layers, const Shea
     parts[b].vertices.reserve(2 * covered, covered, 2 * covered);
     LayerSlicer slicer(cam, row, options, parts[b]);
     slicer.scanlineOf.reserve(covered);
-    for (const SourceLayer& layer : layers) slicer.slice(layer, first, last);
+    for (size_t k = 0; k < layers.size(); ++k)
+      slicer.slice(layers[k], first, last, options.meetSilhouettes && other[k] >= 0 ? &layers[other[k]] : nullptr);
     scanlines[b] = std::move(slicer.scanlineOf);
   });
   // Joined into room reserved for all: each array copied once.

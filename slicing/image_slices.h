@@ -52,6 +52,9 @@ struct ImageSliceOptions {
   // Scanlines per task: bands are sliced in parallel and joined in
   // scanline order, so the table is the same for any band size.
   int bandRows = 8;
+  // Slices meet the nearest other source's outline in its view
+  // (LayerSlicer::meetOtherOutline).
+  bool meetSilhouettes = true;
 };
 
 struct ImageSlices {
@@ -62,6 +65,11 @@ struct ImageSlices {
 
 ImageSlices sliceSourceLayers(const std::vector<SourceLayer>& layers, const ShearingCamera& camera,
                               int row, const ImageSliceOptions& options = {});
+
+// Per layer (eyes: each layer's source eye, a source's layers together,
+// front first), the index of the front layer of the nearest source at
+// another eye, or -1: whose outline its slices meet (meetSilhouettes).
+std::vector<int> nearestOtherSource(const std::vector<glm::dvec2>& eyes);
 
 // The window-depth range a coalesced run may span from a source eye at
 // camera x `eyeX` (infinite when the track has no width).

@@ -24,7 +24,8 @@ layout(std430, binding = 1) readonly buffer Color { vec4 uColor[]; };
 layout(std430, binding = 2) buffer Mips { vec2 uMips[]; };  // per layer scanline: levels 1.. packed
 layout(std430, binding = 3) buffer Flags { uint uFlags[]; };
 // Per layer: x shift per unit Z/w, coalescing's depth tolerance, the depth
-// step between neighbours of one surface (ImageSliceOptions::join).
+// step between neighbours of one surface, the front layer of the nearest
+// other source (-1: none; LayerSlicer::meetOtherOutline).
 layout(std430, binding = 4) readonly buffer Layers { dvec4 uLayers[]; };
 uniform int uWidth;
 uniform int uHeight;
@@ -130,6 +131,33 @@ float widening(int k, int j, int from, int to) {
   if (to < 0 || to >= uWidth) return uOverlap;
   return joined(k, j, from, to) ? uOverlap : 0.0;
 }
+// As LayerSlicer::meetOtherOutline: the ends slide along their rays until
+// the slice stops at the other source's outline in that source's view.
+bool theirs(int m, int j, int i) { return i >= 0 && i < uWidth && uDepth[pixelIndex(m, j, i)] != 0.0; }
+void meetOtherOutline(int k, int m, int j, double xE[2], inout float dE[2]) {
+  double delta = uLayers[k].x - uLayers[m].x;
+  if (delta == 0.0) return;
+  double at[2] = double[2](xE[0] + delta * (uZOverW.x * double(dE[0]) + uZOverW.y),
+                           xE[1] + delta * (uZOverW.x * double(dE[1]) + uZOverW.y));
+  double l = at[0], r = at[1];
+  if (!(r > l)) return;
+  int first = int(ceil(l - 0.5)), last = int(ceil(r - 0.5)) - 1;
+  int a = first, b = last;
+  while (a <= b && !theirs(m, j, a)) ++a;
+  while (b >= a && !theirs(m, j, b)) --b;
+  double target[2] = double[2](a > first ? double(a) : l, b < last ? double(b + 1) : r);
+  if (a > b) {
+    if (theirs(m, j, first - 1)) { target[0] = l; target[1] = max(l, double(first)); }
+    else if (theirs(m, j, last + 1)) { target[0] = min(r, double(last + 1)); target[1] = r; }
+    else return;
+  }
+  for (int e = 0; e < 2; ++e) {
+    if (target[e] == at[e] || abs(target[e] - at[e]) > 1.0) continue;
+    double moved = ((target[e] - xE[e]) / delta - uZOverW.y) / uZOverW.x;
+    if (moved > 0.0 && moved <= 1.0) dE[e] = float(moved);
+  }
+}
+
 float surfaceSlope(int k, int j, int x) {
   if (!joined(k, j, x, x - 1) || !joined(k, j, x, x + 1)) return 0.0;
   return 0.5 * (uDepth[pixelIndex(k, j, x + 1)] - uDepth[pixelIndex(k, j, x - 1)]);
@@ -146,8 +174,12 @@ void main() {
   float oL = widening(k, j, x, x - 1), oR = widening(k, j, x + n - 1, x + n);
   double shift = uLayers[k].x;
   vec3 c = uColor[p].rgb;
-  writeEnd(2u * slot, float(x) - oL, d0 + (-oL - 0.5) * slope, shift, c);
-  writeEnd(2u * slot + 1u, float(x + n) + oR, d0 + (float(n) + oR - 0.5) * slope, shift, c);
+  double xE[2] = double[2](double(float(x) - oL), double(float(x + n) + oR));
+  float dE[2] = float[2](d0 + (-oL - 0.5) * slope, d0 + (float(n) + oR - 0.5) * slope);
+  int other = int(uLayers[k].w);
+  if (other >= 0) meetOtherOutline(k, other, j, xE, dE);
+  writeEnd(2u * slot, float(xE[0]), dE[0], shift, c);
+  writeEnd(2u * slot + 1u, float(xE[1]), dE[1], shift, c);
   uSlices[slot] = uvec4(slot, 0u, 0u, 256u);  // a segment
   uTriangles[slot] = uvec4(2u * slot, 2u * slot + 1u, 2u * slot + 1u, 0u);
   uint base = uOwnTexels ? 2u * p : p;
@@ -192,13 +224,16 @@ GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingC
   // that a block with an empty pixel never passes).
   const double perPlane = w / cam.planeWidth(), left = cam.viewX(0);
   std::vector<glm::dvec4> perLayer(std::max(count, 1));
+  std::vector<glm::dvec2> eyes;
+  for (int k = 0; k < count; ++k) eyes.push_back(layers.eye(k));
+  const std::vector<int> other = nearestOtherSource(eyes);
   for (int k = 0; k < count; ++k) {
     const double x = layers.eye(k).x;
     const float tolerance = coalesce ? std::min(coalesceDepthRange(cam, x, options.coalesce),
                                                 std::numeric_limits<float>::max())
                                      : -1.0f;
     const float join = std::min(coalesceDepthRange(cam, x, 2.0f * options.overlap), std::numeric_limits<float>::max());
-    perLayer[k] = glm::dvec4((x - left) * perPlane, tolerance, join, 0.0);
+    perLayer[k] = glm::dvec4((x - left) * perPlane, tolerance, join, options.meetSilhouettes ? double(other[k]) : -1.0);
   }
   const gl::Buffer layerInfo = gl::makeBuffer(perLayer.data(), perLayer.size());
   const size_t pixels = layers.pixelsPerLayer() * size_t(count);
