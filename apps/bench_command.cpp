@@ -237,7 +237,7 @@ int runBench(int argc, char** argv) {
                "break-even view count of each back end against svr.",
                "mvr bench");
   std::string scenePath, views, sizes, backends = kDefaultBackends, json, plots, replot, gl = "auto";
-  int teacup = 0, slender = 0;
+  int teacup = 0, slender = 0, thinDeep = 0;
   bool sweep = false;
   Config cfg;
   app.add_option("SCENE", scenePath, "a scene file (default: the bundled scene)");
@@ -245,6 +245,9 @@ int runBench(int argc, char** argv) {
       ->check(CLI::Range(100, 10000000))->type_name("N");
   app.add_option("--slender", slender, "N long slender vertical quads (MVR's bad case)")
       ->check(CLI::Range(1, 10000000))->type_name("N");
+  app.add_option("--thin-deep", thinDeep,
+                 "N thin bars before a deep open box (what image-based back ends find hard)")
+      ->check(CLI::Range(1, 1000))->type_name("N");
   app.add_flag("--sweep", sweep,
                "Halle's sweep: teacups of 4K, 16K, 63K, 143K triangles at 160x140, 640x480, "
                "1120x840 for 1 to 1000 views");
@@ -295,6 +298,9 @@ int runBench(int argc, char** argv) {
   } else if (teacup > 0) {
     const int n = teacup;
     scenes.emplace_back("teacup" + std::to_string(n / 1000) + "k", [n] { return benchTeacup(n); });
+  } else if (thinDeep > 0) {
+    const int n = thinDeep;
+    scenes.emplace_back("thin-deep" + std::to_string(n), [n] { return makeThinAndDeepScene(n); });
   } else if (slender > 0) {
     const int n = slender;
     scenes.emplace_back("slender" + std::to_string(n), [n] { return makeSlenderScene(n); });

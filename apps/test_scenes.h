@@ -10,6 +10,12 @@ namespace mvr::app {
 // triangles but MVR one slice per scanline.
 Scene makeSlenderScene(int count);
 
+// What image-based back ends find hard (issue 18): `bars` thin vertical
+// bars, about a pixel wide at 160 pixels across, at several depths in
+// front of a deep open box whose inner walls (coloured by depth) the bars
+// and the box's rim hide and reveal as the view moves.
+Scene makeThinAndDeepScene(int bars = 12);
+
 // Halle's rule of thumb needs the average height in pixels of the
 // triangles that reach the image, seen from the centre of the track.
 double averagePolygonHeight(const Scene& scene, const ShearingCamera& camera);

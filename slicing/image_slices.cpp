@@ -177,10 +177,10 @@ class LayerSlicer {
     while (a <= b && !covered(a)) ++a;
     while (b >= a && !covered(b)) --b;
     double target[2] = {a > first ? double(a) : l, b < last ? double(b + 1) : r};
-    if (a > b) {  // only empty pixels of theirs: pulled back to the outline beside, if any
+    if (a > b) {  // only empty pixels of theirs: pulled back to the outline beside, or gone there
       if (covered(first - 1)) target[0] = l, target[1] = std::max(l, double(first));
       else if (covered(last + 1)) target[0] = std::min(r, double(last + 1)), target[1] = r;
-      else return;
+      else target[0] = target[1] = std::floor(0.5 * (l + r) + 0.5);  // a pixel edge: no centre covered
     }
     for (int e = 0; e < 2; ++e) {
       if (target[e] == at[e] || std::abs(target[e] - at[e]) > 1.0) continue;

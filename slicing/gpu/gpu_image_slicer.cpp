@@ -149,7 +149,7 @@ void meetOtherOutline(int k, int m, int j, double xE[2], inout float dE[2]) {
   if (a > b) {
     if (theirs(m, j, first - 1)) { target[0] = l; target[1] = max(l, double(first)); }
     else if (theirs(m, j, last + 1)) { target[0] = min(r, double(last + 1)); target[1] = r; }
-    else return;
+    else { target[0] = floor(0.5 * (l + r) + 0.5); target[1] = target[0]; }
   }
   for (int e = 0; e < 2; ++e) {
     if (target[e] == at[e] || abs(target[e] - at[e]) > 1.0) continue;

@@ -11,8 +11,11 @@
 #include <glm/gtc/constants.hpp>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 
+#include "apps/cli.h"
+#include "apps/test_scenes.h"
 #include "epi/interp_renderer.h"
 #include "mvr/baselines/source_layers.h"
 #include "mvr/error.h"
@@ -489,36 +492,77 @@ double outsideDistance(const Image& fine, int factor, int x, int y) {
   return best;
 }
 
-// Issue 18: no interp pixel more than half a pixel outside the true
-// silhouette, against a coverage reference of svr 16 times finer in x.
-TEST_F(InterpTest, NoPixelMoreThanHalfAPixelOutsideTheSilhouette) {
+// The worst distance, over every view, of an interp pixel's centre outside
+// the true silhouette, and how many lie more than half a pixel out, against
+// svr 16 times finer in x.
+struct Outside {
+  double worst = 0.0;
+  long beyondHalf = 0;
+};
+Outside outsideTheSilhouette(const Scene& scene, const ShearingCamera& cam, Acquire acquire) {
   constexpr int kFactor = 16;
+  CameraSpec fineSpec = cam.spec();
+  fineSpec.planeHeight = cam.planeHeight();
+  const ShearingCamera fine(fineSpec, cam.width() * kFactor, cam.height(), cam.views());
+  const test::CaptureSink reference = test::renderViews(*makeSvrRenderer(scene, PixelType::U8), fine);
+  const test::CaptureSink got =
+      test::renderViews(*makeInterpRenderer(scene, PixelType::U8, {.acquire = acquire, .mode = PstMode::Cpu}), cam);
+  Outside out;
+  for (const auto& [key, img] : got.views)
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        if (img.row(y)[x * 4 + 3] == 0) continue;
+        const double d = outsideDistance(reference.views.at(key), kFactor, x, y);
+        out.worst = std::max(out.worst, d);
+        out.beyondHalf += d > 0.5 + 0.5 / kFactor;
+      }
+  return out;
+}
+
+// Issue 18: no interp pixel more than half a pixel outside the true
+// silhouette, on a cube, a sphere and thin bars before a deep box.
+TEST_F(InterpTest, NoPixelMoreThanHalfAPixelOutsideTheSilhouette) {
   const Scene cube = loadScene(test::assetPath("cube.json"));
   const Scene sphere = sphereScene(0.6f, 48, 96);
-  for (const Scene* scene : {&cube, &sphere}) {
-    const CameraSpec spec = scene->camera ? *scene->camera : cameraFor(*scene, 80, 60);
-    ShearingCamera cam(spec, 80, 60, 9);
-    CameraSpec fineSpec = spec;
-    fineSpec.planeHeight = cam.planeHeight();
-    const ShearingCamera fine(fineSpec, 80 * kFactor, 60, 9);
-    const test::CaptureSink reference = test::renderViews(*makeSvrRenderer(*scene, PixelType::U8), fine);
+  const Scene thin = app::makeThinAndDeepScene();
+  const std::pair<const char*, const Scene*> scenes[] = {{"cube", &cube}, {"sphere", &sphere}, {"thin-deep", &thin}};
+  for (const auto& [name, scene] : scenes) {
+    const ShearingCamera cam(scene->camera ? *scene->camera : cameraFor(*scene, 80, 60), 80, 60, 9);
     for (Acquire acquire : {Acquire::Dual, Acquire::Hierarchical}) {
-      const test::CaptureSink got =
-          test::renderViews(*makeInterpRenderer(*scene, PixelType::U8, {.acquire = acquire, .mode = PstMode::Cpu}), cam);
-      double worst = 0.0;
-      long outside = 0;
-      for (const auto& [key, img] : got.views)
-        for (int y = 0; y < img.height; ++y)
-          for (int x = 0; x < img.width; ++x) {
-            if (img.row(y)[x * 4 + 3] == 0) continue;
-            const double d = outsideDistance(reference.views.at(key), kFactor, x, y);
-            worst = std::max(worst, d);
-            outside += d > 0.5 + 0.5 / kFactor;
-          }
-      EXPECT_EQ(outside, 0) << (scene == &cube ? "cube" : "sphere") << " " << int(acquire) << ": worst " << worst << " of " << got.views.size();
-      RecordProperty(std::string(scene == &cube ? "cube" : "sphere") + "_worst_outside_px", std::to_string(worst));
+      const Outside o = outsideTheSilhouette(*scene, cam, acquire);
+      EXPECT_EQ(o.beyondHalf, 0) << name << " " << int(acquire) << ": worst " << o.worst;
+      RecordProperty(std::string(name) + "_worst_outside_px", std::to_string(o.worst));
     }
   }
+}
+
+// Scenes interp was not tuned on (issue 18). The scanned bunny comes from
+// Debian's glmark2-data (GPL, not in the repo): skipped where absent.
+// Thresholds are today's figures less a margin, not issue 18's targets
+// (32 dB on the bunny at 160x120), which are not met: docs/BENCHMARKS.md.
+TEST_F(InterpTest, ScenesItWasNotTunedOn) {
+  struct Case {
+    const char* name;
+    Scene scene;
+    double minPsnr;
+  };
+  std::vector<Case> cases;
+  // Bars thinner than a pixel: svr drops or keeps them by where pixel
+  // centres fall, so an image-based view differs from it whole bars at a time.
+  cases.push_back({"thin-deep", app::makeThinAndDeepScene(), 15.0});
+  const char* bunny = "/usr/share/glmark2/models/bunny.obj";
+  if (std::filesystem::exists(bunny)) cases.push_back({"bunny", app::loadInputScene(bunny, false), 26.0});
+  for (const Case& c : cases) {
+    const ShearingCamera cam(cameraFor(c.scene, 160, 120), 160, 120, 16);
+    const test::CaptureSink svr = test::renderViews(*makeSvrRenderer(c.scene, PixelType::U8), cam);
+    const test::CaptureSink dual = test::renderViews(*makeInterpRenderer(c.scene, PixelType::U8, {}), cam);
+    const test::SetDifference d = test::compareViews(svr, dual);
+    EXPECT_GE(d.minPsnr, c.minPsnr) << c.name;
+    RecordProperty(std::string(c.name) + "_dual_min_psnr_db", std::to_string(d.minPsnr));
+    // At a source view nothing is drawn where the source saw nothing.
+    for (int v : {0, 15}) EXPECT_EQ(compareImages(svr.views.at({0, v}), dual.views.at({0, v})).extras, 0) << c.name << " " << v;
+  }
+  if (cases.size() < 2) GTEST_SKIP() << bunny << " absent (Debian's glmark2-data)";
 }
 
 }  // namespace
