@@ -151,6 +151,30 @@ void labelPixels(const DepthImage& d, float tau, std::vector<float>& labels, std
     }
 }
 
+// The grid (DepthWarp::ensureGrid): (W + 2) x (H + 2) vertices, vertex
+// (i, j) at pixel centre (i - 1/2, j - 1/2) clamped to the image, fetching
+// the pixel it lies in.
+int gridPixel(int k, int n) { return std::clamp(int(std::floor(std::clamp(float(k) - 0.5f, 0.0f, float(n)))), 0, n - 1); }
+
+// The grid's triangles, two per cell, that touch only pixels with samples:
+// a triangle with a vertex on an empty pixel draws nothing (the fragment
+// shader discards it), so it is left out of the reference's list rather
+// than transformed for every view. Most of a scene's image is background.
+std::vector<uint32_t> sampledTriangles(const DepthImage& d) {
+  const int w = d.width, h = d.height, gw = w + 2, gh = h + 2;
+  std::vector<uint8_t> valid(size_t(gw) * gh);
+  for (int j = 0; j < gh; ++j)
+    for (int i = 0; i < gw; ++i) valid[size_t(j) * gw + i] = d.at(gridPixel(i, w), gridPixel(j, h)) > 0.0f;
+  std::vector<uint32_t> indices;
+  for (int j = 0; j + 1 < gh; ++j)
+    for (int i = 0; i + 1 < gw; ++i) {
+      const uint32_t a = uint32_t(j * gw + i), b = a + 1, c = a + uint32_t(gw), e = c + 1;
+      if (valid[a] && valid[b] && valid[c]) indices.insert(indices.end(), {a, b, c});
+      if (valid[b] && valid[e] && valid[c]) indices.insert(indices.end(), {b, e, c});
+    }
+  return indices;
+}
+
 }  // namespace
 
 float warpWeight(float theta0, float theta1, float z0, float z1, float occ0, float occ1, float tau, float a) {
@@ -184,6 +208,9 @@ WarpReference WarpReference::upload(const RgbdView& view, float tau) {
   gl::TextureSubImage2D(r.label.id(), 0, 0, 0, w, h, GL_RED, GL_FLOAT, labels.data());
   r.silhouettes = gl::makeBuffer(silhouettes.data(), silhouettes.size());
   r.silhouetteCount = silhouettes.size();
+  const std::vector<uint32_t> triangles = sampledTriangles(view.depth);
+  r.triangles = gl::makeBuffer(triangles.data(), triangles.size());
+  r.triangleIndexCount = triangles.size();
   r.pixelToWorld = glm::mat4(RgbdView::pixelToWorld(view.K, view.V));
   r.center = glm::vec3(view.center());
   gl::checkError("uploading an RGB-D reference");
@@ -205,8 +232,8 @@ DepthWarp::DepthWarp(float tau, float a)
 }
 
 // The static grid (seed 5.2): one vertex per reference pixel centre and
-// the border ring, (W + 2) x (H + 2), two triangles per cell; made once
-// per reference size.
+// the border ring, (W + 2) x (H + 2), made once per reference size; each
+// reference brings its own list of triangles (sampledTriangles).
 void DepthWarp::ensureGrid(int w, int h) {
   if (w == gridWidth_ && h == gridHeight_) return;
   auto at = [](int k, int n) { return std::clamp(float(k) - 0.5f, 0.0f, float(n)); };
@@ -215,23 +242,13 @@ void DepthWarp::ensureGrid(int w, int h) {
   vertices.reserve(size_t(gw) * gh);
   for (int j = 0; j < gh; ++j)
     for (int i = 0; i < gw; ++i) vertices.emplace_back(at(i, w), at(j, h));
-  std::vector<uint32_t> indices;
-  indices.reserve(size_t(gw - 1) * (gh - 1) * 6);
-  for (int j = 0; j + 1 < gh; ++j)
-    for (int i = 0; i + 1 < gw; ++i) {
-      const uint32_t a = uint32_t(j * gw + i), b = a + 1, c = a + uint32_t(gw), d = c + 1;
-      for (uint32_t k : {a, b, c, b, d, c}) indices.push_back(k);
-    }
   gridVertices_ = gl::makeBuffer(vertices.data(), vertices.size());
-  gridIndices_ = gl::makeBuffer(indices.data(), indices.size());
   const GLuint vao = grid_.id();
   gl::VertexArrayVertexBuffer(vao, 0, gridVertices_.id(), 0, sizeof(glm::vec2));
-  gl::VertexArrayElementBuffer(vao, gridIndices_.id());
   gl::VertexArrayAttribFormat(vao, 0, 2, GL_FLOAT, GL_FALSE, 0);
   gl::VertexArrayAttribBinding(vao, 0, 0);
   gl::EnableVertexArrayAttrib(vao, 0);
   gridWidth_ = w, gridHeight_ = h;
-  gridIndexCount_ = indices.size();
 }
 
 void DepthWarp::ensureTargets(int w, int h) {
@@ -270,7 +287,8 @@ void DepthWarp::warp(const WarpReference& ref, const WarpCamera& view, const War
   }
   gl::UseProgram(warp_.id());
   gl::BindVertexArray(grid_.id());
-  gl::DrawElements(GL_TRIANGLES, GLsizei(gridIndexCount_), GL_UNSIGNED_INT, nullptr);
+  gl::VertexArrayElementBuffer(grid_.id(), ref.triangles.id());
+  if (ref.triangleIndexCount) gl::DrawElements(GL_TRIANGLES, GLsizei(ref.triangleIndexCount), GL_UNSIGNED_INT, nullptr);
   gl::UseProgram(splat_.id());
   gl::BindVertexArray(empty_.id());
   if (ref.silhouetteCount) gl::DrawArraysInstanced(GL_TRIANGLES, 0, 6, GLsizei(ref.silhouetteCount));

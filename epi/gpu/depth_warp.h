@@ -50,6 +50,10 @@ struct WarpReference {
   gl::Texture color, depth, label;  // RGBA32F linear, R32F camera z, R32F occlusion label
   gl::Buffer silhouettes;           // indices of pixels with an empty 8-neighbour
   size_t silhouetteCount = 0;
+  // The grid's triangles whose three pixels have samples (the others draw
+  // nothing): the shared grid's vertices, this reference's indices.
+  gl::Buffer triangles;
+  size_t triangleIndexCount = 0;
   glm::mat4 pixelToWorld{1.0f};
   glm::vec3 center{0.0f};
 
@@ -95,16 +99,15 @@ class DepthWarp {
     gl::Texture color, depth, zbuffer;
     gl::Framebuffer fbo;
   };
-  void ensureGrid(int width, int height);
+  void ensureGrid(int width, int height);  // the grid's vertices
   void ensureTargets(int width, int height);
   void warp(const WarpReference& ref, const WarpCamera& view, const Warped& into) const;
   WarpedImage read(const Warped& from) const;
 
   gl::Program warp_, splat_, composite_;
   gl::VertexArray grid_, empty_;
-  gl::Buffer gridVertices_, gridIndices_;
+  gl::Buffer gridVertices_;
   int gridWidth_ = 0, gridHeight_ = 0;
-  size_t gridIndexCount_ = 0;
   Warped warped_[2];
 };
 
