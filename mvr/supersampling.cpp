@@ -120,26 +120,26 @@ Image SupersampleSink::resolve(const Pending& p, int outWidth, int outHeight, Pi
   return out;
 }
 
+std::optional<Image> SupersampleSink::add(std::map<std::pair<int, int>, Pending>& frames, int row, int index,
+                                          const Image& in, int outHeight, int rowFactor, int needed) {
+  Pending& p = pending(frames, row, index, size_t(width_) * outHeight);
+  accumulate(p, in, width_, outHeight, rowFactor);
+  if (p.frames < needed) return std::nullopt;
+  Image out = resolve(p, width_, outHeight, in.type);
+  frames.erase({row, index});
+  return out;
+}
+
 void SupersampleSink::putView(int row, int view, const Image& image) {
   // A view's P sample views each bring S x S samples per pixel.
   const int index = view / aa_.views;
-  Pending& p = pending(viewFrames_, row, index, size_t(width_) * height_);
-  accumulate(p, image, width_, height_, aa_.spatial);
-  if (p.frames < aa_.views) return;
-  const Image out = resolve(p, width_, height_, image.type);
-  viewFrames_.erase({row, index});
-  inner_.putView(row, index, out);
+  if (auto out = add(viewFrames_, row, index, image, height_, aa_.spatial, aa_.views)) inner_.putView(row, index, *out);
 }
 
 void SupersampleSink::putEpi(int row, int scanline, const Image& epi) {
   // An EPI's S sample EPIs each bring S x P samples per pixel (x by views).
   const int index = scanline / aa_.spatial;
-  Pending& p = pending(epiFrames_, row, index, size_t(width_) * views_);
-  accumulate(p, epi, width_, views_, aa_.views);
-  if (p.frames < aa_.spatial) return;
-  const Image out = resolve(p, width_, views_, epi.type);
-  epiFrames_.erase({row, index});
-  inner_.putEpi(row, index, out);
+  if (auto out = add(epiFrames_, row, index, epi, views_, aa_.views, aa_.spatial)) inner_.putEpi(row, index, *out);
 }
 
 void SupersampleSink::finish() {

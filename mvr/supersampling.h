@@ -7,6 +7,7 @@
 // several EPIs, "supersample the scene vertically, render more EPIs, and
 // filter the final image data to a smaller size".
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -59,6 +60,10 @@ class SupersampleSink final : public FrameSink {
   void accumulate(Pending& p, const Image& in, int outWidth, int outHeight, int rowFactor);
   Image resolve(const Pending& p, int outWidth, int outHeight, PixelType type) const;
   Pending& pending(std::map<std::pair<int, int>, Pending>& frames, int row, int index, size_t pixels);
+  // Adds a sample frame to output frame `index`; the output once its
+  // `needed` sample frames are in.
+  std::optional<Image> add(std::map<std::pair<int, int>, Pending>& frames, int row, int index, const Image& in,
+                           int outHeight, int rowFactor, int needed);
 
   FrameSink& inner_;
   Supersampling aa_;
