@@ -31,7 +31,10 @@ layout(binding = 1) uniform sampler2D uDepth;
 layout(binding = 2) uniform sampler2D uLabel;
 uniform mat4 uPixelToWorld;
 uniform mat4 uViewProjection;
-out vec2 vUv;
+// The reference's texture coordinates times its camera z, and that z:
+// both linear in the surface point, so a triangle spanning a planar run
+// of pixels (sampledTriangles) samples the colour exactly, uv = xy / z.
+out vec3 vUvZ;
 out float vOcc;
 out float vValid;
 out float vDepth;
@@ -53,13 +56,13 @@ void main() {
   gl_Position = z > 0.0 ? uViewProjection * world : vec4(0.0, 0.0, -2.0, 1.0);
   vDepth = gl_Position.w;  // the virtual camera's z
   vOcc = texelFetch(uLabel, p, 0).r;
-  vUv = centre / vec2(size);
+  vUvZ = vec3(centre / vec2(size), 1.0) * max(z, 1e-30);
 }
 )";
 
 const char* const kWarpFragment = R"(
 layout(binding = 0) uniform sampler2D uColor;
-in vec2 vUv;
+in vec3 vUvZ;
 in float vOcc;
 in float vValid;
 in float vDepth;
@@ -67,7 +70,7 @@ layout(location = 0) out vec4 oColor;  // rgb, occlusion label
 layout(location = 1) out vec4 oDepth;  // r: the virtual camera's z
 void main() {
   if (vValid < 0.999) discard;
-  oColor = vec4(texture(uColor, vUv).rgb, vOcc);
+  oColor = vec4(texture(uColor, vUvZ.xy / vUvZ.z).rgb, vOcc);
   oDepth = vec4(vDepth);
 }
 )";
@@ -156,21 +159,60 @@ void labelPixels(const DepthImage& d, float tau, std::vector<float>& labels, std
 // the pixel it lies in.
 int gridPixel(int k, int n) { return std::clamp(int(std::floor(std::clamp(float(k) - 0.5f, 0.0f, float(n)))), 0, n - 1); }
 
-// The grid's triangles, two per cell, that touch only pixels with samples:
-// a triangle with a vertex on an empty pixel draws nothing (the fragment
-// shader discards it), so it is left out of the reference's list rather
-// than transformed for every view. Most of a scene's image is background.
-std::vector<uint32_t> sampledTriangles(const DepthImage& d) {
+// The grid's triangles that touch only pixels with samples: a triangle
+// with a vertex on an empty pixel draws nothing (the fragment shader
+// discards it), so it is left out of the reference's list rather than
+// transformed for every view; most of a scene's image is background. And
+// where a run of cells of one grid row lies on a plane (no occlusion
+// label, 1/z affine along both of its rows with the same slope: a plane's
+// 1/z is affine in its image), the run is one quad: its inner vertices
+// would land on the quad's plane anyway. The vertex work is what a CPU
+// rasterizer pays for per view.
+std::vector<uint32_t> sampledTriangles(const DepthImage& d, const std::vector<float>& labels) {
+  constexpr int kLongestRun = 16;
+  constexpr float kPlanar = 2e-4f;  // largest deviation of 1/z from the plane, relative
   const int w = d.width, h = d.height, gw = w + 2, gh = h + 2;
-  std::vector<uint8_t> valid(size_t(gw) * gh);
+  std::vector<uint8_t> valid(size_t(gw) * gh), flat(size_t(gw) * gh);
+  std::vector<float> inverse(size_t(gw) * gh);
   for (int j = 0; j < gh; ++j)
-    for (int i = 0; i < gw; ++i) valid[size_t(j) * gw + i] = d.at(gridPixel(i, w), gridPixel(j, h)) > 0.0f;
+    for (int i = 0; i < gw; ++i) {
+      const int x = gridPixel(i, w), y = gridPixel(j, h);
+      const size_t k = size_t(j) * gw + i;
+      valid[k] = d.at(x, y) > 0.0f;
+      inverse[k] = valid[k] ? 1.0f / d.at(x, y) : 0.0f;
+      // The border ring's vertices sit at the image's edge, off the
+      // pixel-centre spacing: never inside a merged run.
+      flat[k] = valid[k] && labels[size_t(y) * w + x] == 0.0f && i > 0 && i + 1 < gw && j > 0 && j + 1 < gh;
+    }
+  // Grid columns i0..i1 of rows j and j + 1 on one plane.
+  auto planar = [&](int i0, int i1, int j) {
+    for (int i = i0; i <= i1; ++i)
+      if (!flat[size_t(j) * gw + i] || !flat[size_t(j + 1) * gw + i]) return false;
+    const float* top = inverse.data() + size_t(j) * gw;
+    const float* bottom = top + gw;
+    const float slopeTop = (top[i1] - top[i0]) / float(i1 - i0), slopeBottom = (bottom[i1] - bottom[i0]) / float(i1 - i0);
+    if (std::abs(slopeTop - slopeBottom) > kPlanar * top[i0] / float(i1 - i0)) return false;
+    for (int i = i0 + 1; i < i1; ++i)
+      if (std::abs(top[i0] + slopeTop * float(i - i0) - top[i]) > kPlanar * top[i] ||
+          std::abs(bottom[i0] + slopeBottom * float(i - i0) - bottom[i]) > kPlanar * bottom[i])
+        return false;
+    return true;
+  };
   std::vector<uint32_t> indices;
   for (int j = 0; j + 1 < gh; ++j)
-    for (int i = 0; i + 1 < gw; ++i) {
+    for (int i = 0; i + 1 < gw;) {
+      int end = i + 1;  // the run's last grid column
+      while (end + 1 < gw && end + 1 - i <= kLongestRun && planar(i, end + 1, j)) ++end;
+      if (end > i + 1 || planar(i, end, j)) {
+        const uint32_t a = uint32_t(j * gw + i), b = uint32_t(j * gw + end), c = a + uint32_t(gw), e = b + uint32_t(gw);
+        indices.insert(indices.end(), {a, b, c, b, e, c});
+        i = end;
+        continue;
+      }
       const uint32_t a = uint32_t(j * gw + i), b = a + 1, c = a + uint32_t(gw), e = c + 1;
       if (valid[a] && valid[b] && valid[c]) indices.insert(indices.end(), {a, b, c});
       if (valid[b] && valid[e] && valid[c]) indices.insert(indices.end(), {b, e, c});
+      ++i;
     }
   return indices;
 }
@@ -208,7 +250,7 @@ WarpReference WarpReference::upload(const RgbdView& view, float tau) {
   gl::TextureSubImage2D(r.label.id(), 0, 0, 0, w, h, GL_RED, GL_FLOAT, labels.data());
   r.silhouettes = gl::makeBuffer(silhouettes.data(), silhouettes.size());
   r.silhouetteCount = silhouettes.size();
-  const std::vector<uint32_t> triangles = sampledTriangles(view.depth);
+  const std::vector<uint32_t> triangles = sampledTriangles(view.depth, labels);
   r.triangles = gl::makeBuffer(triangles.data(), triangles.size());
   r.triangleIndexCount = triangles.size();
   r.pixelToWorld = glm::mat4(RgbdView::pixelToWorld(view.K, view.V));
