@@ -60,7 +60,7 @@ class InterpRenderer final : public Renderer {
   FrameOrder order() const override { return FrameOrder::Epi; }
 
   void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
-    for (int row = 0; row < cam.rows(); ++row) {
+    for (int row = cam.share().rows.begin; row < cam.share().rows.end; ++row) {
       if (gpuSlicer_) {
         renderOnGpu(cam, row, sink, stats);
         continue;

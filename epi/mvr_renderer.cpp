@@ -52,7 +52,8 @@ class MvrRenderer final : public Renderer {
     }
     if (!gpuSlicer_) gpuSlicer_.emplace();
     stats.counters["clipped_triangles"] = double(scene_.triangleCount());
-    for (int row = 0; row < cam.rows(); ++row) {
+    // The GPU slicer slices every scanline; a share's rasterizer draws its own.
+    for (int row = cam.share().rows.begin; row < cam.share().rows.end; ++row) {
       const GpuVertices* vertices = nullptr;
       {
         ScopedStage s(stats.times, "transform");
@@ -85,7 +86,7 @@ class MvrRenderer final : public Renderer {
     }
     stats.counters["extreme_vertex_bytes"] = double(vertices.bytes());
     stats.counters["clipped_triangles"] = double(vertices.triangles.size());
-    for (int row = 0; row < cam.rows(); ++row) {
+    for (int row = cam.share().rows.begin; row < cam.share().rows.end; ++row) {
       if (row > 0) {
         // Halle 5.6.11: the next row needs one multiply-add per vertex.
         ScopedStage s(stats.times, "row_step");
@@ -106,7 +107,7 @@ class MvrRenderer final : public Renderer {
       SliceTable table;
       {
         ScopedStage s(stats.times, "slicing");
-        table = SliceTable::build(vertices, cam.height());
+        table = SliceTable::build(vertices, cam.height(), cam.share().scanlines);
       }
       countSlices(table.sliceCount(), stats);
       rasterizer_->rasterize(vertices, table, cam, row, sink, stats);

@@ -30,7 +30,7 @@ class SpanRasterizer final : public EpiRasterizer {
   void rasterize(const ExtremeVertices& v, const SliceTableView& slices, const ShearingCamera& cam,
                  int row, FrameSink& sink, RenderStats& stats) override {
     const SliceTable& table = slices.host();  // spans are walked on the CPU
-    const int height = cam.height();
+    const IndexRange lines = cam.share().scanlines;
     eye0_ = glm::vec3(cam.eye(0, row));
     eyeStep_ = glm::vec3(cam.eye(1, row) - cam.eye(0, row));
     // Two halves of 2 EPIs per worker: the workers fill one while the
@@ -38,7 +38,7 @@ class SpanRasterizer final : public EpiRasterizer {
     // leave the workers idle). The EPIs are allocated once and reused:
     // fresh multi-megabyte images per scanline cost page faults that
     // serialise on the kernel's memory lock.
-    const int batch = std::max(1, std::min(height, 2 * threadCount()));
+    const int batch = std::max(1, std::min(lines.size(), 2 * threadCount()));
     std::array<std::vector<Image>, 2> halves;
     for (std::vector<Image>& half : halves) half.assign(size_t(batch), Image(cam.width(), cam.views(), type_));
     struct Filled {
@@ -47,8 +47,8 @@ class SpanRasterizer final : public EpiRasterizer {
     auto handOn = [&](const Filled& f) {
       for (int k = 0; k < f.count; ++k) sink.putEpi(row, f.first + k, halves[f.half][k]);
     };
-    for (int first = 0, b = 0; first < height; first += batch, ++b) {
-      const Filled now{b % 2, first, std::min(batch, height - first)};
+    for (int first = lines.begin, b = 0; first < lines.end; first += batch, ++b) {
+      const Filled now{b % 2, first, std::min(batch, lines.end - first)};
       ScopedStage s(stats.times, "raster");  // with the previous batch's hand-over beside it
       parallelForBeside(
           0, now.count,

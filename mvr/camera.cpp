@@ -38,6 +38,16 @@ ShearingCamera::ShearingCamera(const CameraSpec& s, int width, int height, int v
   require(s.trackRight >= s.trackLeft, "track right end lies left of its left end");
   planeWidth_ = s.planeWidth;
   planeHeight_ = s.planeHeight > 0 ? s.planeHeight : s.planeWidth * height / width;
+  share_ = {{0, rows}, {0, height}, {0, views}};
+}
+
+ShearingCamera ShearingCamera::withShare(const RenderShare& share) const {
+  auto within = [](IndexRange r, int n) { return r.begin >= 0 && r.begin <= r.end && r.end <= n; };
+  require(within(share.rows, rows_) && within(share.scanlines, height_) && within(share.views, views_),
+          "share outside the set");
+  ShearingCamera part = *this;
+  part.share_ = share;
+  return part;
 }
 
 double ShearingCamera::viewX(int view) const {

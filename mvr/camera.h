@@ -35,6 +35,22 @@ struct CameraSpec {
   double farDistance = 8.0;
 };
 
+// A half-open range of indices.
+struct IndexRange {
+  int begin = 0, end = 0;
+  int size() const { return end - begin; }
+  bool contains(int i) const { return i >= begin && i < end; }
+};
+
+// The part of a set one process renders when a job is split over
+// processes (apps/mpi_render.h): the rows of views it renders and, of each
+// row, the scanlines an EPI renderer fills and the views a view renderer
+// draws. Every frame is computed exactly as in the whole render, so the
+// parts join into the same bytes.
+struct RenderShare {
+  IndexRange rows, scanlines, views;
+};
+
 class ShearingCamera {
  public:
   // Throws mvr::Error for an impossible camera.
@@ -47,6 +63,11 @@ class ShearingCamera {
   int rows() const { return rows_; }
   double planeWidth() const { return planeWidth_; }
   double planeHeight() const { return planeHeight_; }
+  // The whole set unless restricted by withShare.
+  const RenderShare& share() const { return share_; }
+  // This camera rendering only part of its set; throws mvr::Error for a
+  // share outside it.
+  ShearingCamera withShare(const RenderShare& share) const;
 
   double viewX(int view) const;  // camera x of view i
   double rowY(int row) const;    // camera y of row r
@@ -89,6 +110,7 @@ class ShearingCamera {
   CameraSpec spec_;
   int width_, height_, views_, rows_;
   double planeWidth_, planeHeight_;
+  RenderShare share_;
 };
 
 }  // namespace mvr

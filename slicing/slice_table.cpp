@@ -61,12 +61,21 @@ void sliceTriangle(const ExtremeVertices& v, uint32_t tri, int bandLo, int bandH
 }  // namespace
 
 SliceTable SliceTable::build(const ExtremeVertices& v, int height, int bands) {
+  return build(v, height, IndexRange{0, height}, bands);
+}
+
+SliceTable SliceTable::build(const ExtremeVertices& v, int height, IndexRange scanlines, int bands) {
+  if (scanlines.begin < 0 || scanlines.end > height || scanlines.size() < 0)
+    fail("slice table", "scanlines outside the image");
+  const int lines = scanlines.size();
   if (bands <= 0) bands = threadCount();
-  bands = std::clamp(bands, 1, std::max(1, height));
+  bands = std::clamp(bands, 1, std::max(1, lines));
   SliceTable table;
   table.offsets_.assign(height + 1, 0);
   const auto triangles = uint32_t(v.triangles.size());
-  auto band = [&](int k) { return std::pair{height * k / bands, height * (k + 1) / bands}; };
+  auto band = [&](int k) {
+    return std::pair{scanlines.begin + lines * k / bands, scanlines.begin + lines * (k + 1) / bands};
+  };
   // Pass 1: count per scanline (each task writes only its own band).
   parallelFor(0, bands, [&](int k) {
     auto [lo, hi] = band(k);

@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "mvr/camera.h"
 #include "slicing/extreme_vertices.h"
 
 namespace mvr {
@@ -56,6 +57,9 @@ class SliceTable {
   // worker), each task owning its band: no locks, no sort, slices in
   // triangle order per scanline whatever the band count.
   static SliceTable build(const ExtremeVertices& v, int height, int bands = 0);
+  // The same with slices only on the given scanlines (a process's share of
+  // a split job); the others are empty.
+  static SliceTable build(const ExtremeVertices& v, int height, IndexRange scanlines, int bands = 0);
   // A table of segments: v's triangle k is the segment from its vertex x
   // to its vertex y, on scanline scanlineOf[k].
   static SliceTable fromSegments(const std::vector<uint32_t>& scanlineOf, int height);

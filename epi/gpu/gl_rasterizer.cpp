@@ -127,8 +127,12 @@ class GlRasterizer final : public EpiRasterizer {
     const glm::vec3 eye0(cam.eye(0, row)), eyeStep(cam.eye(1, row) - cam.eye(0, row));
     gl::Enable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
     if (materials_) materials_->bind(EpiPass::kTextureUnit);
-    for (int first = 0; first < h; first += batch) {
+    // A share's scanlines sit where the whole render puts them (batches
+    // start at multiples of the batch size), so its EPIs are the same bytes.
+    const IndexRange lines = cam.share().scanlines;
+    for (int first = lines.begin - lines.begin % batch; first < lines.end; first += batch) {
       const int count = std::min(batch, h - first);
+      const int own = std::max(first, lines.begin), ownEnd = std::min(first + count, lines.end);
       if (pulled()) {
         // Before the clear: on CPU implementations of GL the build's
         // barriers would otherwise flush the clear of the whole target.
@@ -140,7 +144,7 @@ class GlRasterizer final : public EpiRasterizer {
       }
       // The batch's EPIs, filled chunk by chunk as the ring hands them over.
       auto epis = std::make_shared<std::vector<Image>>();
-      for (int k = 0; k < count; ++k) epis->emplace_back(w, n, type_);
+      for (int j = own; j < ownEnd; ++j) epis->emplace_back(w, n, type_);
       for (int c = 0; c < chunks; ++c) {
         const int view0 = c * chunkRows, views = std::min(chunkRows, n - view0);
         target.clear();
@@ -148,13 +152,13 @@ class GlRasterizer final : public EpiRasterizer {
         for (const EpiPass& pass : passes_) drawPass(pass, host, slices, b, stats);
         {
           ScopedStage s(stats.times, "readback");
-          for (int k = 0; k < count; ++k)
-            ring.readRows(target, k * chunkRows, views,
-                          reinterpret_cast<std::byte*>((*epis)[k].row(view0)));
+          for (int j = own; j < ownEnd; ++j)
+            ring.readRows(target, (j - first) * chunkRows, views,
+                          reinterpret_cast<std::byte*>((*epis)[j - own].row(view0)));
         }
         if (c + 1 < chunks) continue;
         ring.submit([=, &sink] {
-          for (int k = 0; k < count; ++k) sink.putEpi(row, first + k, (*epis)[k]);
+          for (int j = own; j < ownEnd; ++j) sink.putEpi(row, j, (*epis)[j - own]);
         });
       }
     }

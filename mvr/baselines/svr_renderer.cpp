@@ -205,7 +205,7 @@ class SvrRenderer final : public Renderer {
       buffers_.draw();
     });
     gl::checkError("svr render");
-    stats.counters["draw_calls"] = double(cam.rows()) * cam.views();
+    stats.counters["draw_calls"] = double(cam.share().rows.size()) * cam.share().views.size();
   }
 
  private:
@@ -239,14 +239,18 @@ class LayeredSvrRenderer final : public Renderer {
   FrameOrder order() const override { return FrameOrder::View; }
 
   void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
+    if (cam.share().rows.size() * cam.share().views.size() == 0) return;
     const int batch = batchSize(cam);
     RenderTarget target(cam.width(), cam.height(), type_, batch);
     std::vector<glm::mat4> matrices;
     std::vector<glm::vec4> eyes;
-    for (int row = 0; row < cam.rows(); ++row)
-      for (int view = 0; view < cam.views(); ++view) {
+    std::vector<std::pair<int, int>> frames;  // (row, view) of each layer
+    const RenderShare& share = cam.share();
+    for (int row = share.rows.begin; row < share.rows.end; ++row)
+      for (int view = share.views.begin; view < share.views.end; ++view) {
         matrices.emplace_back(cam.viewProjection(view, row));
         eyes.emplace_back(cam.eye(view, row), 1.0);
+        frames.emplace_back(row, view);
       }
     gl::Buffer views = gl::makeBuffer(matrices.data(), matrices.size());
     gl::Buffer eyeBuffer = gl::makeBuffer(eyes.data(), eyes.size());
@@ -275,8 +279,8 @@ class LayeredSvrRenderer final : public Renderer {
         for (int k = 0; k < count; ++k)
           ring.readLayer(target, k, reinterpret_cast<std::byte*>((*images)[k].row(0)));
       }
-      ring.submit([=, views = cam.views(), &sink] {
-        for (int k = 0; k < count; ++k) sink.putView((first + k) / views, (first + k) % views, (*images)[k]);
+      ring.submit([=, &frames, &sink] {
+        for (int k = 0; k < count; ++k) sink.putView(frames[first + k].first, frames[first + k].second, (*images)[k]);
       });
     }
     ring.drain();

@@ -16,8 +16,9 @@ void renderEachView(const ShearingCamera& cam, const RenderTarget& target,
                     FrameSink& sink, RenderStats& stats, Draw&& draw) {
   const PixelType type = target.type();
   ReadbackRing ring(size_t(target.width()) * target.height() * 4 * Image::channelBytes(type));
-  for (int row = 0; row < cam.rows(); ++row) {
-    for (int view = 0; view < cam.views(); ++view) {
+  const RenderShare& share = cam.share();
+  for (int row = share.rows.begin; row < share.rows.end; ++row) {
+    for (int view = share.views.begin; view < share.views.end; ++view) {
       draw(row, view);
       auto img = std::make_shared<Image>(target.width(), target.height(), type);
       {
