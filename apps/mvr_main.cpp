@@ -6,11 +6,15 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "apps/cli.h"
 #include "apps/bench_command.h"
+#include "apps/job_split.h"
+#include "apps/mpi_session.h"
 #include "apps/render_command.h"
 #include "apps/viewer.h"
 #include "mvr/error.h"
@@ -127,14 +131,37 @@ int dispatch(int argc, char** argv) {
 }  // namespace
 }  // namespace mvr::app
 
+namespace {
+
+// Prints an error that ends the program. In a split job, an error before
+// the ranks first agreed is a set-up error the others wait to hear of: the
+// ranks agree on it, and only the lowest failing rank prints.
+int reportError(const std::string& message, int code) {
+  using mvr::app::MpiSession;
+  if (MpiSession* mpi = MpiSession::current(); mpi && !mpi->agreedOnce()) {
+    mpi->agree(message);
+    return code;
+  }
+  std::fprintf(stderr, "mvr: %s\n", message.c_str());
+  return code;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  // Under mpirun the image-set commands split the job over the ranks
+  // (apps/job_split.h); nothing else starts MPI.
+  std::optional<mvr::app::MpiSession> mpi;
+  const bool renders = argc > 1 && (std::string(argv[1]) == "render" || std::string(argv[1]) == "synthesize" ||
+                                    std::string(argv[1]) == "stream");
   try {
+    if (renders && mvr::app::launchedRanks() > 1) mpi.emplace(argc, argv);
     return mvr::app::dispatch(argc, argv);
+  } catch (const mvr::app::JobFailed&) {
+    return 1;  // another rank failed and said why
   } catch (const mvr::Error& e) {
-    std::fprintf(stderr, "mvr: %s\n", e.what());
-    return 1;
+    return reportError(e.what(), 1);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "mvr: internal error: %s\n", e.what());
-    return 3;
+    return reportError(std::string("internal error: ") + e.what(), 3);
   }
 }

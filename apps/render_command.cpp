@@ -13,8 +13,11 @@
 #include "apps/backend_flags.h"
 #include "apps/camera_flags.h"
 #include "apps/cli.h"
+#include "apps/job_split.h"
 #include "apps/memory_check.h"
+#include "apps/mpi_session.h"
 #include "apps/quilt_layout.h"
+#include "apps/split_output.h"
 #include "epi/epi_stream.h"
 #include "epi/backend.h"
 #include "epi/stream_queue.h"
@@ -128,6 +131,23 @@ void renderDepth(const BackendOptions& choice, const Scene& scene, const Shearin
   ProgressSink progress(*sink, cam, long(cam.views()) * cam.rows(), renderer->name() + ", depth");
   renderer->render(cam, progress, stats);
   progress.finish();
+}
+
+// Runs one phase of the job. In a split job (mpi not null) every rank
+// reaches the agreement however its phase ended; when any failed, the
+// lowest failing rank has printed its error and every rank stops.
+template <class Phase>
+void inPhase(MpiSession* mpi, Phase&& phase) {
+  if (!mpi) return phase();
+  std::string error;
+  try {
+    phase();
+  } catch (const Error& e) {
+    error = e.what();
+  } catch (const std::exception& e) {
+    error = std::string("internal error: ") + e.what();
+  }
+  if (!mpi->agree(error)) throw JobFailed{};
 }
 
 }  // namespace
@@ -303,6 +323,14 @@ int runRender(int argc, char** argv, RenderCommand command) {
   const GlPlatform platform = parseGlPlatform(f.gl);
   if (f.depth && (streaming || order != "view" || !f.predistort.empty()))
     fail("--depth", "writes a view set: not with --stream, --order epi or --predistort");
+  // Under mpirun the ranks share the job (apps/job_split.h); rank 0 reports.
+  MpiSession* const mpi = MpiSession::current();
+  if (mpi) {
+    for (auto [given, what] : {std::pair{streamCommand || streaming, "--stream and mvr stream"},
+                               std::pair{f.depth, "--depth"}, std::pair{f.aa.active(), "--aa and --aa-views"}})
+      if (given) fail("mpirun", std::string(what) + " are not split over ranks yet: run without mpirun");
+    if (mpi->rank() != 0) setProgressEnabled(false);
+  }
 
   // OpenImageIO (about 260 libraries) loads beside the scene's loading.
   // Not later: dlopen holds the dynamic loader's lock, which GL start-up
@@ -343,8 +371,8 @@ int runRender(int argc, char** argv, RenderCommand command) {
   // within the memory budget (beyond it, a scratch file), a quilt whole.
   const size_t pixelBytes = 4 * Image::channelBytes(type);
   const size_t viewBytes = size_t(width) * height * pixelBytes, rowBytes = viewBytes * views;
-  const bool reorders = streaming ? renderer->order() == FrameOrder::View
-                                  : (renderer->order() == FrameOrder::Epi) == (order == "view");
+  const bool reorders = !mpi && (streaming ? renderer->order() == FrameOrder::View
+                                           : (renderer->order() == FrameOrder::Epi) == (order == "view"));
   ReorderMemory reorder;
   if (reorders) {
     // The frames the sink hands on, and how many its consumer holds in flight.
@@ -362,7 +390,7 @@ int runRender(int argc, char** argv, RenderCommand command) {
     depthReorder = f.memory.reorder(size_t(width) * height * 16, BoundedTasks::defaultLimit(), out);
   checkHeldFramesFit({.reorderBytes = std::max(reorders ? reorder.held(rowBytes) : 0,
                                                depthReorders ? depthReorder.held(depthRowBytes) : 0),
-                      .quiltBytes = !streaming && !f.quilt.empty() ? rowBytes * rows : 0},
+                      .quiltBytes = !streaming && !f.quilt.empty() && (!mpi || mpi->rank() == 0) ? rowBytes * rows : 0},
                      availableMemory(),
                      std::string("give a smaller --memory") + (f.quilt.empty() ? "" : ", drop --quilt") +
                          ", fewer views or a smaller size");
@@ -381,7 +409,7 @@ int runRender(int argc, char** argv, RenderCommand command) {
   std::vector<float> lut;
   if (!f.predistort.empty()) lut = loadPredistortionTable(f.predistort, width);
   std::unique_ptr<QuiltSink> quilt;
-  if (quiltLayout) {
+  if (quiltLayout && (!mpi || mpi->rank() == 0)) {
     if (order != "view") fail("--quilt", "needs --order view");
     quilt = std::make_unique<QuiltSink>(width, height, views, rows, type, quiltLayout->columns, quiltLayout->rows);
     if (const long tiles = long(quilt->columns()) * quilt->tileRows(); tiles > long(views) * rows)
@@ -390,20 +418,35 @@ int runRender(int argc, char** argv, RenderCommand command) {
   }
   std::vector<std::unique_ptr<FrameSink>> chain;
   FrameSink* sink = &writer;
-  if (quilt && f.quiltOnly) sink = quilt.get();
-  else if (quilt) sink = chain.emplace_back(std::make_unique<TeeSink>(std::vector<FrameSink*>{&writer, quilt.get()})).get();
-  if (background) sink = chain.emplace_back(std::make_unique<BackgroundSink>(*sink, *background)).get();
-  // Reorder only when the renderer's natural order is not the one asked for.
   const FrameTranspose* transpose = nullptr;
-  if (renderer->order() == FrameOrder::Epi && order == "view") {
-    auto reorderer = std::make_unique<EpisToViews>(*sink, width, height, views, type, reorder);
-    transpose = &reorderer->transpose();
-    sink = chain.emplace_back(std::move(reorderer)).get();
-  } else if (renderer->order() == FrameOrder::View && order == "epi") {
-    auto reorderer = std::make_unique<ViewsToEpis>(*sink, width, height, views, type, reorder);
-    transpose = &reorderer->transpose();
-    sink = chain.emplace_back(std::move(reorderer)).get();
+  std::optional<SplitOutput> split;
+  if (mpi) {
+    // Set-up is done on every rank once they agree; then each renders its share.
+    const JobSplit jobSplit = splitJob(renderCamera, renderer->order(), mpi->ranks(),
+                                       synthesize ? std::vector<double>{} : scanlineCosts(scene, camera, rows / 2));
+    checkScratchFits(rowBytes * rows, out);
+    if (!mpi->agree("")) throw JobFailed{};
+    split.emplace(*mpi, camera, jobSplit,
+                  SplitOutputSpec{.rendered = renderer->order(), .toViews = order == "view", .type = type,
+                                  .dir = out, .quilt = quiltLayout.has_value(), .frames = !f.quiltOnly},
+                  writer, quilt.get());
+    sink = &split->sink();
+  } else {
+    if (quilt && f.quiltOnly) sink = quilt.get();
+    else if (quilt) sink = chain.emplace_back(std::make_unique<TeeSink>(std::vector<FrameSink*>{&writer, quilt.get()})).get();
+    // Reorder only when the renderer's natural order is not the one asked for.
+    if (renderer->order() == FrameOrder::Epi && order == "view") {
+      auto reorderer = std::make_unique<EpisToViews>(*sink, width, height, views, type, reorder);
+      transpose = &reorderer->transpose();
+      sink = chain.emplace_back(std::move(reorderer)).get();
+    } else if (renderer->order() == FrameOrder::View && order == "epi") {
+      auto reorderer = std::make_unique<ViewsToEpis>(*sink, width, height, views, type, reorder);
+      transpose = &reorderer->transpose();
+      sink = chain.emplace_back(std::move(reorderer)).get();
+    }
   }
+  // Per pixel: the same bytes before or after a reorder.
+  if (background) sink = chain.emplace_back(std::make_unique<BackgroundSink>(*sink, *background)).get();
   if (!lut.empty()) sink = chain.emplace_back(std::make_unique<PredistortSink>(*sink, lut)).get();
   if (f.aa.active())
     sink = chain.emplace_back(std::make_unique<SupersampleSink>(*sink, f.aa, width, height, views)).get();
@@ -411,14 +454,22 @@ int runRender(int argc, char** argv, RenderCommand command) {
   startup.add("before_render", sinceStart.seconds());
   Stopwatch total;
   const std::string label = renderer->name() + (choice.hasPst() ? std::string(" ") + pstModeName(choice.pst()) : "");
-  ProgressSink progress(*sink, renderCamera, long(views) * rows, label);
-  renderer->render(renderCamera, progress, stats);
-  progress.finish();
+  const ShearingCamera shareCamera = split ? renderCamera.withShare(split->share()) : renderCamera;
+  inPhase(mpi, [&] {
+    ProgressSink progress(*sink, shareCamera, long(views) * rows, label);
+    renderer->render(shareCamera, progress, stats);
+    progress.finish();
+  });
+  const double renderSeconds = total.seconds();
   const double quiltAspect = quiltLayout && quiltLayout->aspect > 0.0 ? quiltLayout->aspect : double(width) / height;
-  if (quilt)
-    writer.putExtra(quilt->fileName(format, quiltAspect), quilt->quilt(),
-                    {{"Exif:UserComment",
-                      quiltMetadata(views * rows, quilt->columns(), quilt->tileRows(), quiltAspect)}});
+  inPhase(mpi, [&] {
+    if (split) split->assemble();
+    if (quilt)
+      writer.putExtra(quilt->fileName(format, quiltAspect), quilt->quilt(),
+                      {{"Exif:UserComment",
+                        quiltMetadata(views * rows, quilt->columns(), quilt->tileRows(), quiltAspect)}});
+    if (mpi) writer.flush();
+  });
   const double colorSeconds = total.seconds();
   RenderStats depthStats;
   if (f.depth) renderDepth(choice, scene, camera, writer, depthReorder, depthStats);
@@ -474,7 +525,20 @@ int runRender(int argc, char** argv, RenderCommand command) {
                   {"background", 0},
                   {"timings_s", depthStats.times.seconds}};
   }
-  writer.commit();
+  if (split) {
+    m["mpi"] = split->info();
+    m["mpi"]["render_s"] = renderSeconds;  // this rank's (rank 0)
+    m["mpi"]["slowest_render_s"] = mpi->maxOf(renderSeconds);
+    // Rank 0 writes the manifest, counting every rank's files as the set's.
+    const std::vector<std::string> names = mpi->gatherAtRoot(writer.writtenNames());
+    inPhase(mpi, [&] {
+      if (mpi->rank() == 0) writer.commit(names);
+    });
+    writer.keep();
+    if (mpi->rank() != 0) return 0;
+  } else {
+    writer.commit();
+  }
   std::fprintf(stderr, "mvr: rendered %d view%s of %dx%d with %s to %s in %.3f s%s\n", views * rows,
                views * rows == 1 ? "" : "s", width, height, label.c_str(), out.c_str(), total.seconds(),
                transpose ? transpose->scratchNote().c_str() : "");

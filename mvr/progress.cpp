@@ -55,8 +55,9 @@ void Progress::step(long n) {
 
 ProgressSink::ProgressSink(FrameSink& inner, const ShearingCamera& rendered, long views, std::string label)
     : inner_(inner),
-      viewFrames_(long(rendered.views()) * rendered.rows()),
-      epiFrames_(long(rendered.height()) * rendered.rows()),
+      // A share's frames (a process of a split job reports its own part).
+      viewFrames_(long(rendered.share().views.size()) * rendered.share().rows.size()),
+      epiFrames_(long(rendered.share().scanlines.size()) * rendered.share().rows.size()),
       views_(views),
       label_(std::move(label)) {}
 

@@ -104,9 +104,10 @@ void ImageSetWriter::putEpi(int row, int scanline, const Image& epi) {
 // Files of an earlier set in the folder (view_*, epi_*, depth_*, quilt_*
 // images) that this one did not write: the folder holds one set, so they
 // go before the manifest says the set is complete.
-size_t ImageSetWriter::removeStale() const {
-  std::set<std::string> ours;
-  for (const std::string& path : written_) ours.insert(fs::path(path).filename().string());
+size_t ImageSetWriter::removeStale(const std::vector<std::string>& othersWritten) const {
+  const std::vector<std::string> mine = writtenNames();
+  std::set<std::string> ours(mine.begin(), mine.end());
+  ours.insert(othersWritten.begin(), othersWritten.end());
   size_t removed = 0;
   std::error_code ec;
   for (const fs::directory_entry& e : fs::directory_iterator(dir_, ec)) {
@@ -120,10 +121,20 @@ size_t ImageSetWriter::removeStale() const {
   return removed;
 }
 
-void ImageSetWriter::commit() {
+std::vector<std::string> ImageSetWriter::writtenNames() const {
+  std::vector<std::string> names;
+  for (const std::string& path : written_) names.push_back(fs::path(path).filename().string());
+  return names;
+}
+
+void ImageSetWriter::commit() { commit({}); }
+
+void ImageSetWriter::commit(const std::vector<std::string>& othersWritten) {
   flush();
-  manifest_.info["files"] = written_.size();
-  if (const size_t stale = removeStale()) manifest_.info["stale_files_removed"] = stale;
+  std::set<std::string> files(othersWritten.begin(), othersWritten.end());
+  for (const std::string& name : writtenNames()) files.insert(name);
+  manifest_.info["files"] = files.size();
+  if (const size_t stale = removeStale(othersWritten)) manifest_.info["stale_files_removed"] = stale;
   manifest_.write(dir_);
   committed_ = true;
 }

@@ -42,12 +42,20 @@ class ImageSetWriter final : public FrameSink {
   // Removes the images of an earlier set this one did not overwrite, then
   // writes the manifest, last: from now on the set is complete.
   void commit();
+  // A set written by several processes into one folder (apps/split_output):
+  // one commits with the names of the files the others wrote, so they
+  // count as the set's and are not stale; the others keep() theirs once it
+  // has, without a manifest of their own.
+  void commit(const std::vector<std::string>& othersWritten);
+  void keep() { committed_ = true; }
+  // The file names (no folder) written so far; after flush().
+  std::vector<std::string> writtenNames() const;
 
   size_t filesWritten() const { return written_.size(); }
 
  private:
   void put(const std::string& name, const Image& image, std::vector<std::pair<std::string, std::string>> attributes = {});
-  size_t removeStale() const;
+  size_t removeStale(const std::vector<std::string>& othersWritten) const;
   // Encodes on the pool; the file is removed with the rest on failure.
   void submit(const std::string& name, std::function<void(const std::string& path)> write);
   // Copies of the caller's frames, recycled: a fresh multi-megabyte

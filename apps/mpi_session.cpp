@@ -1,0 +1,115 @@
+#include "apps/mpi_session.h"
+
+#include <mpi.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+
+#include "mvr/error.h"
+
+namespace mvr::app {
+namespace {
+
+MpiSession* g_session = nullptr;
+
+// MPI counts are ints: large transfers go in pieces.
+constexpr uint64_t kPiece = uint64_t(1) << 30;
+
+}  // namespace
+
+MpiSession::MpiSession(int& argc, char**& argv) {
+  MPI_Init(&argc, &argv);
+  // Errors come back as codes and are reported as this program's own.
+  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks_);
+  g_session = this;
+}
+
+MpiSession::~MpiSession() {
+  g_session = nullptr;
+  MPI_Finalize();
+}
+
+MpiSession* MpiSession::current() { return g_session; }
+
+bool MpiSession::agree(const std::string& error) {
+  const int mine = error.empty() ? ranks_ : rank_;
+  int first = ranks_;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  agreedOnce_ = true;
+  if (first == rank_) std::fprintf(stderr, "mvr: %s\n", error.c_str());
+  return first == ranks_;
+}
+
+std::vector<std::string> MpiSession::gatherAtRoot(const std::vector<std::string>& mine) {
+  std::string joined;
+  for (const std::string& s : mine) joined += s + '\n';
+  const int length = int(joined.size());
+  std::vector<int> lengths(static_cast<size_t>(ranks_), 0), offsets(static_cast<size_t>(ranks_), 0);
+  MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  long total = 0;
+  for (int k = 0; k < ranks_; ++k) {
+    offsets[size_t(k)] = int(total);
+    total += lengths[size_t(k)];
+  }
+  if (rank_ == 0 && total > std::numeric_limits<int>::max()) fail("mpi", "too many names to gather");
+  std::string all(rank_ == 0 ? size_t(total) : 0, '\0');
+  MPI_Gatherv(joined.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(), MPI_CHAR, 0,
+              MPI_COMM_WORLD);
+  std::vector<std::string> out;
+  for (size_t start = 0, end; (end = all.find('\n', start)) != std::string::npos; start = end + 1)
+    out.push_back(all.substr(start, end - start));
+  return out;
+}
+
+double MpiSession::maxOf(double value) {
+  double out = value;
+  MPI_Allreduce(&value, &out, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  return out;
+}
+
+void MpiSession::barrier() { MPI_Barrier(MPI_COMM_WORLD); }
+
+struct SharedFile::Handle {
+  MPI_File file = MPI_FILE_NULL;
+};
+
+SharedFile::SharedFile(const std::string& path) : path_(path), handle_(std::make_unique<Handle>()) {
+  const int rc = MPI_File_open(MPI_COMM_WORLD, path.c_str(),
+                               MPI_MODE_CREATE | MPI_MODE_RDWR | MPI_MODE_DELETE_ON_CLOSE, MPI_INFO_NULL,
+                               &handle_->file);
+  if (rc != MPI_SUCCESS) fail(path, "cannot create the job's shared scratch file");
+  MPI_File_set_errhandler(handle_->file, MPI_ERRORS_RETURN);
+}
+
+SharedFile::~SharedFile() {
+  if (handle_->file != MPI_FILE_NULL) MPI_File_close(&handle_->file);
+}
+
+void SharedFile::write(uint64_t offset, std::span<const std::byte> bytes) {
+  for (uint64_t done = 0; done < bytes.size();) {
+    const int n = int(std::min<uint64_t>(kPiece, bytes.size() - done));
+    MPI_Status status;
+    if (MPI_File_write_at(handle_->file, MPI_Offset(offset + done), bytes.data() + done, n, MPI_BYTE, &status) !=
+        MPI_SUCCESS)
+      fail(path_, "cannot write the job's shared scratch file (is the disk full?)");
+    done += uint64_t(n);
+  }
+}
+
+void SharedFile::read(uint64_t offset, std::span<std::byte> bytes) {
+  for (uint64_t done = 0; done < bytes.size();) {
+    const int n = int(std::min<uint64_t>(kPiece, bytes.size() - done));
+    MPI_Status status;
+    int got = 0;
+    if (MPI_File_read_at(handle_->file, MPI_Offset(offset + done), bytes.data() + done, n, MPI_BYTE, &status) !=
+            MPI_SUCCESS ||
+        MPI_Get_count(&status, MPI_BYTE, &got) != MPI_SUCCESS || got != n)
+      fail(path_, "cannot read back the job's shared scratch file");
+    done += uint64_t(n);
+  }
+}
+
+}  // namespace mvr::app

@@ -1,0 +1,66 @@
+#pragma once
+// The output side of a render split over the ranks of an MPI job
+// (apps/job_split.h): each rank renders its share of the frames; frames
+// that must change order (EPIs to views, views to EPIs) or meet in a quilt
+// go through one shared scratch file (MPI-IO) in the order they were
+// rendered, and each rank then reads back and encodes its own run of the
+// output frames, so no rank ever holds the set. Rank 0 writes the quilt
+// and the manifest. The images are the single-process render's bytes.
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "apps/job_split.h"
+#include "apps/mpi_session.h"
+#include "mvr/frame_sinks.h"
+#include "mvr/io/image_set.h"
+
+namespace mvr::app {
+
+struct SplitOutputSpec {
+  FrameOrder rendered = FrameOrder::Epi;  // the renderer's order
+  bool toViews = true;                    // the set holds views, else EPIs
+  PixelType type = PixelType::Srgb8;
+  std::string dir;                        // the output folder (the scratch file lives there)
+  bool quilt = false;                     // a quilt is written (by rank 0)
+  bool frames = true;                     // the set's frames are written (not --quilt-only)
+  size_t memoryBudget = size_t(256) << 20;  // output frames held at once, per rank
+};
+
+class SplitOutput {
+ public:
+  // Collective: opens the shared scratch file when the orders differ or a
+  // quilt is written (rank 0 passes it; the others null).
+  SplitOutput(MpiSession& mpi, const ShearingCamera& camera, const JobSplit& split, const SplitOutputSpec& spec,
+              ImageSetWriter& writer, QuiltSink* quilt);
+  ~SplitOutput();
+
+  const RenderShare& share() const { return split_.shares[size_t(mpi_.rank())]; }
+  // Where this rank's rendered frames go.
+  FrameSink& sink() { return *sink_; }
+  // After every rank rendered (the ranks agreed): the output frames this
+  // rank encodes, from the scratch file, and on rank 0 the quilt's views.
+  void assemble();
+  // What the manifest records of the job.
+  nlohmann::json info() const;
+
+ private:
+  class Router;
+  // Output frames [first, last) of the whole set in the set's order,
+  // read back from the scratch file, handed to out(row, index, image).
+  void readBack(bool views, long first, long last, const std::function<void(int, int, const Image&)>& out);
+
+  MpiSession& mpi_;
+  ShearingCamera camera_;
+  JobSplit split_;
+  SplitOutputSpec spec_;
+  ImageSetWriter& writer_;
+  QuiltSink* quilt_;
+  std::unique_ptr<SharedFile> volume_;
+  std::unique_ptr<FrameSink> sink_;
+};
+
+}  // namespace mvr::app
