@@ -1,6 +1,7 @@
 #include "apps/job_split.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <numeric>
 
@@ -51,28 +52,41 @@ std::vector<IndexRange> splitByCost(const std::vector<double>& costs, int parts)
   return out;
 }
 
-JobSplit splitJob(const ShearingCamera& camera, FrameOrder order, int ranks,
-                  const std::vector<double>& costs) {
-  JobSplit split;
-  const RenderShare whole = camera.share();
+double imbalance(const std::vector<double>& costs, const std::vector<IndexRange>& parts) {
+  const double total = std::accumulate(costs.begin(), costs.end(), 0.0);
+  double largest = 0.0;
+  for (IndexRange p : parts)
+    largest = std::max(largest, std::accumulate(costs.begin() + p.begin, costs.begin() + p.end, 0.0));
+  return total > 0.0 ? largest * double(parts.size()) / total : 1.0;
+}
+
+JobSplit splitJob(const ShearingCamera& camera, FrameOrder order, int ranks, const std::vector<double>& costs) {
   auto equal = [](int n) { return std::vector<double>(size_t(n), 1.0); };
-  std::vector<IndexRange> parts;
-  if (camera.rows() >= ranks) {
-    split.axis = "rows";
-    parts = splitByCost(equal(camera.rows()), ranks);
-  } else if (order == FrameOrder::Epi) {
-    split.axis = "scanlines";
-    parts = splitByCost(costs.empty() ? equal(camera.height()) : costs, ranks);
-  } else {
-    split.axis = "views";
-    parts = splitByCost(equal(camera.views()), ranks);
+  const std::vector<double> rowCosts = equal(camera.rows());
+  const std::vector<double> axisCosts =
+      order == FrameOrder::View ? equal(camera.views()) : costs.empty() ? equal(camera.height()) : costs;
+  // Every grid of a row groups by b = ranks / a parts of a row; the best
+  // balanced wins, and of equals the one with more row groups (fewer
+  // ranks repeat a row's per-sequence work, and none need another's frames).
+  JobSplit best;
+  double bestBalance = INFINITY;
+  for (int a = 1; a <= ranks; ++a) {
+    if (ranks % a != 0 || a > camera.rows()) continue;
+    const int b = ranks / a;
+    const std::vector<IndexRange> rowParts = splitByCost(rowCosts, a), axisParts = splitByCost(axisCosts, b);
+    const double balance = imbalance(rowCosts, rowParts) * imbalance(axisCosts, axisParts);
+    if (balance > bestBalance * (1.0 + 1e-9)) continue;
+    bestBalance = balance;
+    best = JobSplit{order == FrameOrder::Epi ? "scanlines" : "views", a, b, balance, {}};
+    for (IndexRange rows : rowParts)
+      for (IndexRange part : axisParts) {
+        RenderShare s = camera.share();
+        s.rows = rows;
+        (order == FrameOrder::Epi ? s.scanlines : s.views) = part;
+        best.shares.push_back(s);
+      }
   }
-  for (IndexRange part : parts) {
-    RenderShare s = whole;
-    (split.axis == "rows" ? s.rows : split.axis == "scanlines" ? s.scanlines : s.views) = part;
-    split.shares.push_back(s);
-  }
-  return split;
+  return best;
 }
 
 }  // namespace mvr::app

@@ -26,14 +26,22 @@ std::vector<double> scanlineCosts(const Scene& scene, const ShearingCamera& came
 // Contiguous ranges of [0, costs.size()) with near-equal sums, one per part.
 std::vector<IndexRange> splitByCost(const std::vector<double>& costs, int parts);
 
+// Rank k's share: row group k / parts, part k % parts of each row (bands
+// of scanlines for EPI renderers, runs of views for view renderers).
 struct JobSplit {
-  std::string axis;  // "rows", "scanlines" or "views"
+  std::string axis;           // what a row is split by: "scanlines" or "views"
+  int rowGroups = 1, parts = 1;  // rowGroups x parts = ranks
+  double imbalance = 1.0;     // estimated: the costliest share over the mean share
   std::vector<RenderShare> shares;  // one per rank
 };
 
-// Whole rows when there are at least as many rows as ranks; otherwise
-// bands of scanlines by cost (EPI renderers; equal bands without costs) or
-// equal runs of views (view renderers).
+// The costliest part's cost over the mean part's.
+double imbalance(const std::vector<double>& costs, const std::vector<IndexRange>& parts);
+
+// A grid of row groups by parts of a row, chosen for the best estimated
+// balance: whole rows when the rows divide among the ranks, bands of
+// scanlines by cost (EPI renderers; equal bands without costs) or equal
+// runs of views (view renderers) otherwise.
 JobSplit splitJob(const ShearingCamera& camera, FrameOrder order, int ranks,
                   const std::vector<double>& scanlineCosts = {});
 

@@ -5,8 +5,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <string>
+#include <thread>
 
 #include "mvr/error.h"
+#include "mvr/parallel.h"
 
 namespace mvr::app {
 namespace {
@@ -25,6 +28,22 @@ MpiSession::MpiSession(int& argc, char**& argv) {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &ranks_);
   g_session = this;
+  shareTheCores();
+}
+
+// Ranks on one machine divide its cores (unless --threads says otherwise),
+// and so does llvmpipe's rasterizer: K ranks of all-core pools would run K
+// times as many threads as cores.
+void MpiSession::shareTheCores() {
+  MPI_Comm node;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node);
+  int local = 1;
+  MPI_Comm_size(node, &local);
+  MPI_Comm_free(&node);
+  if (local <= 1) return;
+  const int threads = std::max(1, int(std::thread::hardware_concurrency()) / local);
+  setThreadCount(threads);
+  setenv("LP_NUM_THREADS", std::to_string(threads).c_str(), 0);
 }
 
 MpiSession::~MpiSession() {

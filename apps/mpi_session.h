@@ -42,6 +42,7 @@ class MpiSession {
   void barrier();
 
  private:
+  void shareTheCores();
   int rank_ = 0, ranks_ = 1;
   bool agreedOnce_ = false;
 };

@@ -371,8 +371,8 @@ int runRender(int argc, char** argv, RenderCommand command) {
   // within the memory budget (beyond it, a scratch file), a quilt whole.
   const size_t pixelBytes = 4 * Image::channelBytes(type);
   const size_t viewBytes = size_t(width) * height * pixelBytes, rowBytes = viewBytes * views;
-  const bool reorders = !mpi && (streaming ? renderer->order() == FrameOrder::View
-                                           : (renderer->order() == FrameOrder::Epi) == (order == "view"));
+  const bool reorders = streaming ? renderer->order() == FrameOrder::View
+                                  : (renderer->order() == FrameOrder::Epi) == (order == "view");
   ReorderMemory reorder;
   if (reorders) {
     // The frames the sink hands on, and how many its consumer holds in flight.
@@ -424,11 +424,12 @@ int runRender(int argc, char** argv, RenderCommand command) {
     // Set-up is done on every rank once they agree; then each renders its share.
     const JobSplit jobSplit = splitJob(renderCamera, renderer->order(), mpi->ranks(),
                                        synthesize ? std::vector<double>{} : scanlineCosts(scene, camera, rows / 2));
-    checkScratchFits(rowBytes * rows, out);
+    if (quiltLayout || (reorders && jobSplit.parts > 1)) checkScratchFits(rowBytes * rows, out);  // the shared file
     if (!mpi->agree("")) throw JobFailed{};
     split.emplace(*mpi, camera, jobSplit,
                   SplitOutputSpec{.rendered = renderer->order(), .toViews = order == "view", .type = type,
-                                  .dir = out, .quilt = quiltLayout.has_value(), .frames = !f.quiltOnly},
+                                  .dir = out, .quilt = quiltLayout.has_value(), .frames = !f.quiltOnly,
+                                  .reorder = reorder},
                   writer, quilt.get());
     sink = &split->sink();
   } else {

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "epi/volume.h"
 #include "mvr/error.h"
 
 namespace mvr::app {
@@ -13,17 +14,18 @@ std::span<const std::byte> bytesOf(const Image& image) { return std::as_bytes(st
 
 }  // namespace
 
-// Hands each rendered frame to the writer when it is already an output
-// frame, and to the scratch file when it must be reordered or quilted.
+// Hands each rendered frame on to the set (the writer, or a reordering
+// sink in front of it) and to the scratch file when frames must meet
+// another rank's.
 class SplitOutput::Router final : public FrameSink {
  public:
-  Router(SplitOutput& out, bool direct) : out_(out), direct_(direct) {}
+  Router(SplitOutput& out, FrameSink* set) : out_(out), set_(set) {}
   void putView(int row, int view, const Image& image) override {
-    if (direct_) out_.writer_.putView(row, view, image);
+    if (set_) set_->putView(row, view, image);
     if (out_.volume_) out_.volume_->write(offset(row, view, image), bytesOf(image));
   }
   void putEpi(int row, int scanline, const Image& epi) override {
-    if (direct_) out_.writer_.putEpi(row, scanline, epi);
+    if (set_) set_->putEpi(row, scanline, epi);
     if (out_.volume_) out_.volume_->write(offset(row, scanline, epi), bytesOf(epi));
   }
 
@@ -35,23 +37,34 @@ class SplitOutput::Router final : public FrameSink {
     return (uint64_t(row) * perRow + uint64_t(index)) * frame.bytes.size();
   }
   SplitOutput& out_;
-  bool direct_;
+  FrameSink* set_;
 };
 
 SplitOutput::SplitOutput(MpiSession& mpi, const ShearingCamera& camera, const JobSplit& split,
                          const SplitOutputSpec& spec, ImageSetWriter& writer, QuiltSink* quilt)
     : mpi_(mpi), camera_(camera), split_(split), spec_(spec), writer_(writer), quilt_(quilt) {
-  const bool direct = spec.frames && (spec.rendered == FrameOrder::View) == spec.toViews;
-  if ((spec.frames && !direct) || spec.quilt)
+  const bool direct = (spec.rendered == FrameOrder::View) == spec.toViews;
+  // Whole rows per rank: each reorders its own rows, as one process does.
+  const bool local = !direct && split.parts == 1;
+  exchanges_ = spec.frames && !direct && !local;
+  if (exchanges_ || spec.quilt)
     volume_ = std::make_unique<SharedFile>((std::filesystem::path(spec.dir) / ".mvr_split_volume").string());
-  sink_ = std::make_unique<Router>(*this, direct);
+  FrameSink* set = nullptr;
+  if (spec.frames && direct) {
+    set = &writer;
+  } else if (spec.frames && local) {
+    const int w = camera.width(), h = camera.height(), n = camera.views();
+    if (spec.toViews) reorder_ = std::make_unique<EpisToViews>(writer, w, h, n, spec.type, spec.reorder);
+    else reorder_ = std::make_unique<ViewsToEpis>(writer, w, h, n, spec.type, spec.reorder);
+    set = reorder_.get();
+  }
+  sink_ = std::make_unique<Router>(*this, set);
 }
 
 SplitOutput::~SplitOutput() = default;
 
 void SplitOutput::assemble() {
-  const bool direct = (spec_.rendered == FrameOrder::View) == spec_.toViews;
-  if (spec_.frames && !direct) {
+  if (exchanges_) {
     // This rank's run of the set's output frames, by count.
     const long perRow = spec_.toViews ? camera_.views() : camera_.height();
     const long total = perRow * camera_.rows(), k = mpi_.rank(), ranks = mpi_.ranks();
@@ -102,10 +115,12 @@ void SplitOutput::readBack(bool views, long first, long last,
 nlohmann::json SplitOutput::info() const {
   nlohmann::json shares = nlohmann::json::array();
   for (const RenderShare& s : split_.shares) {
-    const IndexRange r = split_.axis == "rows" ? s.rows : split_.axis == "scanlines" ? s.scanlines : s.views;
-    shares.push_back({r.begin, r.end});
+    const IndexRange part = split_.axis == "scanlines" ? s.scanlines : s.views;
+    shares.push_back({{"rows", {s.rows.begin, s.rows.end}}, {split_.axis, {part.begin, part.end}}});
   }
-  return {{"ranks", mpi_.ranks()}, {"split", split_.axis}, {"shares", shares},
+  return {{"ranks", mpi_.ranks()},         {"row_groups", split_.rowGroups},
+          {"parts_per_row", split_.parts}, {"split", split_.axis},
+          {"estimated_imbalance", split_.imbalance}, {"shares", shares},
           {"scratch_file", volume_ != nullptr}};
 }
 

@@ -15,6 +15,7 @@
 
 #include "apps/job_split.h"
 #include "apps/mpi_session.h"
+#include "epi/volume.h"
 #include "mvr/frame_sinks.h"
 #include "mvr/io/image_set.h"
 
@@ -28,6 +29,7 @@ struct SplitOutputSpec {
   bool quilt = false;                     // a quilt is written (by rank 0)
   bool frames = true;                     // the set's frames are written (not --quilt-only)
   size_t memoryBudget = size_t(256) << 20;  // output frames held at once, per rank
+  ReorderMemory reorder;                  // whole rows per rank: how a row is reordered
 };
 
 class SplitOutput {
@@ -59,7 +61,9 @@ class SplitOutput {
   SplitOutputSpec spec_;
   ImageSetWriter& writer_;
   QuiltSink* quilt_;
+  bool exchanges_ = false;  // output frames are read back from the scratch file
   std::unique_ptr<SharedFile> volume_;
+  std::unique_ptr<FrameSink> reorder_;  // whole rows per rank: reordered here
   std::unique_ptr<FrameSink> sink_;
 };
 

@@ -3,6 +3,7 @@
 // whole render does: what lets processes of a split job write one set.
 #include <gtest/gtest.h>
 
+#include "apps/job_split.h"
 #include "epi/backend.h"
 #include "mvr/io/scene_io.h"
 #include "tests/support/render_helpers.h"
@@ -83,3 +84,64 @@ TEST(RenderShare, OutsideTheSetIsAnError) {
 
 }  // namespace
 }  // namespace mvr
+
+namespace mvr::app {
+namespace {
+
+TEST(JobSplit, PartsCoverEveryItemOnceEvenWithMorePartsThanItems) {
+  for (int parts : {1, 2, 3, 7, 12}) {
+    const std::vector<IndexRange> split = splitByCost({5, 1, 1, 1, 9, 0, 2}, parts);
+    ASSERT_EQ(split.size(), size_t(parts));
+    int next = 0;
+    for (IndexRange r : split) {
+      EXPECT_EQ(r.begin, next);
+      EXPECT_GE(r.size(), 0);
+      next = r.end;
+    }
+    EXPECT_EQ(next, 7);
+  }
+  // Cost, not count: the costly item stands alone.
+  const std::vector<IndexRange> two = splitByCost({1, 1, 1, 1, 10}, 2);
+  EXPECT_EQ(two[0].end, 4);
+}
+
+TEST(JobSplit, RowsWhenTheyDivideBandsOtherwiseAndAGridForAHologram) {
+  const CameraSpec spec;
+  const JobSplit rows = splitJob(ShearingCamera(spec, 64, 48, 10, 4), FrameOrder::Epi, 2);
+  EXPECT_EQ(rows.rowGroups, 2);
+  EXPECT_EQ(rows.parts, 1);
+  EXPECT_DOUBLE_EQ(rows.imbalance, 1.0);
+  const JobSplit bands = splitJob(ShearingCamera(spec, 64, 48, 10, 1), FrameOrder::Epi, 3);
+  EXPECT_EQ(bands.rowGroups, 1);
+  EXPECT_EQ(bands.shares[2].scanlines.end, 48);
+  EXPECT_EQ(bands.shares[1].scanlines.begin, bands.shares[0].scanlines.end);
+  const JobSplit views = splitJob(ShearingCamera(spec, 64, 48, 10, 3), FrameOrder::View, 2);
+  EXPECT_EQ(views.axis, "views");
+  EXPECT_EQ(views.shares[1].views.begin, 5);
+  // 100 rows over 64 ranks: whole rows would leave 36 ranks with 2 rows
+  // and 28 with 1 (imbalance 1.28); 4 groups of 25 rows by 16 bands balance.
+  const JobSplit hologram = splitJob(ShearingCamera(spec, 1920, 1080, 1000, 100), FrameOrder::Epi, 64);
+  EXPECT_EQ(hologram.rowGroups, 4);
+  EXPECT_EQ(hologram.parts, 16);
+  EXPECT_LT(hologram.imbalance, 1.02);
+  EXPECT_EQ(hologram.shares[17].rows.begin, 25);
+  EXPECT_EQ(hologram.shares[17].scanlines.begin, hologram.shares[1].scanlines.begin);
+}
+
+TEST(JobSplit, ScanlineCostsCountEachTrianglesSlices) {
+  // One triangle on the image plane covering scanline centres 8.5 .. 15.5
+  // of a 32-line image: 8 slices, plus the fixed part (the average, 8/32 < 1: 1).
+  Scene scene;
+  const ShearingCamera cam(CameraSpec{}, 32, 32, 4);
+  auto at = [&](double px, double py) {  // pixel position -> a point on the image plane
+    return glm::vec3(float((px / 32.0 - 0.5) * cam.planeWidth()), float((0.5 - py / 32.0) * cam.planeHeight()), 0.0f);
+  };
+  scene.positions = {at(4, 8), at(20, 8), at(4, 16)};
+  scene.triangles = {{0, 1, 2}};
+  const std::vector<double> costs = scanlineCosts(scene, cam, 0);
+  ASSERT_EQ(costs.size(), 32u);
+  for (int j = 0; j < 32; ++j) EXPECT_DOUBLE_EQ(costs[size_t(j)], (j >= 8 && j < 16) ? 2.0 : 1.0) << j;
+}
+
+}  // namespace
+}  // namespace mvr::app

@@ -1,0 +1,122 @@
+// mpirun -np K mvr render: the same set as one process, byte for byte,
+// with 1, 2 and 3 ranks (oversubscribed on small machines); one error line
+// for a bad scene; no complete-looking set when a rank dies.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/support/cli.h"
+
+namespace mvr {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool haveMpirun() { return test::shell("command -v mpirun >/dev/null").status == 0; }
+
+// mpirun refuses root unless told; CI runs as root.
+std::string mpirun(int ranks) {
+  return "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 "
+         "mpirun --oversubscribe -np " + std::to_string(ranks) + " ";
+}
+
+std::map<std::string, std::string> imagesIn(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    if (e.path().extension() != ".png") continue;
+    std::stringstream ss;
+    ss << std::ifstream(e.path(), std::ios::binary).rdbuf();
+    files[e.path().filename().string()] = ss.str();
+  }
+  return files;
+}
+
+nlohmann::json manifestOf(const fs::path& dir) {
+  return nlohmann::json::parse(std::ifstream(dir / "manifest.json"));
+}
+
+struct SplitCase {
+  const char* name;
+  const char* args;
+};
+
+class MpiRender : public ::testing::TestWithParam<SplitCase> {};
+
+TEST_P(MpiRender, OneTwoAndThreeRanksWriteTheSingleProcessSet) {
+  if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed (scripts/setup installs Open MPI)";
+  const std::string args = std::string(GetParam().args) + " --size 64x40 --views 7";
+  const fs::path single = test::freshDir(std::string("mpi_single_") + GetParam().name);
+  ASSERT_EQ(test::runMvr("render " + args + " --out " + single.string()).status, 0);
+  const auto expected = imagesIn(single);
+  ASSERT_GE(expected.size(), 7u);
+  for (int ranks : {1, 2, 3}) {
+    const fs::path dir = test::freshDir(std::string("mpi_") + std::to_string(ranks) + GetParam().name);
+    const test::CliResult r =
+        test::shell(mpirun(ranks) + test::mvrBinary() + " render " + args + " --out " + dir.string() + " >/dev/null");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto got = imagesIn(dir);
+    ASSERT_EQ(got.size(), expected.size()) << ranks << " ranks";
+    for (const auto& [name, bytes] : expected) EXPECT_TRUE(got.at(name) == bytes) << name << ", " << ranks << " ranks";
+    const nlohmann::json m = manifestOf(dir);
+    EXPECT_EQ(m["files"], manifestOf(single)["files"]);
+    if (ranks > 1) EXPECT_EQ(m["mpi"]["ranks"], ranks);
+    else EXPECT_FALSE(m.contains("mpi"));  // one rank is the single-process program
+    fs::remove_all(dir);
+  }
+  fs::remove_all(single);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Splits, MpiRender,
+    ::testing::Values(SplitCase{"mvr_views_quilt", "--backend mvr --quilt auto"},    // scanline bands, reordered
+                      SplitCase{"cpu_epis", "--backend mvr --pst cpu --order epi"},  // bands, written directly
+                      SplitCase{"svr_epis", "--backend svr --order epi"},            // views, reordered
+                      SplitCase{"interp_rows", "--backend interp --rows 3"}),        // rows
+    [](const auto& info) { return std::string(info.param.name); });
+
+TEST(MpiRenderErrors, ABadSceneFailsTheJobWithOneLine) {
+  if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
+  const fs::path dir = test::freshDir("mpi_bad");
+  const test::CliResult r = test::shell(mpirun(2) + test::mvrBinary() + " render /no/such/scene.ply --out " +
+                                        dir.string());
+  EXPECT_NE(r.status, 0);
+  size_t lines = 0;
+  for (size_t at = 0; (at = r.err.find("mvr: ", at)) != std::string::npos; ++at) ++lines;
+  EXPECT_EQ(lines, 1u) << r.err;
+  EXPECT_NE(r.err.find("mvr: /no/such/scene.ply: no such mesh file"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "manifest.json"));
+}
+
+TEST(MpiRenderErrors, NotYetSplitOptionsAreRefused) {
+  if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
+  const test::CliResult r =
+      test::shell(mpirun(2) + test::mvrBinary() + " render --views 4 --size 32x24 --stream /dev/null");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("mvr: mpirun: --stream and mvr stream are not split over ranks yet"), std::string::npos)
+      << r.err;
+}
+
+// A rank killed while the others write: the job fails and no manifest
+// says the set is complete.
+TEST(MpiRenderErrors, ARankThatDiesLeavesNoCompleteSet) {
+  if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
+  const fs::path dir = test::freshDir("mpi_killed");
+  // Once files appear, rank 1 (found by its output folder in its command
+  // line and its rank in its environment) is killed.
+  const std::string killRankOne =
+      "for i in $(seq 300); do sleep 0.1; [ \"$(ls " + dir.string() + " 2>/dev/null | wc -l)\" -gt 3 ] && break; done; "
+      "for p in $(pgrep -f '" + dir.filename().string() + "'); do tr '\\0' '\\n' < /proc/$p/environ 2>/dev/null | "
+      "grep -qx OMPI_COMM_WORLD_RANK=1 && kill -9 $p; done";
+  const test::CliResult r = test::shell(mpirun(2) + test::mvrBinary() + " render --backend svr --views 3000 --size 160x120 --out " +
+                                        dir.string() + " >/dev/null & " + killRankOne + "; wait $!");
+  EXPECT_NE(r.status, 0) << "the job finished before rank 1 was killed";
+  EXPECT_FALSE(fs::exists(dir / "manifest.json"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace mvr
