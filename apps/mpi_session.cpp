@@ -40,8 +40,9 @@ void MpiSession::shareTheCores() {
   int local = 1;
   MPI_Comm_size(node, &local);
   MPI_Comm_free(&node);
-  if (local <= 1) return;
-  const int threads = std::max(1, int(std::thread::hardware_concurrency()) / local);
+  // mpirun binds each rank to its cores where it can (then the affinity
+  // says how many); unbound ranks divide the machine.
+  const int threads = std::max(1, std::min(availableCores(), int(std::thread::hardware_concurrency()) / local));
   setThreadCount(threads);
   setenv("LP_NUM_THREADS", std::to_string(threads).c_str(), 0);
 }

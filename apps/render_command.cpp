@@ -164,6 +164,7 @@ struct RenderFlags {
   std::string out = "out", format = "png", order = "view", gl = "auto";
   std::string stream, quilt, predistort, codec;
   bool strict = false, linear = false, depth = false, quiltOnly = false;
+  std::string splitBy = "cost";  // under mpirun: scanline bands by estimated cost or by count
   MemoryFlags memory;
   std::string from;  // synthesize: the references' folder
   WarpOptions warp;
@@ -230,6 +231,11 @@ struct RenderFlags {
                    "instead of an image set (see mvr stream)")
         ->type_name("PATH|-");
     memory.add(app, "the output folder; the current folder with --stream");
+    app.add_option("--split-by", splitBy,
+                   "under mpirun: cut a row into scanline bands of equal estimated cost (slices per "
+                   "scanline plus a fixed part) or of equal scanline count")
+        ->check(CLI::IsMember({"cost", "count"}))
+        ->capture_default_str();
   }
 
   // synthesize: references instead of a scene, the warp back end's options.
@@ -423,7 +429,8 @@ int runRender(int argc, char** argv, RenderCommand command) {
   if (mpi) {
     // Set-up is done on every rank once they agree; then each renders its share.
     const JobSplit jobSplit = splitJob(renderCamera, renderer->order(), mpi->ranks(),
-                                       synthesize ? std::vector<double>{} : scanlineCosts(scene, camera, rows / 2));
+                                       synthesize || f.splitBy == "count" ? std::vector<double>{}
+                                                                          : scanlineCosts(scene, camera, rows / 2));
     if (quiltLayout || (reorders && jobSplit.parts > 1)) checkScratchFits(rowBytes * rows, out);  // the shared file
     if (!mpi->agree("")) throw JobFailed{};
     split.emplace(*mpi, camera, jobSplit,
@@ -456,12 +463,13 @@ int runRender(int argc, char** argv, RenderCommand command) {
   Stopwatch total;
   const std::string label = renderer->name() + (choice.hasPst() ? std::string(" ") + pstModeName(choice.pst()) : "");
   const ShearingCamera shareCamera = split ? renderCamera.withShare(split->share()) : renderCamera;
+  double renderSeconds = 0.0;  // this process's, before waiting for the others
   inPhase(mpi, [&] {
     ProgressSink progress(*sink, shareCamera, long(views) * rows, label);
     renderer->render(shareCamera, progress, stats);
     progress.finish();
+    renderSeconds = total.seconds();
   });
-  const double renderSeconds = total.seconds();
   const double quiltAspect = quiltLayout && quiltLayout->aspect > 0.0 ? quiltLayout->aspect : double(width) / height;
   inPhase(mpi, [&] {
     if (split) split->assemble();
@@ -528,8 +536,10 @@ int runRender(int argc, char** argv, RenderCommand command) {
   }
   if (split) {
     m["mpi"] = split->info();
-    m["mpi"]["render_s"] = renderSeconds;  // this rank's (rank 0)
-    m["mpi"]["slowest_render_s"] = mpi->maxOf(renderSeconds);
+    m["mpi"]["split_by"] = f.splitBy;
+    std::vector<double> seconds;  // every rank's rendering, in rank order
+    for (const std::string& t : mpi->gatherAtRoot({std::to_string(renderSeconds)})) seconds.push_back(std::stod(t));
+    m["mpi"]["render_s"] = seconds;
     // Rank 0 writes the manifest, counting every rank's files as the set's.
     const std::vector<std::string> names = mpi->gatherAtRoot(writer.writtenNames());
     inPhase(mpi, [&] {

@@ -1,9 +1,12 @@
 #include "mvr/parallel.h"
 
+#include <sched.h>
+
 #include <algorithm>
 #include <exception>
 #include <memory>
 #include <mutex>
+#include <thread>
 
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
@@ -22,6 +25,13 @@ std::unique_ptr<tbb::global_control>& limit() {
 }
 
 }  // namespace
+
+int availableCores() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
+  return std::max(1, int(std::thread::hardware_concurrency()));
+}
 
 int threadCount() {
   return int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));

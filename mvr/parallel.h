@@ -9,6 +9,9 @@ namespace mvr {
 
 // Workers the pool runs (all cores unless setThreadCount said otherwise).
 int threadCount();
+// The CPUs this process may run on (its affinity mask: taskset, a
+// cgroup's cpuset, mpirun's binding), at most the machine's.
+int availableCores();
 // Limits the pool to n workers for the rest of the program; 0: all cores.
 void setThreadCount(int n);
 // Starts the workers now instead of at the first parallel loop: their
