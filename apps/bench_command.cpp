@@ -17,6 +17,7 @@
 
 #include "apps/bench_report.h"
 #include "apps/cli.h"
+#include "apps/job_split.h"
 #include "apps/sample_sink.h"
 #include "apps/teacup.h"
 #include "apps/test_scenes.h"
@@ -201,6 +202,55 @@ void benchScene(const std::string& name, const Scene& scene, const Config& cfg,
   }
 }
 
+// What a split job's ranks would each render (apps/job_split.h), timed
+// one share after another in this process: the per-share costs the split
+// balances and the scaling model takes (docs/SCALING.md). Prints, per
+// back end and split, each share's time, the measured imbalance (slowest
+// share over the mean) against the split's estimate, and the sum of the
+// shares over the whole render (the work the split repeats per share).
+void benchShares(const Scene& scene, const Config& cfg, int ranks) {
+  std::printf("# shares of a split over %d ranks, each rendered alone (best of %d)\n", ranks, cfg.repeat);
+  std::printf("%-9s %6s %5s %-24s %-6s %9s %10s %10s %10s  %s\n", "size", "views", "rows", "backend", "split",
+              "whole_s", "imbalance", "estimated", "sum/whole", "share seconds");
+  for (size_t k = 0; k < cfg.options.size(); ++k) {
+    auto renderer = makeRenderer(cfg.options[k], scene, cfg.type);
+    for (auto [w, h] : cfg.sizes)
+      for (int n : cfg.views) {
+        const ShearingCamera cam(cameraFor(scene, w, h), w, h, n, cfg.rows);
+        auto time = [&](const ShearingCamera& c) {
+          double best = INFINITY;
+          for (int r = 0; r < cfg.repeat; ++r) {
+            NullSink sink;
+            RenderStats stats;
+            Stopwatch watch;
+            renderer->render(c, sink, stats);
+            best = std::min(best, watch.seconds());
+          }
+          return best;
+        };
+        time(cam);  // warm-up
+        const double whole = time(cam);
+        for (const char* by : {"count", "cost"}) {
+          const bool byCost = std::string(by) == "cost";
+          if (byCost && renderer->order() == FrameOrder::View) continue;  // views split by count
+          const JobSplit split = splitJob(cam, renderer->order(), ranks,
+                                          byCost ? scanlineCosts(scene, cam, cfg.rows / 2) : std::vector<double>{});
+          std::vector<double> seconds;
+          std::string list;
+          for (const RenderShare& share : split.shares) {
+            seconds.push_back(time(cam.withShare(share)));
+            list += (list.empty() ? "" : " ") + std::to_string(seconds.back()).substr(0, 6);
+          }
+          double sum = 0.0, slowest = 0.0;
+          for (double t : seconds) sum += t, slowest = std::max(slowest, t);
+          std::printf("%4dx%-4d %6d %5d %-24s %-6s %9.4f %10.3f %10.3f %10.3f  %s\n", w, h, n, cfg.rows,
+                      cfg.backends[k].c_str(), by, whole, slowest * ranks / sum, split.imbalance, sum / whole,
+                      list.c_str());
+        }
+      }
+  }
+}
+
 std::vector<int> parseViews(const std::string& list) {
   std::vector<int> out;
   for (const std::string& v : splitList(list)) {
@@ -270,6 +320,11 @@ int runBench(int argc, char** argv) {
   app.add_option("--plots", plots, "write gnuplot scripts and PNG plots (needs gnuplot)")->type_name("DIR");
   app.add_option("--replot", replot, "only plot an earlier run's --json FILE into --plots DIR")
       ->type_name("FILE");
+  int shares = 0;
+  app.add_option("--shares", shares,
+                 "instead of the comparison: time each share of a split over K ranks (mpirun), "
+                 "split by scanline count and by estimated cost")
+      ->check(CLI::Range(2, 4096))->type_name("K");
   addAntialiasingOptions(app, cfg.aa);
   addGlOption(app, gl);
   addThreadsOption(app);
@@ -322,6 +377,13 @@ int runBench(int argc, char** argv) {
   std::printf("%-16s %-9s %6s %-24s %10s %10s %8s %9s %8s %7s %10s %7s %10s\n", "scene", "size",
               "views", "backend", "total_s", "ms/view", "x_svr", "x_layered", "PSNR_dB", "SSIM",
               "identical", "holes", "slices");
+  if (shares > 0) {
+    for (auto& [name, build] : scenes) {
+      std::printf("# scene %s\n", name.c_str());
+      benchShares(build(), cfg, shares);
+    }
+    return 0;
+  }
   std::vector<BenchRecord> records;
   for (auto& [name, build] : scenes) {
     Scene scene = build();

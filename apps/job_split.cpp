@@ -8,6 +8,15 @@
 #include "slicing/slice_table.h"
 
 namespace mvr::app {
+namespace {
+
+// A slice's track costs about as much to set up as this many pixels to
+// fill: 4 shares of the 143K teacup (mvr:cpu and mvr:strip, 640x480 x 100
+// and 160x140 x 400 views; mvr bench --shares) balance within 1.03-1.10
+// for 32 to 128, within 1.12-1.21 for 4 and 1.2-1.5 for 0 (docs/SCALING.md).
+constexpr double kSliceSetupPixels = 64.0;
+
+}  // namespace
 
 int launchedRanks() {
   for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"})
@@ -17,19 +26,28 @@ int launchedRanks() {
 
 std::vector<double> scanlineCosts(const Scene& scene, const ShearingCamera& camera, int row) {
   const int h = camera.height();
-  std::vector<float> y(scene.vertexCount());
-  for (size_t i = 0; i < y.size(); ++i) y[i] = float(camera.project(scene.positions[i], 0, row).y);
-  std::vector<double> slices(size_t(h) + 1, 0.0);  // differences, then counts
+  std::vector<glm::vec2> p(scene.vertexCount());  // the middle view's pixel positions
+  for (size_t i = 0; i < p.size(); ++i) p[i] = glm::vec2(camera.project(scene.positions[i], camera.views() / 2, row));
+  // Every EPI row is cleared and read back (its width), and each slice's
+  // track costs a setup and the pixels it covers.
+  std::vector<double> cost(size_t(h), double(camera.width()));
   for (const glm::uvec3& t : scene.triangles) {
-    const auto [first, last] = scanlineRange(y[t.x], y[t.y], y[t.z], h);
-    slices[size_t(first)] += 1.0;
-    slices[size_t(last)] -= 1.0;
+    const glm::vec2 a = p[t.x], b = p[t.y], c = p[t.z];
+    const auto [first, last] = scanlineRange(a.y, b.y, c.y, h);
+    for (int j = first; j < last; ++j) {
+      // The triangle's horizontal extent at the scanline's centre.
+      const float y = float(j) + 0.5f;
+      float lo = INFINITY, hi = -INFINITY;
+      for (auto [u, v] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}}) {
+        if ((y < std::min(u.y, v.y)) || (y > std::max(u.y, v.y)) || u.y == v.y) continue;
+        const float x = u.x + (v.x - u.x) * (y - u.y) / (v.y - u.y);
+        lo = std::min(lo, x);
+        hi = std::max(hi, x);
+      }
+      if (hi >= lo) cost[size_t(j)] += kSliceSetupPixels + double(hi - lo);
+    }
   }
-  std::partial_sum(slices.begin(), slices.end(), slices.begin());
-  slices.pop_back();
-  const double fixed = std::max(1.0, std::accumulate(slices.begin(), slices.end(), 0.0) / h);
-  for (double& c : slices) c += fixed;
-  return slices;
+  return cost;
 }
 
 std::vector<IndexRange> splitByCost(const std::vector<double>& costs, int parts) {

@@ -17,10 +17,10 @@ namespace mvr::app {
 // 1 when not started by a launcher.
 int launchedRanks();
 
-// The estimated cost of each scanline's EPIs for an EPI renderer: the
-// slices the scene's triangles leave on it (their y range is the same in
-// every view of a row) plus a fixed part, the EPI's clear, readback and
-// hand-over, counted as the average scanline's slices (docs/SCALING.md).
+// The estimated cost of each scanline's EPIs for an EPI renderer, in
+// pixels of one view's row: the row itself (every EPI row is cleared and
+// read back), and per triangle crossing it a slice's setup and the pixels
+// its track covers (its width in the middle view).
 std::vector<double> scanlineCosts(const Scene& scene, const ShearingCamera& camera, int row);
 
 // Contiguous ranges of [0, costs.size()) with near-equal sums, one per part.

@@ -128,19 +128,24 @@ TEST(JobSplit, RowsWhenTheyDivideBandsOtherwiseAndAGridForAHologram) {
   EXPECT_EQ(hologram.shares[17].scanlines.begin, hologram.shares[1].scanlines.begin);
 }
 
-TEST(JobSplit, ScanlineCostsCountEachTrianglesSlices) {
-  // One triangle on the image plane covering scanline centres 8.5 .. 15.5
-  // of a 32-line image: 8 slices, plus the fixed part (the average, 8/32 < 1: 1).
+TEST(JobSplit, ScanlineCostsCountEachSlicesSetupAndPixels) {
+  // One triangle on the image plane (the same in every view) with corners
+  // at pixels (4, 8), (20, 8), (4, 16): scanline centres 8.5 .. 15.5 cross
+  // it, 16 (1 - (y - 8) / 8) pixels wide. A 32-pixel row costs 32, a slice
+  // 64 more plus its width.
   Scene scene;
   const ShearingCamera cam(CameraSpec{}, 32, 32, 4);
-  auto at = [&](double px, double py) {  // pixel position -> a point on the image plane
+  auto at = [&](double px, double py) {
     return glm::vec3(float((px / 32.0 - 0.5) * cam.planeWidth()), float((0.5 - py / 32.0) * cam.planeHeight()), 0.0f);
   };
   scene.positions = {at(4, 8), at(20, 8), at(4, 16)};
   scene.triangles = {{0, 1, 2}};
   const std::vector<double> costs = scanlineCosts(scene, cam, 0);
   ASSERT_EQ(costs.size(), 32u);
-  for (int j = 0; j < 32; ++j) EXPECT_DOUBLE_EQ(costs[size_t(j)], (j >= 8 && j < 16) ? 2.0 : 1.0) << j;
+  for (int j = 0; j < 32; ++j) {
+    const double width = 16.0 * (1.0 - (j + 0.5 - 8.0) / 8.0);
+    EXPECT_NEAR(costs[size_t(j)], (j >= 8 && j < 16) ? 32.0 + 64.0 + width : 32.0, 1e-3) << j;
+  }
 }
 
 }  // namespace
