@@ -37,10 +37,16 @@ class SpanRasterizer final : public EpiRasterizer {
     // caller hands the other to the sink (whose copies would otherwise
     // leave the workers idle). The EPIs are allocated once and reused:
     // fresh multi-megabyte images per scanline cost page faults that
-    // serialise on the kernel's memory lock.
+    // serialise on the kernel's memory lock; so they are kept for the next
+    // row and the next render (a full-parallax grid's rows, a split job's
+    // shares): at 1920x1080 x 1000 views a fresh set cost 0.27 s a call.
     const int batch = std::max(1, std::min(lines.size(), 2 * threadCount()));
-    std::array<std::vector<Image>, 2> halves;
-    for (std::vector<Image>& half : halves) half.assign(size_t(batch), Image(cam.width(), cam.views(), type_));
+    std::array<std::vector<Image>, 2>& halves = halves_;
+    for (std::vector<Image>& half : halves) {
+      const bool fits = !half.empty() && half[0].width == cam.width() && half[0].height == cam.views();
+      if (!fits) half.clear();
+      half.resize(std::max(half.size(), size_t(batch)), Image(cam.width(), cam.views(), type_));
+    }
     struct Filled {
       int half = 0, first = 0, count = 0;
     } pending;
@@ -177,6 +183,7 @@ class SpanRasterizer final : public EpiRasterizer {
   }
 
   PixelType type_;
+  std::array<std::vector<Image>, 2> halves_;  // EPIs being filled and handed on, reused
   Srgb8Encoder srgb8_;
   EpiShading shading_;
   glm::vec3 eye0_{0.0f}, eyeStep_{0.0f};
