@@ -239,13 +239,15 @@ void benchShares(const Scene& scene, const Config& cfg, int ranks) {
           std::string list;
           for (const RenderShare& share : split.shares) {
             seconds.push_back(time(cam.withShare(share)));
-            list += (list.empty() ? "" : " ") + std::to_string(seconds.back()).substr(0, 6);
+            char text[32];
+            std::snprintf(text, sizeof text, " %.4f", seconds.back());
+            list += text;
           }
           double sum = 0.0, slowest = 0.0;
           for (double t : seconds) sum += t, slowest = std::max(slowest, t);
           std::printf("%4dx%-4d %6d %5d %-24s %-6s %9.4f %10.3f %10.3f %10.3f  %s\n", w, h, n, cfg.rows,
                       cfg.backends[k].c_str(), by, whole, slowest * ranks / sum, split.imbalance, sum / whole,
-                      list.c_str());
+                      list.c_str() + 1);
         }
       }
   }

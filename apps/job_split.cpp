@@ -83,13 +83,15 @@ JobSplit splitJob(const ShearingCamera& camera, FrameOrder order, int ranks, con
   const std::vector<double> rowCosts = equal(camera.rows());
   const std::vector<double> axisCosts =
       order == FrameOrder::View ? equal(camera.views()) : costs.empty() ? equal(camera.height()) : costs;
-  // Every grid of a row groups by b = ranks / a parts of a row; the best
-  // balanced wins, and of equals the one with more row groups (fewer
-  // ranks repeat a row's per-sequence work, and none need another's frames).
+  // Whole rows when there are enough: no rank then needs another's frames
+  // to reorder its rows, which at scale costs more than the balance lost
+  // (docs/SCALING.md: 100 rows on 64 ranks). Otherwise every grid of a row
+  // groups by b = ranks / a parts of a row; the best balanced wins, and of
+  // equals the one with more row groups (fewer ranks repeat a row's work).
   JobSplit best;
   double bestBalance = INFINITY;
   for (int a = 1; a <= ranks; ++a) {
-    if (ranks % a != 0 || a > camera.rows()) continue;
+    if (ranks % a != 0 || a > camera.rows() || (camera.rows() >= ranks && a != ranks)) continue;
     const int b = ranks / a;
     const std::vector<IndexRange> rowParts = splitByCost(rowCosts, a), axisParts = splitByCost(axisCosts, b);
     const double balance = imbalance(rowCosts, rowParts) * imbalance(axisCosts, axisParts);

@@ -38,10 +38,10 @@ struct JobSplit {
 // The costliest part's cost over the mean part's.
 double imbalance(const std::vector<double>& costs, const std::vector<IndexRange>& parts);
 
-// A grid of row groups by parts of a row, chosen for the best estimated
-// balance: whole rows when the rows divide among the ranks, bands of
-// scanlines by cost (EPI renderers; equal bands without costs) or equal
-// runs of views (view renderers) otherwise.
+// Whole rows per rank when there are at least as many rows as ranks;
+// otherwise a grid of row groups by parts of a row chosen for the best
+// estimated balance, the parts bands of scanlines by cost (EPI renderers;
+// equal bands without costs) or equal runs of views (view renderers).
 JobSplit splitJob(const ShearingCamera& camera, FrameOrder order, int ranks,
                   const std::vector<double>& scanlineCosts = {});
 

@@ -115,17 +115,21 @@ TEST(JobSplit, RowsWhenTheyDivideBandsOtherwiseAndAGridForAHologram) {
   EXPECT_EQ(bands.rowGroups, 1);
   EXPECT_EQ(bands.shares[2].scanlines.end, 48);
   EXPECT_EQ(bands.shares[1].scanlines.begin, bands.shares[0].scanlines.end);
-  const JobSplit views = splitJob(ShearingCamera(spec, 64, 48, 10, 3), FrameOrder::View, 2);
+  const JobSplit views = splitJob(ShearingCamera(spec, 64, 48, 10, 1), FrameOrder::View, 2);
   EXPECT_EQ(views.axis, "views");
   EXPECT_EQ(views.shares[1].views.begin, 5);
-  // 100 rows over 64 ranks: whole rows would leave 36 ranks with 2 rows
-  // and 28 with 1 (imbalance 1.28); 4 groups of 25 rows by 16 bands balance.
+  // 100 rows over 64 ranks: whole rows (36 ranks with 2, 28 with 1: 1.28)
+  // rather than 4 x 16 bands, whose exchange of frames costs more.
   const JobSplit hologram = splitJob(ShearingCamera(spec, 1920, 1080, 1000, 100), FrameOrder::Epi, 64);
-  EXPECT_EQ(hologram.rowGroups, 4);
-  EXPECT_EQ(hologram.parts, 16);
-  EXPECT_LT(hologram.imbalance, 1.02);
-  EXPECT_EQ(hologram.shares[17].rows.begin, 25);
-  EXPECT_EQ(hologram.shares[17].scanlines.begin, hologram.shares[1].scanlines.begin);
+  EXPECT_EQ(hologram.rowGroups, 64);
+  EXPECT_EQ(hologram.parts, 1);
+  EXPECT_NEAR(hologram.imbalance, 1.28, 1e-9);
+  // 100 rows over 512 ranks: groups of rows by bands.
+  const JobSplit big = splitJob(ShearingCamera(spec, 1920, 1080, 1000, 100), FrameOrder::Epi, 512);
+  EXPECT_EQ(big.rowGroups * big.parts, 512);
+  EXPECT_GT(big.parts, 1);
+  EXPECT_EQ(big.shares[big.parts + 1].rows.begin, big.shares[0].rows.end);
+  EXPECT_EQ(big.shares[big.parts + 1].scanlines.begin, big.shares[1].scanlines.begin);
 }
 
 TEST(JobSplit, ScanlineCostsCountEachSlicesSetupAndPixels) {
