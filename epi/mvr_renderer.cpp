@@ -52,7 +52,6 @@ class MvrRenderer final : public Renderer {
     }
     if (!gpuSlicer_) gpuSlicer_.emplace();
     stats.counters["clipped_triangles"] = double(scene_.triangleCount());
-    // The GPU slicer slices every scanline; a share's rasterizer draws its own.
     for (int row = cam.share().rows.begin; row < cam.share().rows.end; ++row) {
       const GpuVertices* vertices = nullptr;
       {
@@ -63,7 +62,8 @@ class MvrRenderer final : public Renderer {
       {
         ScopedStage s(stats.times, "slicing");
         table.emplace(gpuSlicer_->build(gpuTransform_->yBuffer(), vertices->triangles.id(),
-                                        uint32_t(vertices->triangleCount), cam.height()));
+                                        uint32_t(vertices->triangleCount), cam.height(),
+                                        cam.share().scanlines));
       }
       countSlices(table->sliceCount(), stats);
       rasterizer_->rasterize(*vertices, *table, cam, row, sink, stats);
@@ -98,7 +98,7 @@ class MvrRenderer final : public Renderer {
         std::optional<GpuSliceTable> table;
         {
           ScopedStage s(stats.times, "slicing");
-          table.emplace(gpuSlicer_->build(vertices, cam.height()));
+          table.emplace(gpuSlicer_->build(vertices, cam.height(), cam.share().scanlines));
         }
         countSlices(table->sliceCount(), stats);
         rasterizer_->rasterize(vertices, *table, cam, row, sink, stats);

@@ -18,13 +18,13 @@ layout(std430, binding = 2) buffer Cells { uint uCells[]; };  // scanline-major:
 uniform uint uTriangleCount;
 uniform uint uBlocks;
 uniform uint uPerBlock;
-uniform int uHeight;
+uniform int uFirst, uLast;  // the scanlines sliced
 
 // Scanlines [first, last) whose centres j + 0.5 lie in [ymin, ymax).
 ivec2 scanlineRange(float y0, float y1, float y2) {
   float lo = min(y0, min(y1, y2)), hi = max(y0, max(y1, y2));
-  int first = max(0, int(ceil(lo - 0.5)));
-  int last = min(uHeight, int(ceil(hi - 0.5)));
+  int first = max(uFirst, int(ceil(lo - 0.5)));
+  int last = min(uLast, int(ceil(hi - 0.5)));
   return ivec2(first, max(first, last));
 }
 uint blockEnd(uint b) { return min((b + 1u) * uPerBlock, uTriangleCount); }
@@ -91,16 +91,18 @@ uint32_t groups(size_t n) { return uint32_t((n + 63) / 64); }
 GpuSlicer::GpuSlicer()
     : count_(compute("slice-count", kCount)), fill_(compute("slice-fill", kFill)) {}
 
-GpuSliceTable GpuSlicer::build(const ExtremeVertices& v, int height) {
+GpuSliceTable GpuSlicer::build(const ExtremeVertices& v, int height, IndexRange lines) {
   std::vector<glm::uvec4> indices(v.triangles.size());
   for (size_t t = 0; t < indices.size(); ++t) indices[t] = glm::uvec4(v.triangles[t], 0u);
   const gl::Buffer ys = gl::makeBuffer(v.y.data(), v.y.size());
   const gl::Buffer tris = gl::makeBuffer(indices.data(), indices.size());
-  return build(ys.id(), tris.id(), uint32_t(indices.size()), height);
+  return build(ys.id(), tris.id(), uint32_t(indices.size()), height, lines);
 }
 
-GpuSliceTable GpuSlicer::build(GLuint ys, GLuint tris, uint32_t triangles, int height) {
+GpuSliceTable GpuSlicer::build(GLuint ys, GLuint tris, uint32_t triangles, int height, IndexRange lines) {
   if (height < 1) fail("GpuSlicer", "height must be at least 1");
+  if (lines.size() < 0) lines = {0, height};  // the default: every scanline
+  if (lines.begin < 0 || lines.end > height) fail("GpuSlicer", "scanlines outside the image");
   const auto blocks = uint32_t(std::clamp<size_t>(triangles / kMinPerBlock, 1, std::max<size_t>(1, kMaxCells / height)));
   const uint32_t perBlock = std::max<uint32_t>(1, (triangles + blocks - 1) / blocks);
   const size_t cellCount = size_t(blocks) * height;
@@ -116,7 +118,8 @@ GpuSliceTable GpuSlicer::build(GLuint ys, GLuint tris, uint32_t triangles, int h
     gl::ProgramUniform1ui(p.id(), gl::GetUniformLocation(p.id(), "uTriangleCount"), triangles);
     gl::ProgramUniform1ui(p.id(), gl::GetUniformLocation(p.id(), "uBlocks"), blocks);
     gl::ProgramUniform1ui(p.id(), gl::GetUniformLocation(p.id(), "uPerBlock"), perBlock);
-    gl::setUniform(p, "uHeight", height);
+    gl::setUniform(p, "uFirst", lines.begin);
+    gl::setUniform(p, "uLast", lines.end);
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, ys);
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, tris);
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, cells.id());

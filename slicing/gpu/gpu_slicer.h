@@ -9,6 +9,7 @@
 // then triangle order within a block: the CPU's triangle order, with no
 // atomics and no sort. Only the height + 1 offsets come back to the host
 // (GpuSliceTable keeps them for batching); the slices never do.
+#include "mvr/camera.h"
 #include "mvr/gl/gl_handles.h"
 #include "mvr/gl/prefix_sum.h"
 #include "slicing/extreme_vertices.h"
@@ -20,12 +21,15 @@ class GpuSlicer {
  public:
   GpuSlicer();  // needs a current GL context
 
-  // The table of v's triangles over `height` scanlines. Uploads y per
-  // vertex and the triangles' indices: O(vertices + triangles).
-  GpuSliceTable build(const ExtremeVertices& v, int height);
+  // The table of v's triangles over `height` scanlines, of which only
+  // `lines` (default all) get slices: a split job's band (the others are
+  // empty, as in SliceTable::build). Uploads y per vertex and the
+  // triangles' indices: O(vertices + triangles).
+  GpuSliceTable build(const ExtremeVertices& v, int height, IndexRange lines = {0, -1});
   // The same from buffers already on the GPU (GpuExtremeTransform's): y
   // per vertex, and triangles as uvec4 (a, b, c, anything).
-  GpuSliceTable build(GLuint ys, GLuint triangles, uint32_t triangleCount, int height);
+  GpuSliceTable build(GLuint ys, GLuint triangles, uint32_t triangleCount, int height,
+                      IndexRange lines = {0, -1});
 
  private:
   gl::Program count_, fill_;

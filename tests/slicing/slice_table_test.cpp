@@ -158,10 +158,11 @@ namespace {
 // flags, and endpoints within 1e-4 px in every view (x at r = 0 and r = N
 // for N = 100; both derive from tLong and tShort, which the GPU's division
 // may round differently by an ulp or two).
-void expectSameTable(const ExtremeVertices& v, int height, const char* label) {
-  const SliceTable cpu = SliceTable::build(v, height);
+void expectSameTable(const ExtremeVertices& v, int height, const char* label, IndexRange lines = {0, -1}) {
+  if (lines.size() < 0) lines = {0, height};
+  const SliceTable cpu = SliceTable::build(v, height, lines);
   GpuSlicer slicer;
-  const GpuSliceTable device = slicer.build(v, height);
+  const GpuSliceTable device = slicer.build(v, height, lines);
   EXPECT_EQ(device.offsets(), std::vector<uint32_t>(cpu.offsets().begin(), cpu.offsets().end())) << label;
   const SliceTable gpu = device.download();
   ASSERT_EQ(gpu.sliceCount(), cpu.sliceCount()) << label;
@@ -194,6 +195,19 @@ TEST(GpuSlicer, MatchesTheCpuSlicerOnTheTeacup) {
   const Scene scene = loadScene(test::assetPath("default.json"));
   const ShearingCamera cam(cameraFor(scene, 120, 90), 120, 90, 8);
   expectSameTable(transformToExtremes(scene, shading::litVertexColors(scene), cam, 0), 90, "teacup");
+}
+
+// A split job's band: the scanlines outside it get no slices, as from the
+// CPU slicer given the same band.
+TEST(GpuSlicer, SlicesOnlyABandWhenAskedAsTheCpuSlicerDoes) {
+  test::sharedContext();
+  const ExtremeVertices v = randomTriangles(2000, 60, 11);
+  expectSameTable(v, 60, "band", IndexRange{17, 41});
+  expectSameTable(v, 60, "first scanline", IndexRange{0, 1});
+  expectSameTable(v, 60, "empty band", IndexRange{30, 30});
+  const SliceTable whole = SliceTable::build(v, 60), band = SliceTable::build(v, 60, IndexRange{17, 41});
+  EXPECT_GT(whole.sliceCount(), band.sliceCount());
+  EXPECT_EQ(band.sliceCount(), whole.offsets()[41] - whole.offsets()[17]);
 }
 
 // Vertices exactly on scanline centres, flat (horizontal) triangles,
