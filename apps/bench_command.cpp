@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <queue>
 #include <sstream>
 #include <thread>
 
@@ -202,16 +204,42 @@ void benchScene(const std::string& name, const Scene& scene, const Config& cfg,
   }
 }
 
+// Work stealing, simulated from measured times: each rank's row cut into
+// kChunksPerRank equal bands per rank, each band rendered alone; a rank that
+// is free takes the next band from a shared counter (one MPI fetch-and-add
+// each, kGrabSeconds: an assumed InfiniBand round trip) until none is left.
+constexpr int kChunksPerRank = 8;
+constexpr double kGrabSeconds = 5e-6;
+
+// When the last rank finishes, taking chunks in order as ranks come free.
+double stealingMakespan(const std::vector<double>& chunks, int ranks) {
+  std::priority_queue<double, std::vector<double>, std::greater<>> freeAt;
+  for (int r = 0; r < ranks; ++r) freeAt.push(0.0);
+  double last = 0.0;
+  for (double t : chunks) {
+    const double done = freeAt.top() + kGrabSeconds + t;
+    freeAt.pop();
+    freeAt.push(done);
+    last = std::max(last, done);
+  }
+  return last;
+}
+
 // What a split job's ranks would each render (apps/job_split.h), timed
 // one share after another in this process: the per-share costs the split
 // balances and the scaling model takes (docs/SCALING.md). Prints, per
-// back end and split, each share's time, the measured imbalance (slowest
-// share over the mean) against the split's estimate, and the sum of the
-// shares over the whole render (the work the split repeats per share).
+// back end and split (static by count, static by cost, work stealing
+// simulated from chunk times), the measured imbalance (slowest rank over
+// the mean) against the split's estimate, the sum of the shares over the
+// whole render (the work the split repeats per share), the parallel
+// efficiency (whole render over ranks x the slowest rank) and each
+// share's time.
 void benchShares(const Scene& scene, const Config& cfg, int ranks) {
-  std::printf("# shares of a split over %d ranks, each rendered alone (best of %d)\n", ranks, cfg.repeat);
-  std::printf("%-9s %6s %5s %-24s %-6s %9s %10s %10s %10s  %s\n", "size", "views", "rows", "backend", "split",
-              "whole_s", "imbalance", "estimated", "sum/whole", "share seconds");
+  std::printf("# shares of a split over %d ranks, each rendered alone (best of %d); steal: %d chunks "
+              "per rank taken as ranks come free, %.0f us a grab\n",
+              ranks, cfg.repeat, kChunksPerRank, kGrabSeconds * 1e6);
+  std::printf("%-9s %6s %5s %-24s %-6s %9s %10s %10s %10s %10s  %s\n", "size", "views", "rows", "backend",
+              "split", "whole_s", "imbalance", "estimated", "sum/whole", "efficiency", "share seconds");
   for (size_t k = 0; k < cfg.options.size(); ++k) {
     auto renderer = makeRenderer(cfg.options[k], scene, cfg.type);
     for (auto [w, h] : cfg.sizes)
@@ -230,25 +258,40 @@ void benchShares(const Scene& scene, const Config& cfg, int ranks) {
         };
         time(cam);  // warm-up
         const double whole = time(cam);
+        auto print = [&](const char* by, const std::vector<double>& seconds, double makespan, double estimate,
+                         bool list) {
+          double sum = 0.0;
+          for (double t : seconds) sum += t;
+          std::string text;
+          for (double t : seconds) {
+            char item[32];
+            std::snprintf(item, sizeof item, " %.4f", t);
+            if (list) text += item;
+          }
+          char est[16] = "-";
+          if (estimate > 0.0) std::snprintf(est, sizeof est, "%.3f", estimate);
+          std::printf("%4dx%-4d %6d %5d %-24s %-6s %9.4f %10.3f %10s %10.3f %10.3f  %s\n", w, h, n, cfg.rows,
+                      cfg.backends[k].c_str(), by, whole, makespan * ranks / sum, est, sum / whole,
+                      whole / (ranks * makespan), text.empty() ? "" : text.c_str() + 1);
+        };
         for (const char* by : {"count", "cost"}) {
           const bool byCost = std::string(by) == "cost";
           if (byCost && renderer->order() == FrameOrder::View) continue;  // views split by count
           const JobSplit split = splitJob(cam, renderer->order(), ranks,
                                           byCost ? scanlineCosts(scene, cam, cfg.rows / 2) : std::vector<double>{});
           std::vector<double> seconds;
-          std::string list;
-          for (const RenderShare& share : split.shares) {
-            seconds.push_back(time(cam.withShare(share)));
-            char text[32];
-            std::snprintf(text, sizeof text, " %.4f", seconds.back());
-            list += text;
-          }
-          double sum = 0.0, slowest = 0.0;
-          for (double t : seconds) sum += t, slowest = std::max(slowest, t);
-          std::printf("%4dx%-4d %6d %5d %-24s %-6s %9.4f %10.3f %10.3f %10.3f  %s\n", w, h, n, cfg.rows,
-                      cfg.backends[k].c_str(), by, whole, slowest * ranks / sum, split.imbalance, sum / whole,
-                      list.c_str() + 1);
+          for (const RenderShare& share : split.shares) seconds.push_back(time(cam.withShare(share)));
+          print(by, seconds, *std::max_element(seconds.begin(), seconds.end()), split.imbalance, true);
         }
+        const bool epi = renderer->order() == FrameOrder::Epi;
+        const int axis = epi ? h : n;
+        std::vector<double> chunks;
+        for (IndexRange part : splitByCost(std::vector<double>(size_t(axis), 1.0), std::min(axis, kChunksPerRank * ranks))) {
+          RenderShare share = cam.share();
+          (epi ? share.scanlines : share.views) = part;
+          chunks.push_back(time(cam.withShare(share)));
+        }
+        print("steal", chunks, stealingMakespan(chunks, ranks), 0.0, false);
       }
   }
 }
