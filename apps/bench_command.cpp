@@ -229,7 +229,8 @@ double stealingMakespan(const std::vector<double>& chunks, int ranks) {
 // one share after another in this process: the per-share costs the split
 // balances and the scaling model takes (docs/SCALING.md). Prints, per
 // back end and split (static by count, static by cost, work stealing
-// simulated from chunk times), the measured imbalance (slowest rank over
+// simulated from chunk times, and steal* as if a rank paid a render call's
+// fixed costs once), the measured imbalance (slowest rank over
 // the mean) against the split's estimate, the sum of the shares over the
 // whole render (the work the split repeats per share), the parallel
 // efficiency (whole render over ranks x the slowest rank) and each
@@ -280,7 +281,11 @@ void benchShares(const Scene& scene, const Config& cfg, int ranks) {
           const JobSplit split = splitJob(cam, renderer->order(), ranks,
                                           byCost ? scanlineCosts(scene, cam, cfg.rows / 2) : std::vector<double>{});
           std::vector<double> seconds;
-          for (const RenderShare& share : split.shares) seconds.push_back(time(cam.withShare(share)));
+          for (const std::vector<RenderShare>& rank : split.shares) {
+            double t = 0.0;
+            for (const RenderShare& share : rank) t += time(cam.withShare(share));
+            seconds.push_back(t);
+          }
           print(by, seconds, *std::max_element(seconds.begin(), seconds.end()), split.imbalance, true);
         }
         const bool epi = renderer->order() == FrameOrder::Epi;
@@ -292,6 +297,13 @@ void benchShares(const Scene& scene, const Config& cfg, int ranks) {
           chunks.push_back(time(cam.withShare(share)));
         }
         print("steal", chunks, stealingMakespan(chunks, ranks), 0.0, false);
+        // The same if a rank kept its state from chunk to chunk: what the
+        // chunks cost beyond the whole render, spread evenly, taken off.
+        double sum = 0.0;
+        for (double t : chunks) sum += t;
+        const double overhead = std::max(0.0, sum - whole) / double(chunks.size());
+        for (double& t : chunks) t = std::max(0.0, t - overhead);
+        print("steal*", chunks, stealingMakespan(chunks, ranks), 0.0, false);
       }
   }
 }

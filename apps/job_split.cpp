@@ -70,42 +70,51 @@ std::vector<IndexRange> splitByCost(const std::vector<double>& costs, int parts)
   return out;
 }
 
-double imbalance(const std::vector<double>& costs, const std::vector<IndexRange>& parts) {
-  const double total = std::accumulate(costs.begin(), costs.end(), 0.0);
-  double largest = 0.0;
-  for (IndexRange p : parts)
-    largest = std::max(largest, std::accumulate(costs.begin() + p.begin, costs.begin() + p.end, 0.0));
-  return total > 0.0 ? largest * double(parts.size()) / total : 1.0;
-}
-
 JobSplit splitJob(const ShearingCamera& camera, FrameOrder order, int ranks, const std::vector<double>& costs) {
   auto equal = [](int n) { return std::vector<double>(size_t(n), 1.0); };
-  const std::vector<double> rowCosts = equal(camera.rows());
   const std::vector<double> axisCosts =
       order == FrameOrder::View ? equal(camera.views()) : costs.empty() ? equal(camera.height()) : costs;
-  // Whole rows when there are enough: no rank then needs another's frames
-  // to reorder its rows, which at scale costs more than the balance lost
-  // (docs/SCALING.md: 100 rows on 64 ranks). Otherwise every grid of a row
-  // groups by b = ranks / a parts of a row; the best balanced wins, and of
-  // equals the one with more row groups (fewer ranks repeat a row's work).
-  JobSplit best;
-  double bestBalance = INFINITY;
-  for (int a = 1; a <= ranks; ++a) {
-    if (ranks % a != 0 || a > camera.rows() || (camera.rows() >= ranks && a != ranks)) continue;
+  const double rowCost = std::accumulate(axisCosts.begin(), axisCosts.end(), 0.0);
+  JobSplit best{order == FrameOrder::Epi ? "scanlines" : "views", camera.rows() / ranks, 0, 0, 1.0,
+                std::vector<std::vector<RenderShare>>(size_t(ranks))};
+  for (int k = 0; k < ranks; ++k)
+    if (best.wholeRows > 0) {
+      RenderShare s = camera.share();
+      s.rows = {k * best.wholeRows, (k + 1) * best.wholeRows};
+      best.shares[size_t(k)].push_back(s);
+    }
+  const int left = camera.rows() - best.gridBegin();
+  if (left == 0) return best;
+  // The rows left over, fewer than the ranks: every grid of a row groups
+  // by b = ranks / a parts of a row. The one whose costliest rank costs
+  // least wins, and of equals the one with more row groups (fewer ranks
+  // repeat a row's fixed work).
+  double bestLoad = INFINITY;
+  std::vector<RenderShare> grid;
+  for (int a = 1; a <= std::min(left, ranks); ++a) {
+    if (ranks % a != 0) continue;
     const int b = ranks / a;
-    const std::vector<IndexRange> rowParts = splitByCost(rowCosts, a), axisParts = splitByCost(axisCosts, b);
-    const double balance = imbalance(rowCosts, rowParts) * imbalance(axisCosts, axisParts);
-    if (balance > bestBalance * (1.0 + 1e-9)) continue;
-    bestBalance = balance;
-    best = JobSplit{order == FrameOrder::Epi ? "scanlines" : "views", a, b, balance, {}};
+    const std::vector<IndexRange> rowParts = splitByCost(equal(left), a), axisParts = splitByCost(axisCosts, b);
+    double load = 0.0;  // the costliest rank's, in rows
+    for (IndexRange rows : rowParts)
+      for (IndexRange part : axisParts)
+        load = std::max(load, rows.size() * std::accumulate(axisCosts.begin() + part.begin,
+                                                            axisCosts.begin() + part.end, 0.0) / rowCost);
+    if (load > bestLoad * (1.0 + 1e-9)) continue;
+    bestLoad = load;
+    best.rowGroups = a;
+    best.parts = b;
+    grid.clear();
     for (IndexRange rows : rowParts)
       for (IndexRange part : axisParts) {
         RenderShare s = camera.share();
-        s.rows = rows;
+        s.rows = {best.gridBegin() + rows.begin, best.gridBegin() + rows.end};
         (order == FrameOrder::Epi ? s.scanlines : s.views) = part;
-        best.shares.push_back(s);
+        grid.push_back(s);
       }
   }
+  for (int k = 0; k < ranks; ++k) best.shares[size_t(k)].push_back(grid[size_t(k)]);
+  best.imbalance = (best.wholeRows + bestLoad) * ranks / double(camera.rows());
   return best;
 }
 

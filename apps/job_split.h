@@ -26,22 +26,28 @@ std::vector<double> scanlineCosts(const Scene& scene, const ShearingCamera& came
 // Contiguous ranges of [0, costs.size()) with near-equal sums, one per part.
 std::vector<IndexRange> splitByCost(const std::vector<double>& costs, int parts);
 
-// Rank k's share: row group k / parts, part k % parts of each row (bands
-// of scanlines for EPI renderers, runs of views for view renderers).
+// Rank k's shares: first wholeRows whole rows of its own, rows
+// [k * wholeRows, (k + 1) * wholeRows), then, when rows are left over
+// (fewer than ranks), its cell of a grid over them: row group k / parts,
+// part k % parts of each row (bands of scanlines for EPI renderers, runs
+// of views for view renderers).
 struct JobSplit {
   std::string axis;           // what a row is split by: "scanlines" or "views"
-  int rowGroups = 1, parts = 1;  // rowGroups x parts = ranks
-  double imbalance = 1.0;     // estimated: the costliest share over the mean share
-  std::vector<RenderShare> shares;  // one per rank
+  int wholeRows = 0;          // rows each rank renders whole
+  int rowGroups = 0, parts = 0;  // the grid over the rows left (0 x 0: none)
+  double imbalance = 1.0;     // estimated: the costliest rank's work over the mean
+  std::vector<std::vector<RenderShare>> shares;  // per rank, in render order
+
+  int ranks() const { return int(shares.size()); }
+  // The rows rendered whole, [0, gridBegin); the grid's, [gridBegin, rows).
+  int gridBegin() const { return wholeRows * ranks(); }
 };
 
-// The costliest part's cost over the mean part's.
-double imbalance(const std::vector<double>& costs, const std::vector<IndexRange>& parts);
-
-// Whole rows per rank when there are at least as many rows as ranks;
-// otherwise a grid of row groups by parts of a row chosen for the best
-// estimated balance, the parts bands of scanlines by cost (EPI renderers;
-// equal bands without costs) or equal runs of views (view renderers).
+// Whole rows, as many as every rank can have (no rank then needs another's
+// frames to reorder them); the rows left over, fewer than the ranks, as a
+// grid of row groups by parts of a row chosen for the best estimated
+// balance, the parts bands of scanlines by cost (EPI renderers; equal
+// bands without costs) or equal runs of views (view renderers).
 JobSplit splitJob(const ShearingCamera& camera, FrameOrder order, int ranks,
                   const std::vector<double>& scanlineCosts = {});
 

@@ -431,7 +431,8 @@ int runRender(int argc, char** argv, RenderCommand command) {
     const JobSplit jobSplit = splitJob(renderCamera, renderer->order(), mpi->ranks(),
                                        synthesize || f.splitBy == "count" ? std::vector<double>{}
                                                                           : scanlineCosts(scene, camera, rows / 2));
-    if (quiltLayout || (reorders && jobSplit.parts > 1)) checkScratchFits(rowBytes * rows, out);  // the shared file
+    if (quiltLayout || (reorders && jobSplit.gridBegin() < rows))
+      checkScratchFits(rowBytes * rows, out);  // the shared file
     if (!mpi->agree("")) throw JobFailed{};
     split.emplace(*mpi, camera, jobSplit,
                   SplitOutputSpec{.rendered = renderer->order(), .toViews = order == "view", .type = type,
@@ -462,11 +463,13 @@ int runRender(int argc, char** argv, RenderCommand command) {
   startup.add("before_render", sinceStart.seconds());
   Stopwatch total;
   const std::string label = renderer->name() + (choice.hasPst() ? std::string(" ") + pstModeName(choice.pst()) : "");
-  const ShearingCamera shareCamera = split ? renderCamera.withShare(split->share()) : renderCamera;
+  std::vector<ShearingCamera> renders;  // the whole set, or this rank's shares of it
+  if (split) for (const RenderShare& s : split->shares()) renders.push_back(renderCamera.withShare(s));
+  else renders.push_back(renderCamera);
   double renderSeconds = 0.0;  // this process's, before waiting for the others
   inPhase(mpi, [&] {
-    ProgressSink progress(*sink, shareCamera, long(views) * rows, label);
-    renderer->render(shareCamera, progress, stats);
+    ProgressSink progress(*sink, renders, long(views) * rows, label);
+    for (const ShearingCamera& c : renders) renderer->render(c, progress, stats);
     progress.finish();
     renderSeconds = total.seconds();
   });

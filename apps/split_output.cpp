@@ -21,15 +21,21 @@ class SplitOutput::Router final : public FrameSink {
  public:
   Router(SplitOutput& out, FrameSink* set) : out_(out), set_(set) {}
   void putView(int row, int view, const Image& image) override {
-    if (set_) set_->putView(row, view, image);
-    if (out_.volume_) out_.volume_->write(offset(row, view, image), bytesOf(image));
+    if (toSet(row)) set_->putView(row, view, image);
+    if (toVolume(row)) out_.volume_->write(offset(row, view, image), bytesOf(image));
   }
   void putEpi(int row, int scanline, const Image& epi) override {
-    if (set_) set_->putEpi(row, scanline, epi);
-    if (out_.volume_) out_.volume_->write(offset(row, scanline, epi), bytesOf(epi));
+    if (toSet(row)) set_->putEpi(row, scanline, epi);
+    if (toVolume(row)) out_.volume_->write(offset(row, scanline, epi), bytesOf(epi));
   }
 
  private:
+  // Frames in the set's order, and a rank's whole rows reordered here.
+  bool toSet(int row) const { return set_ && (out_.direct_ || row < out_.split_.gridBegin()); }
+  // Every frame for a quilt; the grid's for the exchange.
+  bool toVolume(int row) const {
+    return out_.volume_ && (out_.spec_.quilt || (out_.exchanges_ && row >= out_.split_.gridBegin()));
+  }
   // Frames in the order they were rendered: row by row, each row's frames by index.
   uint64_t offset(int row, int index, const Image& frame) const {
     const ShearingCamera& cam = out_.camera_;
@@ -43,16 +49,14 @@ class SplitOutput::Router final : public FrameSink {
 SplitOutput::SplitOutput(MpiSession& mpi, const ShearingCamera& camera, const JobSplit& split,
                          const SplitOutputSpec& spec, ImageSetWriter& writer, QuiltSink* quilt)
     : mpi_(mpi), camera_(camera), split_(split), spec_(spec), writer_(writer), quilt_(quilt) {
-  const bool direct = (spec.rendered == FrameOrder::View) == spec.toViews;
-  // Whole rows per rank: each reorders its own rows, as one process does.
-  const bool local = !direct && split.parts == 1;
-  exchanges_ = spec.frames && !direct && !local;
+  direct_ = (spec.rendered == FrameOrder::View) == spec.toViews;
+  exchanges_ = spec.frames && !direct_ && split.gridBegin() < camera.rows();
   if (exchanges_ || spec.quilt)
     volume_ = std::make_unique<SharedFile>((std::filesystem::path(spec.dir) / ".mvr_split_volume").string());
   FrameSink* set = nullptr;
-  if (spec.frames && direct) {
+  if (spec.frames && direct_) {
     set = &writer;
-  } else if (spec.frames && local) {
+  } else if (spec.frames && split.wholeRows > 0) {
     const int w = camera.width(), h = camera.height(), n = camera.views();
     if (spec.toViews) reorder_ = std::make_unique<EpisToViews>(writer, w, h, n, spec.type, spec.reorder);
     else reorder_ = std::make_unique<ViewsToEpis>(writer, w, h, n, spec.type, spec.reorder);
@@ -65,10 +69,12 @@ SplitOutput::~SplitOutput() = default;
 
 void SplitOutput::assemble() {
   if (exchanges_) {
-    // This rank's run of the set's output frames, by count.
+    // This rank's run of the grid's output frames, by count.
     const long perRow = spec_.toViews ? camera_.views() : camera_.height();
-    const long total = perRow * camera_.rows(), k = mpi_.rank(), ranks = mpi_.ranks();
-    readBack(spec_.toViews, total * k / ranks, total * (k + 1) / ranks, [&](int row, int index, const Image& f) {
+    const long first = perRow * split_.gridBegin(), total = perRow * camera_.rows() - first;
+    const long k = mpi_.rank(), ranks = mpi_.ranks();
+    readBack(spec_.toViews, first + total * k / ranks, first + total * (k + 1) / ranks,
+             [&](int row, int index, const Image& f) {
       spec_.toViews ? writer_.putView(row, index, f) : writer_.putEpi(row, index, f);
     });
   }
@@ -114,13 +120,20 @@ void SplitOutput::readBack(bool views, long first, long last,
 
 nlohmann::json SplitOutput::info() const {
   nlohmann::json shares = nlohmann::json::array();
-  for (const RenderShare& s : split_.shares) {
-    const IndexRange part = split_.axis == "scanlines" ? s.scanlines : s.views;
-    shares.push_back({{"rows", {s.rows.begin, s.rows.end}}, {split_.axis, {part.begin, part.end}}});
+  for (const std::vector<RenderShare>& rank : split_.shares) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const RenderShare& s : rank) {
+      const IndexRange part = split_.axis == "scanlines" ? s.scanlines : s.views;
+      list.push_back({{"rows", {s.rows.begin, s.rows.end}}, {split_.axis, {part.begin, part.end}}});
+    }
+    shares.push_back(list);
   }
-  return {{"ranks", mpi_.ranks()},         {"row_groups", split_.rowGroups},
-          {"parts_per_row", split_.parts}, {"split", split_.axis},
-          {"estimated_imbalance", split_.imbalance}, {"shares", shares},
+  return {{"ranks", mpi_.ranks()},
+          {"whole_rows_per_rank", split_.wholeRows},
+          {"grid", {{"row_groups", split_.rowGroups}, {"parts_per_row", split_.parts}}},
+          {"split", split_.axis},
+          {"estimated_imbalance", split_.imbalance},
+          {"shares", shares},
           {"scratch_file", volume_ != nullptr}};
 }
 

@@ -4,7 +4,8 @@
 // that must change order (EPIs to views, views to EPIs) or meet in a quilt
 // go through one shared scratch file (MPI-IO) in the order they were
 // rendered, and each rank then reads back and encodes its own run of the
-// output frames, so no rank ever holds the set. Rank 0 writes the quilt
+// output frames, so no rank ever holds the set. Rows a rank renders whole
+// it reorders itself, as one process does. Rank 0 writes the quilt
 // and the manifest. The images are the single-process render's bytes.
 #include <functional>
 #include <memory>
@@ -40,7 +41,8 @@ class SplitOutput {
               ImageSetWriter& writer, QuiltSink* quilt);
   ~SplitOutput();
 
-  const RenderShare& share() const { return split_.shares[size_t(mpi_.rank())]; }
+  // What this rank renders, in order.
+  const std::vector<RenderShare>& shares() const { return split_.shares[size_t(mpi_.rank())]; }
   // Where this rank's rendered frames go.
   FrameSink& sink() { return *sink_; }
   // After every rank rendered (the ranks agreed): the output frames this
@@ -61,9 +63,10 @@ class SplitOutput {
   SplitOutputSpec spec_;
   ImageSetWriter& writer_;
   QuiltSink* quilt_;
-  bool exchanges_ = false;  // output frames are read back from the scratch file
+  bool direct_ = false;     // rendered in the set's order: frames go to the writer as they come
+  bool exchanges_ = false;  // the grid's output frames are read back from the scratch file
   std::unique_ptr<SharedFile> volume_;
-  std::unique_ptr<FrameSink> reorder_;  // whole rows per rank: reordered here
+  std::unique_ptr<FrameSink> reorder_;  // the rows a rank renders whole: reordered here
   std::unique_ptr<FrameSink> sink_;
 };
 

@@ -54,12 +54,17 @@ void Progress::step(long n) {
 }
 
 ProgressSink::ProgressSink(FrameSink& inner, const ShearingCamera& rendered, long views, std::string label)
-    : inner_(inner),
-      // A share's frames (a process of a split job reports its own part).
-      viewFrames_(long(rendered.share().views.size()) * rendered.share().rows.size()),
-      epiFrames_(long(rendered.share().scanlines.size()) * rendered.share().rows.size()),
-      views_(views),
-      label_(std::move(label)) {}
+    : ProgressSink(inner, std::vector{rendered}, views, std::move(label)) {}
+
+ProgressSink::ProgressSink(FrameSink& inner, const std::vector<ShearingCamera>& renders, long views,
+                           std::string label)
+    : inner_(inner), viewFrames_(0), epiFrames_(0), views_(views), label_(std::move(label)) {
+  // The shares' frames (a process of a split job reports its own part).
+  for (const ShearingCamera& c : renders) {
+    viewFrames_ += long(c.share().views.size()) * c.share().rows.size();
+    epiFrames_ += long(c.share().scanlines.size()) * c.share().rows.size();
+  }
+}
 
 void ProgressSink::putView(int row, int view, const Image& image) {
   inner_.putView(row, view, image);

@@ -5,6 +5,7 @@
 // the time left, whatever order the back end renders in.
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "mvr/renderer.h"
 #include "mvr/timer.h"
@@ -36,6 +37,8 @@ class ProgressSink final : public FrameSink {
   // rendered: the camera the renderer draws (more views and pixels when
   // supersampled); views: the views the set will hold.
   ProgressSink(FrameSink& inner, const ShearingCamera& rendered, long views, std::string label);
+  // The same over several renders into this sink (a split job's shares).
+  ProgressSink(FrameSink& inner, const std::vector<ShearingCamera>& renders, long views, std::string label);
   void putView(int row, int view, const Image& image) override;
   void putEpi(int row, int scanline, const Image& epi) override;
   void finish() override;

@@ -75,7 +75,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(SplitCase{"mvr_views_quilt", "--backend mvr --quilt auto"},    // scanline bands, reordered
                       SplitCase{"cpu_epis", "--backend mvr --pst cpu --order epi"},  // bands, written directly
                       SplitCase{"svr_epis", "--backend svr --order epi"},            // views, reordered
-                      SplitCase{"interp_rows", "--backend interp --rows 3"}),        // rows
+                      SplitCase{"interp_rows", "--backend interp --rows 3"},  // rows; 2 ranks: a row each, then bands
+                      SplitCase{"mvr_rows_views", "--backend mvr --rows 4"}),  // 3 ranks: a row each, then bands
     [](const auto& info) { return std::string(info.param.name); });
 
 TEST(MpiRenderErrors, ABadSceneFailsTheJobWithOneLine) {

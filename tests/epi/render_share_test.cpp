@@ -105,31 +105,48 @@ TEST(JobSplit, PartsCoverEveryItemOnceEvenWithMorePartsThanItems) {
   EXPECT_EQ(two[0].end, 4);
 }
 
-TEST(JobSplit, RowsWhenTheyDivideBandsOtherwiseAndAGridForAHologram) {
+TEST(JobSplit, WholeRowsFirstThenTheRowsLeftAsAGrid) {
   const CameraSpec spec;
   const JobSplit rows = splitJob(ShearingCamera(spec, 64, 48, 10, 4), FrameOrder::Epi, 2);
-  EXPECT_EQ(rows.rowGroups, 2);
-  EXPECT_EQ(rows.parts, 1);
+  EXPECT_EQ(rows.wholeRows, 2);
+  EXPECT_EQ(rows.gridBegin(), 4);
+  EXPECT_EQ(rows.shares[1].size(), 1u);
+  EXPECT_EQ(rows.shares[1][0].rows.begin, 2);
+  EXPECT_EQ(rows.shares[1][0].scanlines.size(), 48);
   EXPECT_DOUBLE_EQ(rows.imbalance, 1.0);
   const JobSplit bands = splitJob(ShearingCamera(spec, 64, 48, 10, 1), FrameOrder::Epi, 3);
+  EXPECT_EQ(bands.wholeRows, 0);
   EXPECT_EQ(bands.rowGroups, 1);
-  EXPECT_EQ(bands.shares[2].scanlines.end, 48);
-  EXPECT_EQ(bands.shares[1].scanlines.begin, bands.shares[0].scanlines.end);
+  EXPECT_EQ(bands.parts, 3);
+  EXPECT_EQ(bands.shares[2][0].scanlines.end, 48);
+  EXPECT_EQ(bands.shares[1][0].scanlines.begin, bands.shares[0][0].scanlines.end);
   const JobSplit views = splitJob(ShearingCamera(spec, 64, 48, 10, 1), FrameOrder::View, 2);
   EXPECT_EQ(views.axis, "views");
-  EXPECT_EQ(views.shares[1].views.begin, 5);
-  // 100 rows over 64 ranks: whole rows (36 ranks with 2, 28 with 1: 1.28)
-  // rather than 4 x 16 bands, whose exchange of frames costs more.
+  EXPECT_EQ(views.shares[1][0].views.begin, 5);
+  // 4 rows over 3 ranks: a row each, then the last row in 3 bands.
+  const JobSplit rest = splitJob(ShearingCamera(spec, 64, 48, 10, 4), FrameOrder::Epi, 3);
+  EXPECT_EQ(rest.wholeRows, 1);
+  ASSERT_EQ(rest.shares[2].size(), 2u);
+  EXPECT_EQ(rest.shares[2][0].rows.begin, 2);
+  EXPECT_EQ(rest.shares[2][1].rows.begin, 3);
+  EXPECT_EQ(rest.shares[2][1].scanlines.end, 48);
+  EXPECT_EQ(rest.parts, 3);
+  EXPECT_NEAR(rest.imbalance, 1.0, 0.02);  // 48 equal scanlines in 3 bands
+  // 100 rows over 64 ranks: a row each, then the 36 left as 4 groups of 9
+  // rows by 16 bands (every rank 1 + 9 / 16 rows: balanced), not 36 ranks
+  // with two rows (1.28).
   const JobSplit hologram = splitJob(ShearingCamera(spec, 1920, 1080, 1000, 100), FrameOrder::Epi, 64);
-  EXPECT_EQ(hologram.rowGroups, 64);
-  EXPECT_EQ(hologram.parts, 1);
-  EXPECT_NEAR(hologram.imbalance, 1.28, 1e-9);
+  EXPECT_EQ(hologram.wholeRows, 1);
+  EXPECT_EQ(hologram.rowGroups, 4);
+  EXPECT_EQ(hologram.parts, 16);
+  EXPECT_NEAR(hologram.imbalance, 1.0, 0.01);
   // 100 rows over 512 ranks: groups of rows by bands.
   const JobSplit big = splitJob(ShearingCamera(spec, 1920, 1080, 1000, 100), FrameOrder::Epi, 512);
+  EXPECT_EQ(big.wholeRows, 0);
   EXPECT_EQ(big.rowGroups * big.parts, 512);
   EXPECT_GT(big.parts, 1);
-  EXPECT_EQ(big.shares[big.parts + 1].rows.begin, big.shares[0].rows.end);
-  EXPECT_EQ(big.shares[big.parts + 1].scanlines.begin, big.shares[1].scanlines.begin);
+  EXPECT_EQ(big.shares[size_t(big.parts) + 1][0].rows.begin, big.shares[0][0].rows.end);
+  EXPECT_EQ(big.shares[size_t(big.parts) + 1][0].scanlines.begin, big.shares[1][0].scanlines.begin);
 }
 
 TEST(JobSplit, ScanlineCostsCountEachSlicesSetupAndPixels) {
