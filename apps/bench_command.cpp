@@ -264,10 +264,10 @@ void benchShares(const Scene& scene, const Config& cfg, int ranks) {
           double sum = 0.0;
           for (double t : seconds) sum += t;
           std::string text;
-          for (double t : seconds) {
+          for (double t : list ? seconds : std::vector<double>{}) {
             char item[32];
             std::snprintf(item, sizeof item, " %.4f", t);
-            if (list) text += item;
+            text += item;
           }
           char est[16] = "-";
           if (estimate > 0.0) std::snprintf(est, sizeof est, "%.3f", estimate);

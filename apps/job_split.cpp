@@ -77,8 +77,8 @@ JobSplit splitJob(const ShearingCamera& camera, FrameOrder order, int ranks, con
   const double rowCost = std::accumulate(axisCosts.begin(), axisCosts.end(), 0.0);
   JobSplit best{order == FrameOrder::Epi ? "scanlines" : "views", camera.rows() / ranks, 0, 0, 1.0,
                 std::vector<std::vector<RenderShare>>(size_t(ranks))};
-  for (int k = 0; k < ranks; ++k)
-    if (best.wholeRows > 0) {
+  if (best.wholeRows > 0)
+    for (int k = 0; k < ranks; ++k) {
       RenderShare s = camera.share();
       s.rows = {k * best.wholeRows, (k + 1) * best.wholeRows};
       best.shares[size_t(k)].push_back(s);

@@ -101,8 +101,7 @@ GpuSliceTable GpuSlicer::build(const ExtremeVertices& v, int height, IndexRange 
 
 GpuSliceTable GpuSlicer::build(GLuint ys, GLuint tris, uint32_t triangles, int height, IndexRange lines) {
   if (height < 1) fail("GpuSlicer", "height must be at least 1");
-  if (lines.size() < 0) lines = {0, height};  // the default: every scanline
-  if (lines.begin < 0 || lines.end > height) fail("GpuSlicer", "scanlines outside the image");
+  if (lines.begin < 0 || lines.end > height || lines.size() < 0) fail("GpuSlicer", "scanlines outside the image");
   const auto blocks = uint32_t(std::clamp<size_t>(triangles / kMinPerBlock, 1, std::max<size_t>(1, kMaxCells / height)));
   const uint32_t perBlock = std::max<uint32_t>(1, (triangles + blocks - 1) / blocks);
   const size_t cellCount = size_t(blocks) * height;

@@ -21,15 +21,18 @@ class GpuSlicer {
  public:
   GpuSlicer();  // needs a current GL context
 
-  // The table of v's triangles over `height` scanlines, of which only
-  // `lines` (default all) get slices: a split job's band (the others are
-  // empty, as in SliceTable::build). Uploads y per vertex and the
-  // triangles' indices: O(vertices + triangles).
-  GpuSliceTable build(const ExtremeVertices& v, int height, IndexRange lines = {0, -1});
+  // The table of v's triangles over `height` scanlines. Uploads y per
+  // vertex and the triangles' indices: O(vertices + triangles).
+  GpuSliceTable build(const ExtremeVertices& v, int height) { return build(v, height, {0, height}); }
+  // The same with slices in `lines` only: a split job's band (the other
+  // scanlines are empty, as in SliceTable::build).
+  GpuSliceTable build(const ExtremeVertices& v, int height, IndexRange lines);
   // The same from buffers already on the GPU (GpuExtremeTransform's): y
   // per vertex, and triangles as uvec4 (a, b, c, anything).
-  GpuSliceTable build(GLuint ys, GLuint triangles, uint32_t triangleCount, int height,
-                      IndexRange lines = {0, -1});
+  GpuSliceTable build(GLuint ys, GLuint triangles, uint32_t triangleCount, int height, IndexRange lines);
+  GpuSliceTable build(GLuint ys, GLuint triangles, uint32_t triangleCount, int height) {
+    return build(ys, triangles, triangleCount, height, {0, height});
+  }
 
  private:
   gl::Program count_, fill_;
