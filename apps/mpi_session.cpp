@@ -96,12 +96,16 @@ struct SharedFile::Handle {
   MPI_File file = MPI_FILE_NULL;
 };
 
-SharedFile::SharedFile(const std::string& path) : path_(path), handle_(std::make_unique<Handle>()) {
+SharedFile::SharedFile(const std::string& path, Lifetime lifetime)
+    : path_(path), handle_(std::make_unique<Handle>()) {
+  const bool scratch = lifetime == Lifetime::Scratch;
   const int rc = MPI_File_open(MPI_COMM_WORLD, path.c_str(),
-                               MPI_MODE_CREATE | MPI_MODE_RDWR | MPI_MODE_DELETE_ON_CLOSE, MPI_INFO_NULL,
-                               &handle_->file);
-  if (rc != MPI_SUCCESS) fail(path, "cannot create the job's shared scratch file");
+                               MPI_MODE_CREATE | MPI_MODE_RDWR | (scratch ? MPI_MODE_DELETE_ON_CLOSE : 0),
+                               MPI_INFO_NULL, &handle_->file);
+  if (rc != MPI_SUCCESS) fail(path, scratch ? "cannot create the job's shared scratch file" : "cannot create file");
   MPI_File_set_errhandler(handle_->file, MPI_ERRORS_RETURN);
+  // A file left by an earlier job would keep its bytes past this one's end.
+  if (!scratch && MPI_File_set_size(handle_->file, 0) != MPI_SUCCESS) fail(path, "cannot truncate file");
 }
 
 SharedFile::~SharedFile() {
@@ -114,7 +118,7 @@ void SharedFile::write(uint64_t offset, std::span<const std::byte> bytes) {
     MPI_Status status;
     if (MPI_File_write_at(handle_->file, MPI_Offset(offset + done), bytes.data() + done, n, MPI_BYTE, &status) !=
         MPI_SUCCESS)
-      fail(path_, "cannot write the job's shared scratch file (is the disk full?)");
+      fail(path_, "cannot write the job's shared file (is the disk full?)");
     done += uint64_t(n);
   }
 }
@@ -127,7 +131,7 @@ void SharedFile::read(uint64_t offset, std::span<std::byte> bytes) {
     if (MPI_File_read_at(handle_->file, MPI_Offset(offset + done), bytes.data() + done, n, MPI_BYTE, &status) !=
             MPI_SUCCESS ||
         MPI_Get_count(&status, MPI_BYTE, &got) != MPI_SUCCESS || got != n)
-      fail(path_, "cannot read back the job's shared scratch file");
+      fail(path_, "cannot read back the job's shared file");
     done += uint64_t(n);
   }
 }

@@ -52,12 +52,13 @@ struct JobFailed {};
 
 // A file every rank of the job reads and writes at offsets of its own
 // (MPI-IO, so a parallel file system serves it): where EPIs of one rank
-// meet the views another encodes. Opened and closed collectively; removed
-// on close.
+// meet the views another encodes, or the output itself (a stream's records).
+// Opened and closed collectively.
 class SharedFile {
  public:
+  enum class Lifetime { Scratch, Kept };  // Scratch: removed on close; Kept: truncated at open
   // Collective. Throws naming the path when it cannot be created.
-  explicit SharedFile(const std::string& path);
+  explicit SharedFile(const std::string& path, Lifetime lifetime = Lifetime::Scratch);
   ~SharedFile();  // collective
   SharedFile(const SharedFile&) = delete;
   SharedFile& operator=(const SharedFile&) = delete;

@@ -17,7 +17,7 @@ double MpiSession::maxOf(double value) { return value; }
 void MpiSession::barrier() {}
 
 struct SharedFile::Handle {};
-SharedFile::SharedFile(const std::string& path) { fail(path, "a shared scratch file needs MPI"); }
+SharedFile::SharedFile(const std::string& path, Lifetime) { fail(path, "a shared scratch file needs MPI"); }
 SharedFile::~SharedFile() = default;
 void SharedFile::write(uint64_t, std::span<const std::byte>) {}
 void SharedFile::read(uint64_t, std::span<std::byte>) {}

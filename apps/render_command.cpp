@@ -44,6 +44,15 @@ bool isPlainFile(const std::string& endpoint) {
   return endpoint != "-" && endpoint.rfind("unix:", 0) != 0 && endpoint.rfind("tcp:", 0) != 0;
 }
 
+EpiStreamHeader streamHeader(const ShearingCamera& cam, PixelType type, double imagePlaneZ) {
+  EpiStreamHeader header{uint32_t(cam.width()), uint32_t(cam.height()), uint32_t(cam.views()),
+                         uint32_t(cam.rows()), 4, uint32_t(Image::channelBytes(type)),
+                         type == PixelType::Srgb8};
+  header.camera = StreamCamera{cam.spec(), imagePlaneZ};
+  header.camera->spec.planeHeight = cam.planeHeight();
+  return header;
+}
+
 // EPIs to a file, stdout or socket as they complete, through a bounded
 // queue. A file is written under a temporary name and renamed when done.
 int streamTo(Renderer& renderer, const ShearingCamera& cam, double imagePlaneZ, const Supersampling& aa,
@@ -54,11 +63,7 @@ int streamTo(Renderer& renderer, const ShearingCamera& cam, double imagePlaneZ, 
   std::signal(SIGXFSZ, SIG_IGN);  // so is a file-size limit
   const bool file = isPlainFile(endpoint);
   const std::string target = file ? endpoint + ".part" : endpoint;
-  EpiStreamHeader header{uint32_t(cam.width()), uint32_t(cam.height()), uint32_t(cam.views()),
-                         uint32_t(cam.rows()), 4, uint32_t(Image::channelBytes(type)),
-                         type == PixelType::Srgb8};
-  header.camera = StreamCamera{cam.spec(), imagePlaneZ};
-  header.camera->spec.planeHeight = cam.planeHeight();
+  const EpiStreamHeader header = streamHeader(cam, type, imagePlaneZ);
   Stopwatch watch;
   size_t highWater = 0;
   std::string note;
@@ -148,6 +153,82 @@ void inPhase(MpiSession* mpi, Phase&& phase) {
     error = std::string("internal error: ") + e.what();
   }
   if (!mpi->agree(error)) throw JobFailed{};
+}
+
+// The whole stream from a shared file, in order, to a pipe or socket.
+void relayStream(SharedFile& records, uint64_t bytes, FdStreamBuf& buffer, const std::string& endpoint) {
+  std::ostream out(&buffer);
+  std::vector<std::byte> piece;
+  for (uint64_t at = 0; at < bytes; at += piece.size()) {
+    piece.resize(size_t(std::min<uint64_t>(uint64_t(16) << 20, bytes - at)));
+    records.read(at, piece);
+    out.write(reinterpret_cast<const char*>(piece.data()), std::streamsize(piece.size()));
+    if (!out) break;
+  }
+  out.flush();
+  if (!out || buffer.writeError())
+    fail(endpoint, std::string("cannot write stream: ") + std::strerror(buffer.writeError() ? buffer.writeError() : EIO));
+}
+
+// The stream of a job split over ranks: every rank writes its EPIs'
+// records at their offsets in one shared file, so the stream is the
+// single process's byte for byte and no rank holds more than its frames.
+// For a plain file that file is the stream (under a temporary name until
+// every rank is done); a pipe or socket is fed by rank 0 from a scratch
+// file once every rank is done, in stream order.
+int streamSplit(MpiSession& mpi, Renderer& renderer, const ShearingCamera& cam, const JobSplit& split,
+                const EpiStreamHeader& header, const std::string& endpoint, const ReorderMemory& reorder,
+                const std::optional<glm::vec4>& background) {
+  namespace fs = std::filesystem;
+  std::signal(SIGPIPE, SIG_IGN);
+  std::signal(SIGXFSZ, SIG_IGN);
+  const bool file = isPlainFile(endpoint);
+  const std::string path = file ? endpoint + ".part" : ".mvr_split_stream";
+  const uint64_t bytes = header.recordOffset(cam.rows(), 0);
+  Stopwatch watch;
+  std::optional<SharedFile> records;
+  std::optional<FdStreamBuf> pipe;  // rank 0's, connected before anything is rendered
+  inPhase(&mpi, [&] {
+    records.emplace(path, file ? SharedFile::Lifetime::Kept : SharedFile::Lifetime::Scratch);
+    if (!file && mpi.rank() == 0) pipe.emplace(openForWriting(endpoint));
+  });
+  try {
+    EpiRecordSink sink(header, [&](uint64_t at, std::span<const std::byte> b) { records->write(at, b); });
+    SplitOutput out(mpi, cam, split,
+                    SplitOutputSpec{.rendered = renderer.order(), .toViews = false, .type = header.pixelType(),
+                                    .dir = ".", .reorder = reorder},
+                    sink, nullptr);
+    FrameSink* frames = &out.sink();
+    std::optional<BackgroundSink> over;
+    if (background) frames = &over.emplace(*frames, *background);
+    std::vector<ShearingCamera> renders;
+    for (const RenderShare& share : out.shares()) renders.push_back(cam.withShare(share));
+    inPhase(&mpi, [&] {
+      const std::vector<uint8_t> head = header.encode();
+      if (mpi.rank() == 0) records->write(0, std::as_bytes(std::span(head)));
+      ProgressSink progress(*frames, renders, long(cam.views()) * cam.rows(), renderer.name());
+      RenderStats stats;
+      for (const ShearingCamera& c : renders) renderer.render(c, progress, stats);
+      progress.finish();
+    });
+    inPhase(&mpi, [&] { out.assemble(); });
+    if (!file) inPhase(&mpi, [&] { if (pipe) relayStream(*records, bytes, *pipe, endpoint); });
+    records.reset();  // collective; a kept file is complete
+    if (file) inPhase(&mpi, [&] {
+      std::error_code ec;
+      if (mpi.rank() == 0) fs::rename(path, endpoint, ec);
+      if (ec) fail(endpoint, "cannot finish stream file: " + ec.message());
+    });
+  } catch (...) {
+    records.reset();  // every rank is here: phases end on every rank alike
+    std::error_code ec;
+    if (file && mpi.rank() == 0) fs::remove(path, ec);
+    throw;
+  }
+  if (mpi.rank() == 0)
+    std::fprintf(stderr, "mvr: streamed %d EPIs of %dx%d to %s in %.3f s with %d ranks\n", cam.height() * cam.rows(),
+                 cam.width(), cam.views(), endpoint.c_str(), watch.seconds(), mpi.ranks());
+  return 0;
 }
 
 }  // namespace
@@ -332,9 +413,8 @@ int runRender(int argc, char** argv, RenderCommand command) {
   // Under mpirun the ranks share the job (apps/job_split.h); rank 0 reports.
   MpiSession* const mpi = MpiSession::current();
   if (mpi) {
-    for (auto [given, what] : {std::pair{streamCommand || streaming, "--stream and mvr stream"},
-                               std::pair{f.depth, "--depth"}, std::pair{f.aa.active(), "--aa and --aa-views"}})
-      if (given) fail("mpirun", std::string(what) + " are not split over ranks yet: run without mpirun");
+    for (auto [given, what] : {std::pair{f.depth, "--depth"}, std::pair{f.aa.active(), "--aa and --aa-views"}})
+      if (given) fail("mpirun", std::string(what) + ": not split over ranks yet; run without mpirun");
     if (mpi->rank() != 0) setProgressEnabled(false);
   }
 
@@ -403,6 +483,22 @@ int runRender(int argc, char** argv, RenderCommand command) {
   if (scratch && streaming) checkScratchFits(rowBytes, reorder.scratchDir);
 
   const std::optional<glm::vec4> background = f.camera.backgroundColor();
+  // Under mpirun: the same on every rank (apps/job_split.h).
+  auto splitFor = [&] {
+    return splitJob(renderCamera, renderer->order(), mpi->ranks(),
+                    synthesize || f.splitBy == "count" ? std::vector<double>{}
+                                                       : scanlineCosts(scene, camera, rows / 2));
+  };
+  if (streaming && mpi) {
+    const JobSplit jobSplit = splitFor();
+    const EpiStreamHeader header = streamHeader(camera, type, imagePlaneZ);
+    // The grid's views meet in a scratch file; a pipe's records in another.
+    const uint64_t streamBytes = header.recordOffset(rows, 0);
+    checkScratchFits((reorders && jobSplit.gridBegin() < rows ? rowBytes * rows : 0) +
+                         (isPlainFile(f.stream) ? 0 : streamBytes), ".");
+    if (!mpi->agree("")) throw JobFailed{};
+    return streamSplit(*mpi, *renderer, camera, jobSplit, header, f.stream, reorder, background);
+  }
   if (streaming) return streamTo(*renderer, camera, imagePlaneZ, f.aa, f.stream, type, f.queue, reorder, background);
 
   ImageSetWriter writer(out, Manifest{.views = views, .rows = rows, .width = width, .height = height,
@@ -428,9 +524,7 @@ int runRender(int argc, char** argv, RenderCommand command) {
   std::optional<SplitOutput> split;
   if (mpi) {
     // Set-up is done on every rank once they agree; then each renders its share.
-    const JobSplit jobSplit = splitJob(renderCamera, renderer->order(), mpi->ranks(),
-                                       synthesize || f.splitBy == "count" ? std::vector<double>{}
-                                                                          : scanlineCosts(scene, camera, rows / 2));
+    const JobSplit jobSplit = splitFor();
     if (quiltLayout || (reorders && jobSplit.gridBegin() < rows))
       checkScratchFits(rowBytes * rows, out);  // the shared file
     if (!mpi->agree("")) throw JobFailed{};

@@ -47,7 +47,7 @@ class SplitOutput::Router final : public FrameSink {
 };
 
 SplitOutput::SplitOutput(MpiSession& mpi, const ShearingCamera& camera, const JobSplit& split,
-                         const SplitOutputSpec& spec, ImageSetWriter& writer, QuiltSink* quilt)
+                         const SplitOutputSpec& spec, FrameSink& writer, QuiltSink* quilt)
     : mpi_(mpi), camera_(camera), split_(split), spec_(spec), writer_(writer), quilt_(quilt) {
   direct_ = (spec.rendered == FrameOrder::View) == spec.toViews;
   exchanges_ = spec.frames && !direct_ && split.gridBegin() < camera.rows();

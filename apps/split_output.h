@@ -7,6 +7,8 @@
 // output frames, so no rank ever holds the set. Rows a rank renders whole
 // it reorders itself, as one process does. Rank 0 writes the quilt
 // and the manifest. The images are the single-process render's bytes.
+// A stream (toViews false) is written the same way, its records at their
+// offsets.
 #include <functional>
 #include <memory>
 #include <optional>
@@ -18,7 +20,6 @@
 #include "apps/mpi_session.h"
 #include "epi/volume.h"
 #include "mvr/frame_sinks.h"
-#include "mvr/io/image_set.h"
 
 namespace mvr::app {
 
@@ -36,9 +37,11 @@ struct SplitOutputSpec {
 class SplitOutput {
  public:
   // Collective: opens the shared scratch file when the orders differ or a
-  // quilt is written (rank 0 passes it; the others null).
+  // quilt is written (rank 0 passes it; the others null). `set` takes this
+  // rank's frames of the set in its order: an image set's writer, or a
+  // stream's records.
   SplitOutput(MpiSession& mpi, const ShearingCamera& camera, const JobSplit& split, const SplitOutputSpec& spec,
-              ImageSetWriter& writer, QuiltSink* quilt);
+              FrameSink& set, QuiltSink* quilt);
   ~SplitOutput();
 
   // What this rank renders, in order.
@@ -61,7 +64,7 @@ class SplitOutput {
   ShearingCamera camera_;
   JobSplit split_;
   SplitOutputSpec spec_;
-  ImageSetWriter& writer_;
+  FrameSink& writer_;
   QuiltSink* quilt_;
   bool direct_ = false;     // rendered in the set's order: frames go to the writer as they come
   bool exchanges_ = false;  // the grid's output frames are read back from the scratch file

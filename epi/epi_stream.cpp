@@ -54,33 +54,53 @@ StreamCamera cameraOf(const std::array<double, kCameraValues>& v) {
 
 }  // namespace
 
-EpiStreamWriter::EpiStreamWriter(std::ostream& out, const EpiStreamHeader& h)
-    : out_(out), header_(h) {
-  std::array<uint8_t, kHeaderWithCameraBytes> bytes{};
-  const uint32_t size = h.camera ? kHeaderWithCameraBytes : kHeaderBytes;
+size_t EpiStreamHeader::headerBytes() const { return camera ? kHeaderWithCameraBytes : kHeaderBytes; }
+
+std::vector<uint8_t> EpiStreamHeader::encode() const {
+  std::vector<uint8_t> bytes(headerBytes(), 0);
   std::memcpy(bytes.data(), kMagic, 8);
-  const uint32_t fields[] = {size, h.width, h.height, h.views, h.rows, h.channels,
-                             h.bytesPerChannel, h.srgb};
+  const uint32_t fields[] = {uint32_t(bytes.size()), width, height, views, rows, channels, bytesPerChannel, srgb};
   for (size_t i = 0; i < std::size(fields); ++i) putU32(bytes.data() + 8 + 4 * i, fields[i]);
-  if (h.camera) {
-    const auto values = cameraValues(*h.camera);
+  if (camera) {
+    const auto values = cameraValues(*camera);
     for (uint32_t i = 0; i < kCameraValues; ++i) putF64(bytes.data() + kHeaderBytes + 8 * i, values[i]);
   }
-  out_.write(reinterpret_cast<const char*>(bytes.data()), size);
+  return bytes;
+}
+
+namespace {
+
+// An EPI's tag, after checking it fits the header.
+std::array<uint8_t, 8> recordTag(const EpiStreamHeader& header, int row, int scanline, const Image& epi) {
+  if (size_t(epi.width) != header.width || size_t(epi.height) != header.views || epi.type != header.pixelType())
+    fail("stream", "EPI does not match the stream header");
+  std::array<uint8_t, 8> tag;
+  putU32(tag.data(), uint32_t(row));
+  putU32(tag.data() + 4, uint32_t(scanline));
+  return tag;
+}
+
+}  // namespace
+
+EpiStreamWriter::EpiStreamWriter(std::ostream& out, const EpiStreamHeader& h) : out_(out), header_(h) {
+  const std::vector<uint8_t> bytes = h.encode();
+  out_.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
   if (!out_) fail("stream", "cannot write header");
 }
 
 void EpiStreamWriter::putEpi(int row, int scanline, const Image& epi) {
-  if (size_t(epi.width) != header_.width || size_t(epi.height) != header_.views ||
-      epi.type != header_.pixelType())
-    fail("stream", "EPI does not match the stream header");
-  uint8_t tag[8];
-  putU32(tag, uint32_t(row));
-  putU32(tag + 4, uint32_t(scanline));
-  out_.write(reinterpret_cast<const char*>(tag), 8);
+  const std::array<uint8_t, 8> tag = recordTag(header_, row, scanline, epi);
+  out_.write(reinterpret_cast<const char*>(tag.data()), 8);
   out_.write(reinterpret_cast<const char*>(epi.bytes.data()), std::streamsize(epi.bytes.size()));
   if (!out_) fail("stream", "write failed (consumer gone or disk full)");
   ++written_;
+}
+
+void EpiRecordSink::putEpi(int row, int scanline, const Image& epi) {
+  const std::array<uint8_t, 8> tag = recordTag(header_, row, scanline, epi);
+  const uint64_t at = header_.recordOffset(row, scanline);
+  write_(at, std::as_bytes(std::span(tag)));
+  write_(at + 8, std::as_bytes(std::span(epi.bytes)));
 }
 
 void EpiStreamWriter::finish() {

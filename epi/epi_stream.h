@@ -12,9 +12,12 @@
 //                     row, scanline, then views x width x channels values:
 //                     EPI row i is view i's scanline, left to right.
 #include <cstdint>
+#include <functional>
 #include <istream>
 #include <optional>
 #include <ostream>
+#include <span>
+#include <vector>
 
 #include "mvr/camera.h"
 #include "mvr/renderer.h"
@@ -37,6 +40,30 @@ struct EpiStreamHeader {
     return bytesPerChannel == 4 ? PixelType::F32 : srgb ? PixelType::Srgb8 : PixelType::U8;
   }
   size_t epiBytes() const { return size_t(width) * views * channels * bytesPerChannel; }
+  // The layout: the header, then one record (an 8-byte tag and the EPI)
+  // per row and scanline in order, so a record's place is known before it
+  // is rendered (a stream split over ranks writes records at their offsets).
+  size_t headerBytes() const;
+  size_t recordBytes() const { return 8 + epiBytes(); }
+  uint64_t recordOffset(int row, int scanline) const {
+    return headerBytes() + (uint64_t(row) * height + uint64_t(scanline)) * recordBytes();
+  }
+  // The header's bytes as written.
+  std::vector<uint8_t> encode() const;
+};
+
+// Records at their offsets through `write` (a file every rank of a split
+// job shares): the stream's bytes whatever order EPIs arrive in. The
+// header is written by whoever owns offset 0.
+class EpiRecordSink final : public FrameSink {
+ public:
+  using Write = std::function<void(uint64_t offset, std::span<const std::byte> bytes)>;
+  EpiRecordSink(const EpiStreamHeader& header, Write write) : header_(header), write_(std::move(write)) {}
+  void putEpi(int row, int scanline, const Image& epi) override;
+
+ private:
+  EpiStreamHeader header_;
+  Write write_;
 };
 
 class EpiStreamWriter final : public FrameSink {
