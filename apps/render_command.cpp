@@ -121,23 +121,6 @@ class DepthSink final : public FrameSink {
   DepthColoring coloring_;
 };
 
-// The depth maps: the depth scene (mvr/depth.h) rendered in float by the
-// same back end, its EPIs reordered into views where it renders EPIs.
-void renderDepth(const BackendOptions& choice, const Scene& scene, const ShearingCamera& cam,
-                 ImageSetWriter& writer, const ReorderMemory& reorder, RenderStats& stats) {
-  DepthColoring coloring;
-  const Scene depth = depthScene(scene, cam, coloring);
-  auto renderer = makeRenderer(choice, depth, PixelType::F32);
-  DepthSink depthSink(writer, coloring);
-  std::optional<EpisToViews> reorderer;
-  FrameSink* sink = &depthSink;
-  if (renderer->order() == FrameOrder::Epi)
-    sink = &reorderer.emplace(depthSink, cam.width(), cam.height(), cam.views(), PixelType::F32, reorder);
-  ProgressSink progress(*sink, cam, long(cam.views()) * cam.rows(), renderer->name() + ", depth");
-  renderer->render(cam, progress, stats);
-  progress.finish();
-}
-
 // Runs one phase of the job. In a split job (mpi not null) every rank
 // reaches the agreement however its phase ended; when any failed, the
 // lowest failing rank has printed its error and every rank stops.
@@ -153,6 +136,62 @@ void inPhase(MpiSession* mpi, Phase&& phase) {
     error = std::string("internal error: ") + e.what();
   }
   if (!mpi->agree(error)) throw JobFailed{};
+}
+
+// The cameras this process renders: a split job's shares (their samples
+// under anti-aliasing), or the whole set.
+std::vector<ShearingCamera> rendersOf(const ShearingCamera& rendered, const SplitOutput* split,
+                                      const Supersampling& aa) {
+  if (!split) return {rendered};
+  std::vector<ShearingCamera> renders;
+  for (const RenderShare& s : split->shares()) renders.push_back(rendered.withShare(sampleShare(s, aa)));
+  return renders;
+}
+
+// Renders them into `sink` with progress over the set's `views`, as one
+// phase of the job; returns the seconds this process rendered.
+double renderPhase(MpiSession* mpi, Renderer& renderer, const std::vector<ShearingCamera>& renders,
+                   FrameSink& sink, long views, const std::string& label, RenderStats& stats) {
+  Stopwatch watch;
+  double seconds = 0.0;
+  inPhase(mpi, [&] {
+    ProgressSink progress(sink, renders, views, label);
+    for (const ShearingCamera& c : renders) renderer.render(c, progress, stats);
+    progress.finish();
+    seconds = watch.seconds();
+  });
+  return seconds;
+}
+
+// The depth maps: the depth scene (mvr/depth.h) rendered in float by the
+// same back end, its EPIs reordered into views where it renders EPIs; in a
+// split job each rank renders its shares of the colour pass, and the grid's
+// EPIs meet in a scratch file of their own.
+void renderDepth(const BackendOptions& choice, const Scene& scene, const ShearingCamera& cam,
+                 ImageSetWriter& writer, const ReorderMemory& reorder, RenderStats& stats, MpiSession* mpi,
+                 const JobSplit* split, const std::string& dir) {
+  DepthColoring coloring;
+  Scene depth;  // outlives the renderer, which may keep it
+  std::unique_ptr<Renderer> renderer;
+  inPhase(mpi, [&] {
+    depth = depthScene(scene, cam, coloring);
+    renderer = makeRenderer(choice, depth, PixelType::F32);
+  });
+  DepthSink depthSink(writer, coloring);
+  std::optional<EpisToViews> reorderer;
+  std::optional<SplitOutput> out;
+  FrameSink* sink = &depthSink;
+  if (split)
+    sink = &out.emplace(*mpi, cam, *split,
+                        SplitOutputSpec{.rendered = renderer->order(), .type = PixelType::F32, .dir = dir,
+                                        .reorder = reorder, .scratchName = ".mvr_split_depth"},
+                        depthSink, nullptr)
+                .sink();
+  else if (renderer->order() == FrameOrder::Epi)
+    sink = &reorderer.emplace(depthSink, cam.width(), cam.height(), cam.views(), PixelType::F32, reorder);
+  renderPhase(mpi, *renderer, rendersOf(cam, out ? &*out : nullptr, {}), *sink, long(cam.views()) * cam.rows(),
+              renderer->name() + ", depth", stats);
+  if (out) inPhase(mpi, [&] { out->assemble(); });
 }
 
 // The whole stream from a shared file, in order, to a pipe or socket.
@@ -176,7 +215,8 @@ void relayStream(SharedFile& records, uint64_t bytes, FdStreamBuf& buffer, const
 // For a plain file that file is the stream (under a temporary name until
 // every rank is done); a pipe or socket is fed by rank 0 from a scratch
 // file once every rank is done, in stream order.
-int streamSplit(MpiSession& mpi, Renderer& renderer, const ShearingCamera& cam, const JobSplit& split,
+int streamSplit(MpiSession& mpi, Renderer& renderer, const ShearingCamera& cam, const Supersampling& aa,
+                const JobSplit& split,
                 const EpiStreamHeader& header, const std::string& endpoint, const ReorderMemory& reorder,
                 const std::optional<glm::vec4>& background) {
   namespace fs = std::filesystem;
@@ -189,7 +229,12 @@ int streamSplit(MpiSession& mpi, Renderer& renderer, const ShearingCamera& cam, 
   std::optional<SharedFile> records;
   std::optional<FdStreamBuf> pipe;  // rank 0's, connected before anything is rendered
   inPhase(&mpi, [&] {
-    records.emplace(path, file ? SharedFile::Lifetime::Kept : SharedFile::Lifetime::Scratch);
+    try {
+      records.emplace(path, file ? SharedFile::Lifetime::Kept : SharedFile::Lifetime::Scratch);
+    } catch (const Error&) {
+      if (file) fail(endpoint, "cannot create the stream file");
+      throw;
+    }
     if (!file && mpi.rank() == 0) pipe.emplace(openForWriting(endpoint));
   });
   try {
@@ -201,16 +246,16 @@ int streamSplit(MpiSession& mpi, Renderer& renderer, const ShearingCamera& cam, 
     FrameSink* frames = &out.sink();
     std::optional<BackgroundSink> over;
     if (background) frames = &over.emplace(*frames, *background);
-    std::vector<ShearingCamera> renders;
-    for (const RenderShare& share : out.shares()) renders.push_back(cam.withShare(share));
+    std::optional<SupersampleSink> filter;
+    if (aa.active()) frames = &filter.emplace(*frames, aa, cam.width(), cam.height(), cam.views());
+    const ShearingCamera rendered = aa.active() ? supersampledCamera(cam, aa) : cam;
     inPhase(&mpi, [&] {
       const std::vector<uint8_t> head = header.encode();
       if (mpi.rank() == 0) records->write(0, std::as_bytes(std::span(head)));
-      ProgressSink progress(*frames, renders, long(cam.views()) * cam.rows(), renderer.name());
-      RenderStats stats;
-      for (const ShearingCamera& c : renders) renderer.render(c, progress, stats);
-      progress.finish();
     });
+    RenderStats stats;
+    renderPhase(&mpi, renderer, rendersOf(rendered, &out, aa), *frames, long(cam.views()) * cam.rows(),
+                renderer.name(), stats);
     inPhase(&mpi, [&] { out.assemble(); });
     if (!file) inPhase(&mpi, [&] { if (pipe) relayStream(*records, bytes, *pipe, endpoint); });
     records.reset();  // collective; a kept file is complete
@@ -413,8 +458,6 @@ int runRender(int argc, char** argv, RenderCommand command) {
   // Under mpirun the ranks share the job (apps/job_split.h); rank 0 reports.
   MpiSession* const mpi = MpiSession::current();
   if (mpi) {
-    for (auto [given, what] : {std::pair{f.depth, "--depth"}, std::pair{f.aa.active(), "--aa and --aa-views"}})
-      if (given) fail("mpirun", std::string(what) + ": not split over ranks yet; run without mpirun");
     if (mpi->rank() != 0) setProgressEnabled(false);
   }
 
@@ -485,7 +528,7 @@ int runRender(int argc, char** argv, RenderCommand command) {
   const std::optional<glm::vec4> background = f.camera.backgroundColor();
   // Under mpirun: the same on every rank (apps/job_split.h).
   auto splitFor = [&] {
-    return splitJob(renderCamera, renderer->order(), mpi->ranks(),
+    return splitJob(camera, renderer->order(), mpi->ranks(),
                     synthesize || f.splitBy == "count" ? std::vector<double>{}
                                                        : scanlineCosts(scene, camera, rows / 2));
   };
@@ -497,7 +540,7 @@ int runRender(int argc, char** argv, RenderCommand command) {
     checkScratchFits((reorders && jobSplit.gridBegin() < rows ? rowBytes * rows : 0) +
                          (isPlainFile(f.stream) ? 0 : streamBytes), ".");
     if (!mpi->agree("")) throw JobFailed{};
-    return streamSplit(*mpi, *renderer, camera, jobSplit, header, f.stream, reorder, background);
+    return streamSplit(*mpi, *renderer, camera, f.aa, jobSplit, header, f.stream, reorder, background);
   }
   if (streaming) return streamTo(*renderer, camera, imagePlaneZ, f.aa, f.stream, type, f.queue, reorder, background);
 
@@ -525,8 +568,11 @@ int runRender(int argc, char** argv, RenderCommand command) {
   if (mpi) {
     // Set-up is done on every rank once they agree; then each renders its share.
     const JobSplit jobSplit = splitFor();
-    if (quiltLayout || (reorders && jobSplit.gridBegin() < rows))
-      checkScratchFits(rowBytes * rows, out);  // the shared file
+    // The shared files: the colour's and the depth's, which lives after it.
+    const bool exchanges = reorders && jobSplit.gridBegin() < rows;
+    const size_t shared = (quiltLayout || exchanges ? rowBytes * rows : 0) +
+                          (depthReorders && jobSplit.gridBegin() < rows ? depthRowBytes * rows : 0);
+    if (shared > 0) checkScratchFits(shared, out);
     if (!mpi->agree("")) throw JobFailed{};
     split.emplace(*mpi, camera, jobSplit,
                   SplitOutputSpec{.rendered = renderer->order(), .toViews = order == "view", .type = type,
@@ -557,16 +603,9 @@ int runRender(int argc, char** argv, RenderCommand command) {
   startup.add("before_render", sinceStart.seconds());
   Stopwatch total;
   const std::string label = renderer->name() + (choice.hasPst() ? std::string(" ") + pstModeName(choice.pst()) : "");
-  std::vector<ShearingCamera> renders;  // the whole set, or this rank's shares of it
-  if (split) for (const RenderShare& s : split->shares()) renders.push_back(renderCamera.withShare(s));
-  else renders.push_back(renderCamera);
-  double renderSeconds = 0.0;  // this process's, before waiting for the others
-  inPhase(mpi, [&] {
-    ProgressSink progress(*sink, renders, long(views) * rows, label);
-    for (const ShearingCamera& c : renders) renderer->render(c, progress, stats);
-    progress.finish();
-    renderSeconds = total.seconds();
-  });
+  // This process's, before waiting for the others.
+  const double renderSeconds = renderPhase(mpi, *renderer, rendersOf(renderCamera, split ? &*split : nullptr, f.aa),
+                                           *sink, long(views) * rows, label, stats);
   const double quiltAspect = quiltLayout && quiltLayout->aspect > 0.0 ? quiltLayout->aspect : double(width) / height;
   inPhase(mpi, [&] {
     if (split) split->assemble();
@@ -578,7 +617,8 @@ int runRender(int argc, char** argv, RenderCommand command) {
   });
   const double colorSeconds = total.seconds();
   RenderStats depthStats;
-  if (f.depth) renderDepth(choice, scene, camera, writer, depthReorder, depthStats);
+  if (f.depth)
+    renderDepth(choice, scene, camera, writer, depthReorder, depthStats, mpi, split ? &split->split() : nullptr, out);
   writer.flush();  // every image encoded, so the module's load is done and timed
 
   Manifest& manifest = writer.manifest();

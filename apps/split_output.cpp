@@ -52,7 +52,7 @@ SplitOutput::SplitOutput(MpiSession& mpi, const ShearingCamera& camera, const Jo
   direct_ = (spec.rendered == FrameOrder::View) == spec.toViews;
   exchanges_ = spec.frames && !direct_ && split.gridBegin() < camera.rows();
   if (exchanges_ || spec.quilt)
-    volume_ = std::make_unique<SharedFile>((std::filesystem::path(spec.dir) / ".mvr_split_volume").string());
+    volume_ = std::make_unique<SharedFile>((std::filesystem::path(spec.dir) / spec.scratchName).string());
   FrameSink* set = nullptr;
   if (spec.frames && direct_) {
     set = &writer;

@@ -32,6 +32,7 @@ struct SplitOutputSpec {
   bool frames = true;                     // the set's frames are written (not --quilt-only)
   size_t memoryBudget = size_t(256) << 20;  // output frames held at once, per rank
   ReorderMemory reorder;                  // whole rows per rank: how a row is reordered
+  std::string scratchName = ".mvr_split_volume";  // in dir; one per SplitOutput alive at once
 };
 
 class SplitOutput {
@@ -44,6 +45,7 @@ class SplitOutput {
               FrameSink& set, QuiltSink* quilt);
   ~SplitOutput();
 
+  const JobSplit& split() const { return split_; }
   // What this rank renders, in order.
   const std::vector<RenderShare>& shares() const { return split_.shares[size_t(mpi_.rank())]; }
   // Where this rank's rendered frames go.

@@ -30,6 +30,11 @@ ShearingCamera supersampledCamera(const ShearingCamera& camera, const Supersampl
   return ShearingCamera(spec, camera.width() * s, camera.height() * s, camera.views() * p, camera.rows());
 }
 
+RenderShare sampleShare(const RenderShare& share, const Supersampling& aa) {
+  auto times = [](IndexRange r, int k) { return IndexRange{r.begin * k, r.end * k}; };
+  return {share.rows, times(share.scanlines, aa.spatial), times(share.views, aa.views)};
+}
+
 namespace {
 
 // Adds row y of in, premultiplied and in linear light, into out: input

@@ -34,6 +34,11 @@ struct Supersampling {
 // camera beyond Limits.
 ShearingCamera supersampledCamera(const ShearingCamera& camera, const Supersampling& aa);
 
+// The samples of a share of `camera`'s set (a rank's share of a split
+// job): its scanlines' S sample scanlines each and its views' P sample
+// views each, so the share's output frames complete within it.
+RenderShare sampleShare(const RenderShare& share, const Supersampling& aa);
+
 // Box-filters frames of supersampledCamera(camera, aa) to camera's size and
 // hands them on: a view from P sample views of S x S samples per pixel, an
 // EPI from S sample EPIs of S x P samples per pixel. Averages in linear

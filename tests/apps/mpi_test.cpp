@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mvr/io/image_file.h"
 #include "tests/support/cli.h"
 
 namespace mvr {
@@ -62,6 +63,15 @@ TEST_P(MpiRender, OneTwoAndThreeRanksWriteTheSingleProcessSet) {
     const auto got = imagesIn(dir);
     ASSERT_EQ(got.size(), expected.size()) << ranks << " ranks";
     for (const auto& [name, bytes] : expected) EXPECT_TRUE(got.at(name) == bytes) << name << ", " << ranks << " ranks";
+    // Depth maps by value: an EXR header holds its write time.
+    size_t depthMaps = 0;
+    for (const auto& e : fs::directory_iterator(single)) {
+      if (e.path().extension() != ".exr") continue;
+      ++depthMaps;
+      EXPECT_EQ(readDepthImage(e.path().string()).values, readDepthImage((dir / e.path().filename()).string()).values)
+          << e.path().filename() << ", " << ranks << " ranks";
+    }
+    EXPECT_EQ(depthMaps, args.find("--depth") != std::string::npos ? expected.size() : 0u);
     const nlohmann::json m = manifestOf(dir);
     EXPECT_EQ(m["files"], manifestOf(single)["files"]);
     if (ranks > 1) EXPECT_EQ(m["mpi"]["ranks"], ranks);
@@ -77,7 +87,10 @@ INSTANTIATE_TEST_SUITE_P(
                       SplitCase{"cpu_epis", "--backend mvr --pst cpu --order epi"},  // bands, written directly
                       SplitCase{"svr_epis", "--backend svr --order epi"},            // views, reordered
                       SplitCase{"interp_rows", "--backend interp --rows 3"},  // rows; 2 ranks: a row each, then bands
-                      SplitCase{"mvr_rows_views", "--backend mvr --rows 4"}),  // 3 ranks: a row each, then bands
+                      SplitCase{"mvr_rows_views", "--backend mvr --rows 4"},  // 3 ranks: a row each, then bands
+                      // Bands of sample scanlines and runs of sample views; the depth pass split alike.
+                      SplitCase{"mvr_aa_depth", "--backend mvr --rows 3 --aa 2 --aa-views 2 --depth"},
+                      SplitCase{"svr_depth", "--backend svr --depth"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 std::string contentsOf(const fs::path& file) {
@@ -136,13 +149,15 @@ TEST(MpiRenderErrors, ABadSceneFailsTheJobWithOneLine) {
   EXPECT_FALSE(fs::exists(dir / "manifest.json"));
 }
 
-TEST(MpiRenderErrors, NotYetSplitOptionsAreRefused) {
+TEST(MpiRenderErrors, AStreamFileThatCannotBeCreatedFailsWithOneLine) {
   if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
   const test::CliResult r =
-      test::shell(mpirun(2) + test::mvrBinary() + " render --views 4 --size 32x24 --depth --out /dev/null");
+      test::shell(mpirun(2) + test::mvrBinary() + " render --views 4 --size 32x24 --stream /no/such/dir/x.epi");
   EXPECT_NE(r.status, 0);
-  EXPECT_NE(r.err.find("mvr: mpirun: --depth: not split over ranks yet"), std::string::npos)
-      << r.err;
+  EXPECT_NE(r.err.find("mvr: /no/such/dir/x.epi: cannot create the stream file"), std::string::npos) << r.err;
+  size_t lines = 0;
+  for (size_t at = 0; (at = r.err.find("mvr: ", at)) != std::string::npos; ++at) ++lines;
+  EXPECT_EQ(lines, 1u) << r.err;
 }
 
 // A rank killed while the others write: the job fails and no manifest
