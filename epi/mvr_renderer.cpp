@@ -71,18 +71,18 @@ class MvrRenderer final : public Renderer {
   }
 
   void renderFromHost(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) {
-    shading::VertexColors colors;
-    std::vector<float> extras;
-    {
-      // Diffuse lighting is view independent: once per sequence (Halle 5.6.2).
+    if (!lit_) {
+      // Diffuse lighting is view independent: once per renderer (Halle
+      // 5.6.2), however many sequences or shares it renders.
       ScopedStage s(stats.times, "lighting");
-      colors = shading::litVertexColors(scene_);
-      extras = shading::vertexExtras(scene_, shading_.plan);
+      lit_.emplace(Lit{shading::litVertexColors(scene_), shading::vertexExtras(scene_, shading_.plan),
+                       TriangleRuns::of(scene_)});
     }
     ExtremeVertices vertices;
     {
+      // A share of the scanlines transforms only the triangles that reach it.
       ScopedStage s(stats.times, "transform");
-      vertices = transformToExtremes(scene_, colors, cam, 0, extras, shading_.plan.extraCount);
+      vertices = transformToExtremes(scene_, lit_->colors, cam, 0, lit_->extras, shading_.plan.extraCount, &lit_->runs);
     }
     stats.counters["extreme_vertex_bytes"] = double(vertices.bytes());
     stats.counters["clipped_triangles"] = double(vertices.triangles.size());
@@ -129,6 +129,12 @@ class MvrRenderer final : public Renderer {
   Bounds bounds_;
   std::optional<GpuSlicer> gpuSlicer_;  // when the rasterizer reads GPU tables
   std::optional<GpuExtremeTransform> gpuTransform_;  // when, besides, nothing needs clipping
+  struct Lit {
+    shading::VertexColors colors;
+    std::vector<float> extras;
+    TriangleRuns runs;
+  };
+  std::optional<Lit> lit_;  // the host path's view-independent vertex data
 };
 
 }  // namespace

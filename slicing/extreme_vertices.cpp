@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
+#include <numeric>
 
 #include "mvr/error.h"
 
@@ -74,6 +76,67 @@ void ExtremeTransform::add(const glm::dvec3& p, const glm::vec3& front, const gl
   for (int k = 0; k < out_.extraCount; ++k) out_.extrasOverW.push_back(extras[k] * float(1.0 / w));
 }
 
+void ExtremeTransform::skip() {
+  for (auto* a : {&out_.x0, &out_.dx, &out_.y, &out_.depth, &out_.invW, &out_.yFirst, &out_.yStep})
+    a->push_back(0.0f);
+  out_.frontOverW.emplace_back(0.0f);
+  out_.backOverW.emplace_back(0.0f);
+  out_.extrasOverW.insert(out_.extrasOverW.end(), size_t(out_.extraCount), 0.0f);
+}
+
+TriangleRuns TriangleRuns::of(const Scene& scene) {
+  TriangleRuns runs;
+  const size_t n = scene.triangleCount();
+  std::vector<float> centreY(n);
+  for (size_t i = 0; i < n; ++i) {
+    const glm::uvec3 t = scene.triangles[i];
+    centreY[i] = scene.positions[t.x].y + scene.positions[t.y].y + scene.positions[t.z].y;
+  }
+  runs.order.resize(n);
+  std::iota(runs.order.begin(), runs.order.end(), 0u);
+  std::stable_sort(runs.order.begin(), runs.order.end(), [&](uint32_t a, uint32_t b) { return centreY[a] < centreY[b]; });
+  runs.bounds.resize((n + kSize - 1) / kSize);
+  for (size_t r = 0; r < runs.bounds.size(); ++r) {
+    Bounds& b = runs.bounds[r];
+    b.min = glm::vec3(std::numeric_limits<float>::max());
+    b.max = glm::vec3(std::numeric_limits<float>::lowest());
+    for (size_t i = r * kSize; i < std::min(n, (r + 1) * kSize); ++i)
+      for (int k = 0; k < 3; ++k) {
+        const glm::vec3& p = scene.positions[scene.triangles[runs.order[i]][k]];
+        b.min = glm::min(b.min, p);
+        b.max = glm::max(b.max, p);
+      }
+  }
+  return runs;
+}
+
+std::vector<uint8_t> TriangleRuns::keptTriangles(const ShearingCamera& camera) const {
+  const IndexRange band = camera.share().scanlines, rows = camera.share().rows;
+  if (band.begin <= 0 && band.end >= camera.height()) return {};
+  const CameraSpec& s = camera.spec();
+  const double D = s.distance, sy = 2.0 / camera.planeHeight(), h = camera.height();
+  // Scanline centres j + 0.5 of the band, widened by a pixel against rounding.
+  const double top = band.begin + 0.5 - 1.0, bottom = band.end - 0.5 + 1.0;
+  std::vector<uint8_t> kept(order.size(), 0);
+  for (size_t r = 0; r < bounds.size(); ++r) {
+    double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
+    bool inFront = true;
+    for (int corner = 0; corner < 4 && inFront; ++corner) {  // y needs only Y and Z
+      const double Y = (corner & 1) ? bounds[r].max.y : bounds[r].min.y;
+      const double Z = (corner & 2) ? bounds[r].max.z : bounds[r].min.z;
+      const double w = D - Z;
+      inFront = w > 0.0;
+      for (int row : {rows.begin, rows.end - 1}) {
+        const double y = (-sy * (D * Y - camera.rowY(row) * Z) / w + 1.0) * 0.5 * h;
+        lo = std::min(lo, y), hi = std::max(hi, y);
+      }
+    }
+    if (inFront && (hi < top || lo > bottom)) continue;
+    for (size_t i = r * kSize; i < std::min(order.size(), (r + 1) * kSize); ++i) kept[order[i]] = 1;
+  }
+  return kept;
+}
+
 void ExtremeVertices::reserve(size_t vertices, size_t triangleCount, size_t texels) {
   for (auto* a : {&x0, &dx, &y, &depth, &invW, &yFirst, &yStep}) a->reserve(vertices);
   frontOverW.reserve(vertices), backOverW.reserve(vertices);
@@ -114,18 +177,32 @@ size_t ExtremeVertices::bytes() const {
 
 ExtremeVertices transformToExtremes(const Scene& scene, const shading::VertexColors& colors,
                                     const ShearingCamera& camera, int row,
-                                    std::span<const float> extras, int extraCount) {
+                                    std::span<const float> extras, int extraCount, const TriangleRuns* runs) {
   if (extraCount > shading::kMaxExtras || extras.size() != scene.vertexCount() * size_t(extraCount))
     fail("transformToExtremes", "extras do not match the scene's vertices");
+  if (runs && runs->order.size() != scene.triangleCount())
+    fail("transformToExtremes", "triangle runs are not the scene's");
+  // Triangles of runs that cannot reach the share are dropped, and with
+  // them the vertices only they use.
+  const std::vector<uint8_t> reach = runs ? runs->keptTriangles(camera) : std::vector<uint8_t>{};
+  const auto kept = [&](size_t triangle) { return reach.empty() || reach[triangle]; };
+  const size_t nv = scene.vertexCount();
+  std::vector<uint8_t> needed(nv, reach.empty() ? 1 : 0);
+  if (!reach.empty())
+    for (size_t i = 0; i < scene.triangleCount(); ++i)
+      if (kept(i)) needed[scene.triangles[i].x] = needed[scene.triangles[i].y] = needed[scene.triangles[i].z] = 1;
   ExtremeVertices out;
   out.extraCount = extraCount;
   out.extrasOverW.reserve(extras.size());
   ExtremeTransform t(camera, row, out);
-  const size_t nv = scene.vertexCount();
   for (auto* v : {&out.x0, &out.dx, &out.y, &out.depth, &out.invW, &out.yFirst, &out.yStep})
     v->reserve(nv);
   std::vector<uint8_t> inside(nv);
   for (size_t v = 0; v < nv; ++v) {
+    if (!needed[v]) {
+      t.skip();
+      continue;
+    }
     const glm::dvec3 p(scene.positions[v]);
     inside[v] = t.inside(p);
     // Vertices outside near/far still get a slot so indices stay valid;
@@ -137,6 +214,7 @@ ExtremeVertices transformToExtremes(const Scene& scene, const shading::VertexCol
   out.cullBack.reserve(scene.triangleCount());
   out.materials.reserve(scene.triangleCount());
   for (size_t i = 0; i < scene.triangleCount(); ++i) {
+    if (!kept(i)) continue;
     const glm::uvec3 tri = scene.triangles[i];
     const uint8_t cull = scene.materials[scene.materialIds[i]].twoSided ? 0 : 1;
     if (inside[tri.x] && inside[tri.y] && inside[tri.z]) {

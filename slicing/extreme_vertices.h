@@ -66,13 +66,38 @@ struct ExtremeVertices {
   size_t bytes() const;
 };
 
+// The scene's triangles sorted by the world y of their centres and cut
+// into runs of kSize, each with its world bounds: thin slabs across the
+// image's scanlines, so that a process rendering a band of scanlines (its
+// share of a split job) transforms only the triangles of runs whose image
+// can reach the band. (Mesh order is not compact enough: a scanned mesh's
+// runs of 256 span most of its height.)
+struct TriangleRuns {
+  static constexpr size_t kSize = 256;
+  std::vector<uint32_t> order;  // triangle indices, run after run
+  std::vector<Bounds> bounds;   // per run
+
+  static TriangleRuns of(const Scene& scene);
+  // Per triangle, whether its run's image can cross a scanline of the
+  // camera's share in any of the share's rows: a box's projection lies
+  // within its corners' when the box is wholly in front of the camera
+  // plane (any other run is kept), and in a shearing camera y does not
+  // depend on the view. Empty when the share has every scanline.
+  std::vector<uint8_t> keptTriangles(const ShearingCamera& camera) const;
+};
+
 // Clips triangles to the near and far planes in world space (view
 // independent: both planes are parallel to the camera plane), then
 // transforms to row `row`'s extreme views. extras: extraCount floats per
 // scene vertex (shading::vertexExtras), interpolated like the colours.
+// With `runs`, only the triangles of runs reaching the camera's share are
+// kept, and only their vertices transformed: the others keep zeroed slots
+// so that indices stay the scene's. The kept triangles keep their mesh
+// order, so the share's slices are the same.
 ExtremeVertices transformToExtremes(const Scene& scene, const shading::VertexColors& colors,
                                     const ShearingCamera& camera, int row = 0,
-                                    std::span<const float> extras = {}, int extraCount = 0);
+                                    std::span<const float> extras = {}, int extraCount = 0,
+                                    const TriangleRuns* runs = nullptr);
 
 // Appends world points as extreme vertices of one row of views: what
 // transformToExtremes does per vertex, for callers with points of their
@@ -82,6 +107,8 @@ class ExtremeTransform {
   ExtremeTransform(const ShearingCamera& cam, int row, ExtremeVertices& out);
   // Colours as lit; extras: out.extraCount floats (null when none).
   void add(const glm::dvec3& p, const glm::vec3& front, const glm::vec3& back, const float* extras);
+  // A slot no triangle uses: zeros.
+  void skip();
   bool inside(const glm::dvec3& p) const {  // between the near and far planes
     const double d = D_ - p.z;
     return d >= n_ && d <= f_;

@@ -21,6 +21,7 @@
 #include "mvr/error.h"
 #include "mvr/io/scene_io.h"
 #include "slicing/image_slices.h"
+#include "tests/support/meshes.h"
 #include "tests/support/render_helpers.h"
 
 namespace mvr {
@@ -454,32 +455,6 @@ TEST_F(InterpTest, OneViewAndBadOptions) {
   EXPECT_THROW(makeInterpRenderer(scene, PixelType::U8, {.splits = -1}), Error);
 }
 
-// A UV sphere of radius r at the origin, unlit grey.
-Scene sphereScene(float r, int rings, int segments) {
-  Scene s;
-  const float pi = glm::pi<float>();
-  for (int i = 0; i <= rings; ++i)
-    for (int k = 0; k <= segments; ++k) {
-      const float th = pi * float(i) / float(rings), ph = 2.0f * pi * float(k) / float(segments);
-      const glm::vec3 n(std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph));
-      s.positions.push_back(r * n);
-      s.normals.push_back(n);
-      s.colors.push_back(glm::vec3(0.6f));
-    }
-  for (int i = 0; i < rings; ++i)
-    for (int k = 0; k < segments; ++k) {
-      const uint32_t a = uint32_t(i * (segments + 1) + k), b = a + 1, c = a + uint32_t(segments + 1), d = c + 1;
-      s.triangles.push_back({a, c, b});
-      s.triangles.push_back({b, c, d});
-    }
-  s.materialIds.assign(s.triangles.size(), 0);
-  Material m;
-  m.diffuse = glm::vec3(1);
-  s.materials = {m};
-  s.ambient = glm::vec3(1);
-  return s;
-}
-
 // How far outside the true silhouette a covered pixel's centre lies, along
 // its scanline: 0 where the reference covers the centre, else the distance
 // to the nearest covered sample of a reference `factor` times finer in x
@@ -523,7 +498,7 @@ Outside outsideTheSilhouette(const Scene& scene, const ShearingCamera& cam, Acqu
 // silhouette, on a cube, a sphere and thin bars before a deep box.
 TEST_F(InterpTest, NoPixelMoreThanHalfAPixelOutsideTheSilhouette) {
   const Scene cube = loadScene(test::assetPath("cube.json"));
-  const Scene sphere = sphereScene(0.6f, 48, 96);
+  const Scene sphere = test::sphereScene(0.6f, 48, 96);
   const Scene thin = app::makeThinAndDeepScene();
   const std::pair<const char*, const Scene*> scenes[] = {{"cube", &cube}, {"sphere", &sphere}, {"thin-deep", &thin}};
   for (const auto& [name, scene] : scenes) {

@@ -12,6 +12,7 @@
 #include "slicing/gpu/gpu_slicer.h"
 #include "slicing/slice_table.h"
 #include "tests/support/gl_fixture.h"
+#include "tests/support/meshes.h"
 
 namespace mvr {
 namespace {
@@ -210,6 +211,53 @@ TEST(GpuSlicer, SlicesOnlyABandWhenAskedAsTheCpuSlicerDoes) {
   const SliceTable whole = SliceTable::build(v, 60), band = SliceTable::build(v, 60, IndexRange{17, 41});
   EXPECT_GT(whole.sliceCount(), band.sliceCount());
   EXPECT_EQ(band.sliceCount(), whole.offsets()[41] - whole.offsets()[17]);
+}
+
+// A share of a split job transforms only the triangle runs that reach its
+// band: its scanlines get the same slices, in the same order, as from the
+// whole scene's transform, in every row of the share.
+TEST(TriangleRuns, ABandTransformsOnlyWhatReachesItAndSlicesTheSame) {
+  // A sphere of 9600 triangles in shuffled order: runs come from sorting.
+  Scene scene = test::sphereScene(0.5f, 60, 80);
+  std::shuffle(scene.triangles.begin(), scene.triangles.end(), std::mt19937(3));
+  const shading::VertexColors colors = shading::litVertexColors(scene);
+  const TriangleRuns runs = TriangleRuns::of(scene);
+  const ShearingCamera whole(cameraFor(scene, 160, 120), 160, 120, 9, 3);
+  // Bands at the sphere's top and bottom edges (row 1) and across its middle.
+  const SliceTable full = SliceTable::build(transformToExtremes(scene, colors, whole, 1), 120);
+  int first = 0, last = 119;
+  while (first < 119 && full.scanline(first).empty()) ++first;
+  while (last > 0 && full.scanline(last).empty()) --last;
+  ASSERT_LT(first, last);
+  const int middle = (first + last) / 2;
+  for (const IndexRange band : {IndexRange{middle - 6, middle + 6}, IndexRange{first, first + 2}, IndexRange{last, last + 1}}) {
+    const ShearingCamera share = whole.withShare({{1, 3}, band, {0, 9}});
+    ExtremeVertices all = transformToExtremes(scene, colors, share, 0);
+    ExtremeVertices culled = transformToExtremes(scene, colors, share, 0, {}, 0, &runs);
+    ASSERT_EQ(culled.vertexCount(), all.vertexCount());  // indices stay the scene's
+    if (band.begin == middle - 6) EXPECT_LT(culled.triangles.size(), all.triangles.size() / 4) << "a tenth of the rows";
+    size_t slices = 0;
+    for (int row = 1; row < 3; ++row) {
+      moveToRow(all, row);
+      moveToRow(culled, row);
+      const SliceTable a = SliceTable::build(all, 120, band), b = SliceTable::build(culled, 120, band);
+      ASSERT_EQ(a.sliceCount(), b.sliceCount()) << "band " << band.begin << " row " << row;
+      slices += a.sliceCount();
+      for (int j = band.begin; j < band.end; ++j) {
+        ASSERT_EQ(a.scanline(j).size(), b.scanline(j).size()) << j;
+        for (size_t k = 0; k < a.scanline(j).size(); ++k) {
+          const auto [a0, a1] = sliceEnds(all, a.scanline(j)[k]);
+          const auto [b0, b1] = sliceEnds(culled, b.scanline(j)[k]);
+          for (const auto& [x, y] : {std::pair{a0, b0}, std::pair{a1, b1}}) {
+            EXPECT_EQ(x.x0, y.x0) << j;
+            EXPECT_EQ(x.dx, y.dx) << j;
+            EXPECT_EQ(x.depth, y.depth) << j;
+          }
+        }
+      }
+    }
+    EXPECT_GT(slices, 0u) << "band " << band.begin;
+  }
 }
 
 // Vertices exactly on scanline centres, flat (horizontal) triangles,

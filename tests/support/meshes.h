@@ -1,0 +1,37 @@
+#pragma once
+// Meshes built in code for tests that need a shape of known extent.
+#include <cmath>
+
+#include <glm/gtc/constants.hpp>
+
+#include "mvr/scene.h"
+
+namespace mvr::test {
+
+// A UV sphere of radius r at the origin, unlit grey.
+inline Scene sphereScene(float r, int rings, int segments) {
+  Scene s;
+  const float pi = glm::pi<float>();
+  for (int i = 0; i <= rings; ++i)
+    for (int k = 0; k <= segments; ++k) {
+      const float th = pi * float(i) / float(rings), ph = 2.0f * pi * float(k) / float(segments);
+      const glm::vec3 n(std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph));
+      s.positions.push_back(r * n);
+      s.normals.push_back(n);
+      s.colors.push_back(glm::vec3(0.6f));
+    }
+  for (int i = 0; i < rings; ++i)
+    for (int k = 0; k < segments; ++k) {
+      const uint32_t a = uint32_t(i * (segments + 1) + k), b = a + 1, c = a + uint32_t(segments + 1), d = c + 1;
+      s.triangles.push_back({a, c, b});
+      s.triangles.push_back({b, c, d});
+    }
+  s.materialIds.assign(s.triangles.size(), 0);
+  Material m;
+  m.diffuse = glm::vec3(1);
+  s.materials = {m};
+  s.ambient = glm::vec3(1);
+  return s;
+}
+
+}  // namespace mvr::test
