@@ -96,7 +96,7 @@ class InterpRenderer final : public Renderer {
     store_.reset(cam.width(), cam.height(), int(xs.size()) * options_.maxLayers);
     for (double x : xs) {
       stats.counters["source_views"] += 1;
-      sources_->render(cam, {x, cam.rowY(row)}, options_.maxLayers, trackWidth(cam), stats, store_);
+      sources_->render(sourceCamera(cam), {x, cam.rowY(row)}, options_.maxLayers, trackWidth(cam), stats, store_);
     }
     stats.counters["layers"] += double(store_.count());
     std::optional<GpuImageSlices> slices;
@@ -106,6 +106,18 @@ class InterpRenderer final : public Renderer {
     }
     countSlices(slices->table.sliceCount(), slices->pixels, stats);
     rasterizer_->rasterize(slices->vertices, slices->table, cam, row, sink, stats);
+  }
+
+  // The camera source views are rendered through: the share's scanlines
+  // only, since scanline j of every EPI comes from row j of the sources
+  // alone; all of them where hole counts or the visibility filter judge
+  // whole views (the job's sources, and so its images, must not depend on
+  // the share).
+  ShearingCamera sourceCamera(const ShearingCamera& cam) const {
+    if (options_.acquire != Acquire::Hierarchical && !options_.visibility) return cam;
+    RenderShare whole = cam.share();
+    whole.scanlines = {0, cam.height()};
+    return cam.withShare(whole);
   }
 
   static void countSlices(size_t slices, size_t pixels, RenderStats& stats) {
@@ -173,7 +185,8 @@ class InterpRenderer final : public Renderer {
         stats.counters["hidden_pixels"] += double(before - kept);
         return kept > 0;
       };
-    return {x, sources_->render(cam, {x, cam.rowY(row)}, options_.maxLayers, trackWidth(cam), stats, visible)};
+    return {x, sources_->render(sourceCamera(cam), {x, cam.rowY(row)}, options_.maxLayers, trackWidth(cam), stats,
+                                visible)};
   }
 
   InterpOptions options_;

@@ -134,11 +134,21 @@ DeferredPipeline::DeferredPipeline(const Scene& scene, bool separateHighlights)
   shading::setLightUniforms(lighting_, scene);
 }
 
-void DeferredPipeline::begin(int width, int height) {
+void DeferredPipeline::begin(int width, int height, IndexRange rows) {
+  rows_ = rows.end < 0 ? IndexRange{0, height} : rows;
+  width_ = width;
   setDepthConvention();
   gl::FrontFace(GL_CW);
   gl::setUniform(lighting_, "uSize", glm::vec2(width, height));
   materials_.bind(3);  // units 0-2 read the G-buffer
+}
+
+template <class Draw>
+void DeferredPipeline::inRows(Draw&& draw) {
+  gl::Enable(GL_SCISSOR_TEST);
+  gl::Scissor(0, rows_.begin, width_, rows_.size());
+  draw();
+  gl::Disable(GL_SCISSOR_TEST);
 }
 
 void DeferredPipeline::geometry(const glm::dmat4& viewProj, const GBuffer& gbuffer,
@@ -155,8 +165,9 @@ void DeferredPipeline::geometry(const glm::dmat4& viewProj, const GBuffer& gbuff
   gl::UseProgram(program->id());
   gl::setUniform(*program, "uViewProj", glm::mat4(viewProj));
   buffers_.bind();
-  buffers_.draw();
+  inRows([&] { buffers_.draw(); });
 }
+
 
 void DeferredPipeline::lighting(const glm::dmat4& viewProj, const glm::dvec3& eye,
                                 const GBuffer& gbuffer, const RenderTarget& target) {
@@ -168,7 +179,7 @@ void DeferredPipeline::lighting(const glm::dmat4& viewProj, const glm::dvec3& ey
   gl::setUniform(lighting_, "uEye", glm::vec3(eye));
   gbuffer.bindForReading();
   gl::BindVertexArray(emptyVao_.id());
-  gl::DrawArrays(GL_TRIANGLES, 0, 3);
+  inRows([] { gl::DrawArrays(GL_TRIANGLES, 0, 3); });
 }
 
 std::string DeferredPipeline::header() const { return gl::glslHeader() + plan_.glslDefines(); }

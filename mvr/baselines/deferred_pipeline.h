@@ -43,8 +43,10 @@ class DeferredPipeline {
   // separateHighlights: the lighting pass leaves out specular highlights.
   explicit DeferredPipeline(const Scene& scene, bool separateHighlights = false);
 
-  // Before the passes of a sequence of views of this size.
-  void begin(int width, int height);
+  // Before the passes of a sequence of views of this size. rows: the image
+  // rows (window rows, top first) the passes draw; the targets are still
+  // cleared whole, so rows outside stay empty. Default: every row.
+  void begin(int width, int height, IndexRange rows = {0, -1});
   // The G-buffers this pipeline fills.
   GBuffer makeGBuffer(int width, int height) const { return GBuffer(width, height, exactAlbedo_); }
   // previous: the G-buffer of the layer in front (depth peeling), or null.
@@ -65,6 +67,11 @@ class DeferredPipeline {
   gl::VertexArray emptyVao_;
   shading::GpuMaterials materials_;
   bool exactAlbedo_;
+  IndexRange rows_{0, -1};  // -1: every row
+  int width_ = 0;
+  // Runs a draw restricted to rows_.
+  template <class Draw>
+  void inRows(Draw&& draw);
 };
 
 }  // namespace mvr

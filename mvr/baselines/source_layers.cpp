@@ -62,7 +62,7 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
             RenderStats& stats, Take&& take) {
     const int w = cam.width(), h = cam.height();
     Targets& t = targets(w, h);
-    pipeline_.begin(w, h);
+    pipeline_.begin(w, h, cam.share().scanlines);  // a share's scanlines need only those rows
     const glm::dmat4 viewProj = cam.viewProjectionAt(eye.x, eye.y);
     const CameraSpec& spec = cam.spec();
     const glm::vec4 peel(spec.nearDistance, spec.farDistance,
