@@ -41,6 +41,45 @@ struct Source {
   std::vector<SourceLayer> layers;
 };
 
+// A view of the set that is a source view, and that source's image: its
+// nearest layer (F32, rows top first; empty where the source saw nothing).
+struct SourceView {
+  int view;
+  Image color;
+};
+
+// Hands EPIs on with the rows of the views that are source views replaced
+// by the sources' own pixels: there the best image of the scene is the
+// source itself, whereas the slices of the other sources, each exact only
+// at its own eye, win the depth test wherever their chords of a curved
+// surface pass in front of it (de Quilletes' dual reproduced its ends only
+// approximately; issue 18).
+class SourceViewSink final : public FrameSink {
+ public:
+  SourceViewSink(FrameSink& inner, const std::vector<SourceView>& views) : inner_(inner), views_(views) {}
+  void putEpi(int row, int scanline, const Image& epi) override {
+    if (views_.empty()) return inner_.putEpi(row, scanline, epi);
+    copy_ = epi;
+    for (const SourceView& v : views_)
+      for (int x = 0; x < copy_.width; ++x) copy_.setLinear(x, v.view, v.color.pixel(x, scanline));
+    inner_.putEpi(row, scanline, copy_);
+  }
+  void finish() override { inner_.finish(); }
+
+ private:
+  FrameSink& inner_;
+  const std::vector<SourceView>& views_;
+  Image copy_;
+};
+
+// The view of cam whose eye is camera x `x`, or -1.
+int viewAt(const ShearingCamera& cam, double x) {
+  const int n = cam.views();
+  const double spacing = n > 1 ? cam.viewX(1) - cam.viewX(0) : 1.0;
+  const int i = n > 1 ? int(std::lround((x - cam.viewX(0)) / spacing)) : 0;
+  return i >= 0 && i < n && std::abs(cam.viewX(i) - x) <= 1e-9 * std::max(1.0, std::abs(spacing)) ? i : -1;
+}
+
 class InterpRenderer final : public Renderer {
  public:
   InterpRenderer(const Scene& scene, PixelType type, const InterpOptions& options)
@@ -66,8 +105,13 @@ class InterpRenderer final : public Renderer {
         continue;
       }
       std::vector<SourceLayer> layers;
-      for (Source& source : acquire(cam, row, stats))
+      std::vector<SourceView> views;
+      for (Source& source : acquire(cam, row, stats)) {
+        if (const int v = passesThrough() ? viewAt(cam, source.x) : -1; v >= 0)
+          views.push_back({v, source.layers.empty() ? Image(cam.width(), cam.height(), PixelType::F32)
+                                                    : source.layers.front().color});
         for (SourceLayer& l : source.layers) layers.push_back(std::move(l));
+      }
       stats.counters["layers"] += double(layers.size());
       ImageSlices slices;
       {
@@ -77,7 +121,8 @@ class InterpRenderer final : public Renderer {
       }
       countSlices(slices.table.sliceCount(), slices.pixels, stats);
       if (splits_ > 0) stats.counters["highlight_knots"] += double(slices.vertices.knots.size());
-      rasterizer_->rasterize(slices.vertices, slices.table, cam, row, sink, stats);
+      SourceViewSink out(sink, views);
+      rasterizer_->rasterize(slices.vertices, slices.table, cam, row, out, stats);
     }
     stats.notes["acquire"] = acquireName(options_.acquire);
     stats.notes["image_slicer"] = gpuSlicer_ ? "gpu" : "cpu";
@@ -94,9 +139,14 @@ class InterpRenderer final : public Renderer {
   void renderOnGpu(const ShearingCamera& cam, int row, FrameSink& sink, RenderStats& stats) {
     const std::vector<double> xs = fixedSources(cam);
     store_.reset(cam.width(), cam.height(), int(xs.size()) * options_.maxLayers);
+    std::vector<SourceView> views;
     for (double x : xs) {
       stats.counters["source_views"] += 1;
-      sources_->render(sourceCamera(cam), {x, cam.rowY(row)}, options_.maxLayers, trackWidth(cam), stats, store_);
+      const int first = store_.count();
+      const int added =
+          sources_->render(sourceCamera(cam), {x, cam.rowY(row)}, options_.maxLayers, trackWidth(cam), stats, store_);
+      if (const int v = passesThrough() ? viewAt(cam, x) : -1; v >= 0)
+        views.push_back({v, added > 0 ? store_.readColor(first) : Image(cam.width(), cam.height(), PixelType::F32)});
     }
     stats.counters["layers"] += double(store_.count());
     std::optional<GpuImageSlices> slices;
@@ -105,8 +155,13 @@ class InterpRenderer final : public Renderer {
       slices.emplace(gpuSlicer_->build(store_, cam, {options_.overlap, options_.coalesce}));
     }
     countSlices(slices->table.sliceCount(), slices->pixels, stats);
-    rasterizer_->rasterize(slices->vertices, slices->table, cam, row, sink, stats);
+    SourceViewSink out(sink, views);
+    rasterizer_->rasterize(slices->vertices, slices->table, cam, row, out, stats);
   }
+
+  // Whether the views at source eyes are the sources' images: not where
+  // highlights are split off the source colours (they are added per view).
+  bool passesThrough() const { return splits_ == 0; }
 
   // The camera source views are rendered through: the share's scanlines
   // only, since scanline j of every EPI comes from row j of the sources

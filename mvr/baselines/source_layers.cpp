@@ -148,6 +148,14 @@ void DeviceLayers::append(const glm::dvec2& eye, GLuint colorTexture, GLuint dep
   eyes_.push_back(eye);
 }
 
+Image DeviceLayers::readColor(int layer) const {
+  if (layer < 0 || layer >= count()) fail("layer store", "no layer " + std::to_string(layer));
+  Image image(width_, height_, PixelType::F32);
+  const size_t bytes = pixelsPerLayer() * sizeof(glm::vec4);
+  gl::GetNamedBufferSubData(color_.id(), GLintptr(size_t(layer) * bytes), GLsizeiptr(bytes), image.bytes.data());
+  return image;
+}
+
 std::unique_ptr<SourceLayerRenderer> makeSourceLayerRenderer(const Scene& scene,
                                                              bool separateHighlights) {
   return std::make_unique<SourceLayerRendererImpl>(scene, separateHighlights);

@@ -50,6 +50,8 @@ class DeviceLayers {
   // Copies one layer in on the GPU: a colour and a depth texture of the
   // store's size. Throws mvr::Error when the store is full.
   void append(const glm::dvec2& eye, GLuint colorTexture, GLuint depthTexture);
+  // One layer's colour read back (F32, rows top first).
+  Image readColor(int layer) const;
 
  private:
   void grow(int layers);

@@ -218,6 +218,26 @@ TEST_F(InterpTest, SourceViewIsReproducedAndDualBeatsCenterAtTheEnds) {
   EXPECT_GE(test::compareViews(d, test::renderViews(*cpu, cam)).minPsnr, 35.0);
 }
 
+// Issue 18: at a source view interp's image is the source's, within one
+// 8-bit step, in every mode and from either path (GPU-sliced layers and
+// layers read back), whatever the other sources' slices would draw there.
+TEST_F(InterpTest, DualReproducesBothSourceViewsInEveryMode) {
+  const Reference ref(5);
+  for (PstMode mode : {PstMode::Quad, PstMode::Strip, PstMode::Exact, PstMode::Cpu})
+    for (PstBuilder builder : {PstBuilder::Gpu, PstBuilder::Cpu}) {
+      if (mode == PstMode::Cpu && builder == PstBuilder::Gpu) continue;
+      const InterpOptions options{.acquire = Acquire::Dual, .mode = mode, .builder = builder};
+      RenderStats stats;
+      const test::CaptureSink d = test::renderViews(*makeInterpRenderer(ref.scene, PixelType::U8, options), ref.cam, stats);
+      for (int v : {0, 4}) {
+        const ImageDifference diff = compareImages(ref.views.views.at({0, v}), d.views.at({0, v}));
+        EXPECT_LE(diff.maxError, 1.0 / 255.0 + 1e-6) << pstModeName(mode) << " " << stats.notes["image_slicer"] << " view " << v;
+      }
+      // Between the sources the slices are drawn, not a source.
+      EXPECT_LT(compareImages(ref.views.views.at({0, 2}), d.views.at({0, 2})).identicalFraction, 1.0);
+    }
+}
+
 TEST_F(InterpTest, EveryRowOfViewsReproducesItsOwnSourceView) {
   // Rows of views take turns with the EPI rasterizer, whose target is far
   // taller: each row's source views must still fill their own viewport.
