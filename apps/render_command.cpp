@@ -216,8 +216,7 @@ void relayStream(SharedFile& records, uint64_t bytes, FdStreamBuf& buffer, const
 // every rank is done); a pipe or socket is fed by rank 0 from a scratch
 // file once every rank is done, in stream order.
 int streamSplit(MpiSession& mpi, Renderer& renderer, const ShearingCamera& cam, const Supersampling& aa,
-                const JobSplit& split,
-                const EpiStreamHeader& header, const std::string& endpoint, const ReorderMemory& reorder,
+                const JobSplit& split, const EpiStreamHeader& header, const std::string& endpoint, const ReorderMemory& reorder,
                 const std::optional<glm::vec4>& background) {
   namespace fs = std::filesystem;
   std::signal(SIGPIPE, SIG_IGN);
@@ -250,8 +249,9 @@ int streamSplit(MpiSession& mpi, Renderer& renderer, const ShearingCamera& cam, 
     if (aa.active()) frames = &filter.emplace(*frames, aa, cam.width(), cam.height(), cam.views());
     const ShearingCamera rendered = aa.active() ? supersampledCamera(cam, aa) : cam;
     inPhase(&mpi, [&] {
+      if (mpi.rank() != 0) return;
       const std::vector<uint8_t> head = header.encode();
-      if (mpi.rank() == 0) records->write(0, std::as_bytes(std::span(head)));
+      records->write(0, std::as_bytes(std::span(head)));
     });
     RenderStats stats;
     renderPhase(&mpi, renderer, rendersOf(rendered, &out, aa), *frames, long(cam.views()) * cam.rows(),

@@ -74,10 +74,9 @@ class SourceViewSink final : public FrameSink {
 
 // The view of cam whose eye is camera x `x`, or -1.
 int viewAt(const ShearingCamera& cam, double x) {
-  const int n = cam.views();
-  const double spacing = n > 1 ? cam.viewX(1) - cam.viewX(0) : 1.0;
-  const int i = n > 1 ? int(std::lround((x - cam.viewX(0)) / spacing)) : 0;
-  return i >= 0 && i < n && std::abs(cam.viewX(i) - x) <= 1e-9 * std::max(1.0, std::abs(spacing)) ? i : -1;
+  const double spacing = cam.viewSpacing();
+  const int i = spacing != 0.0 ? int(std::lround((x - cam.viewX(0)) / spacing)) : 0;
+  return i >= 0 && i < cam.views() && std::abs(cam.viewX(i) - x) <= 1e-9 * std::max(1.0, std::abs(spacing)) ? i : -1;
 }
 
 class InterpRenderer final : public Renderer {

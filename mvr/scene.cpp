@@ -13,12 +13,8 @@ std::vector<uint32_t> Scene::vertexMaterials() const {
 
 Bounds Scene::bounds() const {
   if (positions.empty()) return {};
-  Bounds b{glm::vec3(std::numeric_limits<float>::max()),
-           glm::vec3(std::numeric_limits<float>::lowest())};
-  for (const glm::vec3& p : positions) {
-    b.min = glm::min(b.min, p);
-    b.max = glm::max(b.max, p);
-  }
+  Bounds b = Bounds::none();
+  for (const glm::vec3& p : positions) b.include(p);
   return b;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // The scene as flat arrays (structure of arrays): what every back end reads.
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -44,6 +45,14 @@ struct Light {
 struct Bounds {
   glm::vec3 min{0.0f}, max{0.0f};
   glm::vec3 center() const { return 0.5f * (min + max); }
+  // Bounds of nothing yet: the first point included sets them.
+  static Bounds none() {
+    return {glm::vec3(std::numeric_limits<float>::max()), glm::vec3(std::numeric_limits<float>::lowest())};
+  }
+  void include(const glm::vec3& p) {
+    min = glm::min(min, p);
+    max = glm::max(max, p);
+  }
 };
 
 struct Scene {

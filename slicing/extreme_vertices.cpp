@@ -97,15 +97,9 @@ TriangleRuns TriangleRuns::of(const Scene& scene) {
   std::stable_sort(runs.order.begin(), runs.order.end(), [&](uint32_t a, uint32_t b) { return centreY[a] < centreY[b]; });
   runs.bounds.resize((n + kSize - 1) / kSize);
   for (size_t r = 0; r < runs.bounds.size(); ++r) {
-    Bounds& b = runs.bounds[r];
-    b.min = glm::vec3(std::numeric_limits<float>::max());
-    b.max = glm::vec3(std::numeric_limits<float>::lowest());
+    Bounds& b = runs.bounds[r] = Bounds::none();
     for (size_t i = r * kSize; i < std::min(n, (r + 1) * kSize); ++i)
-      for (int k = 0; k < 3; ++k) {
-        const glm::vec3& p = scene.positions[scene.triangles[runs.order[i]][k]];
-        b.min = glm::min(b.min, p);
-        b.max = glm::max(b.max, p);
-      }
+      for (int k = 0; k < 3; ++k) b.include(scene.positions[scene.triangles[runs.order[i]][k]]);
   }
   return runs;
 }
@@ -113,8 +107,7 @@ TriangleRuns TriangleRuns::of(const Scene& scene) {
 std::vector<uint8_t> TriangleRuns::keptTriangles(const ShearingCamera& camera) const {
   const IndexRange band = camera.share().scanlines, rows = camera.share().rows;
   if (band.begin <= 0 && band.end >= camera.height()) return {};
-  const CameraSpec& s = camera.spec();
-  const double D = s.distance, sy = 2.0 / camera.planeHeight(), h = camera.height();
+  const double D = camera.spec().distance;
   // Scanline centres j + 0.5 of the band, widened by a pixel against rounding.
   const double top = band.begin + 0.5 - 1.0, bottom = band.end - 0.5 + 1.0;
   std::vector<uint8_t> kept(order.size(), 0);
@@ -124,10 +117,9 @@ std::vector<uint8_t> TriangleRuns::keptTriangles(const ShearingCamera& camera) c
     for (int corner = 0; corner < 4 && inFront; ++corner) {  // y needs only Y and Z
       const double Y = (corner & 1) ? bounds[r].max.y : bounds[r].min.y;
       const double Z = (corner & 2) ? bounds[r].max.z : bounds[r].min.z;
-      const double w = D - Z;
-      inFront = w > 0.0;
+      inFront = D - Z > 0.0;
       for (int row : {rows.begin, rows.end - 1}) {
-        const double y = (-sy * (D * Y - camera.rowY(row) * Z) / w + 1.0) * 0.5 * h;
+        const double y = camera.project({0.0, Y, Z}, 0, row).y;
         lo = std::min(lo, y), hi = std::max(hi, y);
       }
     }

@@ -168,7 +168,6 @@ void DeferredPipeline::geometry(const glm::dmat4& viewProj, const GBuffer& gbuff
   inRows([&] { buffers_.draw(); });
 }
 
-
 void DeferredPipeline::lighting(const glm::dmat4& viewProj, const glm::dvec3& eye,
                                 const GBuffer& gbuffer, const RenderTarget& target) {
   target.bind();

@@ -66,8 +66,9 @@ class SourceLayerRenderer {
   virtual ~SourceLayerRenderer() = default;
   // Up to maxLayers layers seen from eye through cam's image-plane window,
   // stopping at the first empty one or where `filter` says. Only the rows
-  // of cam's share of scanlines are drawn; the others are left empty. trackWidth: the
-  // width E of the track the layers must serve, for the peeling offset.
+  // of cam's share of scanlines are drawn; the others are left empty.
+  // trackWidth: the width E of the track the layers must serve, for the
+  // peeling offset.
   virtual std::vector<SourceLayer> render(const ShearingCamera& cam, const glm::dvec2& eye,
                                           int maxLayers, double trackWidth, RenderStats& stats,
                                           const LayerFilter& filter = {}) = 0;
