@@ -60,6 +60,11 @@ void BackendFlags::add(CLI::App& app) {
                      "highlight (0: as the source saw it)")
           ->type_name("K")
           ->capture_default_str(),
+      app.add_option("--blend", blend_,
+                     "interp: between two sources, let the depth test pick one per pixel (none, "
+                     "default) or weight both where they agree, by distance along the track (track) "
+                     "or by the angles at the pixel (angular); blending draws each interval 3 times")
+          ->type_name(choices(kBlendNames)),
       app.add_option("--overlap", interp.overlap,
                      "interp: widen each slice by P pixels per side against cracks (more closes "
                      "more holes, dilates outlines)")
@@ -94,6 +99,7 @@ BackendOptions BackendFlags::resolve() const {
       fail(option->get_name(), "applies to --backend interp and warp only");
   if (o.backend == Backend::Interp) {
     if (!acquire_.empty()) o.interp.acquire = parseAcquire(acquire_);
+    if (!blend_.empty()) o.interp.blend = parseName(kBlendNames, blend_, "--blend", "blend");
     validate(o.interp);
   }
   if (o.backend == Backend::Warp) {

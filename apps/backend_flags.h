@@ -22,7 +22,7 @@ class BackendFlags {
 
  private:
   BackendOptions options_;
-  std::string backend_ = "mvr", acquire_, texture_, builder_;
+  std::string backend_ = "mvr", acquire_, texture_, builder_, blend_;
   std::optional<std::string> pst_;
   CLI::Option* textureOption_ = nullptr;
   CLI::Option* builderOption_ = nullptr;

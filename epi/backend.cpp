@@ -56,6 +56,11 @@ void interpOption(const std::string& token, InterpOptions& o, const char* where)
     o.visibility = true;
     return;
   }
+  for (const auto& blend : kBlendNames)
+    if (token == blend.name) {
+      o.blend = blend.value;
+      return;
+    }
   char* end = nullptr;
   const char* text = token.c_str();
   const char key = token.size() > 1 ? token[0] : '\0';

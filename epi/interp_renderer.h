@@ -7,6 +7,7 @@
 #include <string>
 
 #include "epi/epi_rasterizer.h"
+#include "epi/source_blend.h"
 #include "mvr/renderer.h"
 #include "mvr/scene.h"
 
@@ -46,8 +47,13 @@ struct InterpOptions {
   // views across the highlight (slicing/highlight_splits.h). A scene
   // without specular materials ignores it.
   int splits = 0;
+  // How the views between two sources combine them (epi/source_blend.h):
+  // none lets the depth test pick one source per pixel; track and angular
+  // weight both where they agree, drawing each interval three times.
+  Blend blend = Blend::None;
   // hierarchical: holes a view between two sources may show, as a
-  // fraction of the image's pixels, before a source is added there.
+  // fraction of the image's pixels, before a source is added there
+  // (negative: at every halfway view, until the budget is spent).
   double holeFraction = 1e-3;
 };
 

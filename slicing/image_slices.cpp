@@ -237,6 +237,7 @@ ImageSlices sliceSourceLayers(const std::vector<SourceLayer>& layers, const Shea
   const int bandRows = std::max(1, options.bandRows), bands = (h + bandRows - 1) / bandRows;
   std::vector<ImageSlices> parts(size_t(std::max(1, bands)));
   std::vector<std::vector<uint32_t>> scanlines(parts.size());
+  std::vector<std::vector<uint32_t>> layerOf(parts.size());
   parallelFor(0, bands, [&](int b) {
     const int first = b * bandRows, last = std::min(h, (b + 1) * bandRows);
     // At most a slice per covered pixel: reserved, the arrays never copy
@@ -248,8 +249,10 @@ ImageSlices sliceSourceLayers(const std::vector<SourceLayer>& layers, const Shea
     parts[b].vertices.reserve(2 * covered, covered, 2 * covered);
     LayerSlicer slicer(cam, row, options, parts[b]);
     slicer.scanlineOf.reserve(covered);
-    for (size_t k = 0; k < layers.size(); ++k)
+    for (size_t k = 0; k < layers.size(); ++k) {
       slicer.slice(layers[k], first, last, options.meetSilhouettes && other[k] >= 0 ? &layers[other[k]] : nullptr);
+      layerOf[b].resize(slicer.scanlineOf.size(), uint32_t(k));
+    }
     scanlines[b] = std::move(slicer.scanlineOf);
   });
   // Joined into room reserved for all: each array copied once.
@@ -266,6 +269,7 @@ ImageSlices sliceSourceLayers(const std::vector<SourceLayer>& layers, const Shea
     appendVertices(out.vertices, parts[b].vertices);
     out.pixels += parts[b].pixels;
     scanlineOf.insert(scanlineOf.end(), scanlines[b].begin(), scanlines[b].end());
+    out.layerOf.insert(out.layerOf.end(), layerOf[b].begin(), layerOf[b].end());
   }
   out.vertices.cullBack.assign(out.vertices.triangles.size(), 0);
   out.vertices.materials.assign(out.vertices.triangles.size(), 0);

@@ -61,6 +61,7 @@ struct ImageSlices {
   ExtremeVertices vertices;  // two per slice; "triangle" k is slice k, with its vector
   SliceTable table;
   size_t pixels = 0;  // covered source pixels the slices carry
+  std::vector<uint32_t> layerOf;  // per slice, the index of its layer
 };
 
 ImageSlices sliceSourceLayers(const std::vector<SourceLayer>& layers, const ShearingCamera& camera,

@@ -63,6 +63,19 @@ class SliceTable {
   // A table of segments: v's triangle k is the segment from its vertex x
   // to its vertex y, on scanline scanlineOf[k].
   static SliceTable fromSegments(const std::vector<uint32_t>& scanlineOf, int height);
+  // The slices whose triangle `keep` accepts, in the same order.
+  template <class Keep>
+  SliceTable keeping(Keep keep) const {
+    SliceTable table;
+    table.offsets_.reserve(offsets_.size());
+    table.offsets_.push_back(0);
+    for (int j = 0; j < height(); ++j) {
+      for (const Slice& s : scanline(j))
+        if (keep(s.triangle)) table.slices_.push_back(s);
+      table.offsets_.push_back(uint32_t(table.slices_.size()));
+    }
+    return table;
+  }
 
  private:
   std::vector<uint32_t> offsets_;  // height + 1 prefix sums

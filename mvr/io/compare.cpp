@@ -13,6 +13,23 @@
 namespace mvr {
 namespace fs = std::filesystem;
 
+namespace {
+
+// A pixel as it shows over black, in the image's stored encoding: colour
+// times alpha in linear light (alpha straight in the file), alpha itself.
+// Where alpha is 0 or 1 that is the stored pixel, rgb 0 where empty; a
+// partly covered edge counts by how much of its colour shows.
+glm::vec4 shown(const Image& img, int x, int y) {
+  const glm::vec4 p = img.pixel(x, y);
+  if (p.a >= 1.0f) return p;
+  if (img.type != PixelType::Srgb8) return glm::vec4(glm::vec3(p) * p.a, p.a);
+  uint8_t rgba[4];
+  encodeSrgb8(glm::vec4(glm::vec3(img.linear(x, y)) * p.a, p.a), rgba);
+  return glm::vec4(rgba[0], rgba[1], rgba[2], rgba[3]) / 255.0f;
+}
+
+}  // namespace
+
 ImageDifference compareImages(const Image& a, const Image& b, const std::string& name) {
   if (a.width != b.width || a.height != b.height)
     fail(name.empty() ? "compare" : name,
@@ -24,7 +41,7 @@ ImageDifference compareImages(const Image& a, const Image& b, const std::string&
   long identical = 0, close = 0;
   for (int y = 0; y < a.height; ++y) {
     for (int x = 0; x < a.width; ++x) {
-      glm::vec4 pa = a.pixel(x, y), pb = b.pixel(x, y);
+      glm::vec4 pa = shown(a, x, y), pb = shown(b, x, y);
       glm::vec4 diff = glm::abs(pa - pb);
       if (diff == glm::vec4(0)) ++identical;
       if (pa.a > 0.0f && pb.a == 0.0f) ++d.holes;
@@ -72,7 +89,7 @@ std::vector<double> luma(const Image& img) {
   std::vector<double> y(size_t(img.width) * img.height);
   for (int j = 0; j < img.height; ++j)
     for (int i = 0; i < img.width; ++i) {
-      const glm::vec4 p = img.pixel(i, j);
+      const glm::vec4 p = shown(img, i, j);
       y[size_t(j) * img.width + i] = 0.299 * p.r + 0.587 * p.g + 0.114 * p.b;
     }
   return y;

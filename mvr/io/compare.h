@@ -6,6 +6,9 @@
 // SSIM (Wang, Bovik, Sheikh and Simoncelli 2004) on luma (Rec. 601
 // weights) with an 11 x 11 Gaussian window of sigma 1.5, C1 = (0.01)^2,
 // C2 = (0.03)^2 for a range of 1, edges clamped, averaged over the image.
+// Colour is compared as it shows over black: in linear light times alpha
+// (files hold straight alpha), so a half-covered edge pixel counts half its
+// colour, and an empty pixel's stored colour does not count.
 // Coverage comes from alpha (renderers clear to alpha 0): a hole is a pixel
 // the first image covers and the second leaves empty; an extra pixel the
 // reverse.

@@ -121,6 +121,8 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
                            "render --backend interp --splits -2 --out " + d.string(),
                            "render --backend interp --overlap -1 --out " + d.string(),
                            "render --backend mvr --splits 2 --out " + d.string(),
+                           "render --backend interp --blend soft --out " + d.string(),
+                           "render --backend svr --blend track --out " + d.string(),
                            "render --backend deferred --visibility --out " + d.string(),
                            "render --views 0 --out " + d.string(),
                            "render --size 10 --out " + d.string(),

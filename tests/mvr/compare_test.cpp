@@ -94,6 +94,21 @@ TEST(Compare, SsimOfFlatImagesIsTheLuminanceTerm) {
   EXPECT_THROW(ssim(flat(4, 4, 0), flat(4, 5, 0)), Error);
 }
 
+TEST(Compare, ColourCountsAsItShowsOverBlack) {
+  // Straight alpha: a grey at half alpha shows half its linear value; an
+  // empty pixel's stored colour does not show at all.
+  const ImageDifference half = compareImages(flat(4, 3, 0.8f, 0.5f), flat(4, 3, 0.4f));
+  EXPECT_EQ(half.psnr, INFINITY);  // colour: 0.8 x 0.5 = 0.4
+  EXPECT_NEAR(half.maxError, 0.5, 1e-6);  // alpha differs
+  EXPECT_EQ(compareImages(flat(4, 3, 0.7f, 0.0f), flat(4, 3, 0.0f, 0.0f)).psnr, INFINITY);
+  // The same in sRGB bytes: decoded, weighted, encoded again.
+  Image a(1, 1, PixelType::Srgb8), b(1, 1, PixelType::Srgb8);
+  a.setLinear(0, 0, glm::vec4(0.8f, 0.8f, 0.8f, 0.5f));
+  b.setLinear(0, 0, glm::vec4(0.4f, 0.4f, 0.4f, 1.0f));
+  EXPECT_GE(compareImages(a, b).psnr, 48.0);  // within an 8-bit step
+  EXPECT_GT(compareImages(a, flat(1, 1, 0.0f)).maxError, 0.6);  // 0.4 linear is 0.66 encoded
+}
+
 TEST(Compare, HolesAndExtrasComeFromCoverage) {
   Image a = flat(4, 3, 0.5f), b = flat(4, 3, 0.5f);
   reinterpret_cast<float*>(b.row(1))[4 * 2 + 3] = 0.0f;  // b leaves (2, 1) empty
