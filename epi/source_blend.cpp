@@ -15,12 +15,13 @@ namespace {
 // depth-tested, stands.
 constexpr float kSameSurface = 0.1f;
 
-// An empty run no wider than this, between covered pixels, is a crack
-// between one source's slices, not background it sees.
-constexpr int kCrack = 2;
-
-// Per pixel of one EPI row: whether the source sees background there.
-void markBackground(const Image& epi, int view, std::vector<uint8_t>& background) {
+// Per pixel of one EPI row: whether the source sees background there. A
+// run of pixels the source leaves empty is background where it reaches the
+// row's end or a pixel the joint EPI leaves empty too: beyond the other
+// source's outline lies what both see as empty. A run the joint covers
+// from end to end is a crack between the source's slices or a hole it
+// could not see into (the other source fills it), not background.
+void markBackground(const Image& epi, const Image& joint, int view, std::vector<uint8_t>& background) {
   const int w = epi.width;
   background.assign(size_t(w), 0);
   for (int x = 0; x < w;) {
@@ -29,8 +30,9 @@ void markBackground(const Image& epi, int view, std::vector<uint8_t>& background
       continue;
     }
     int end = x;
-    while (end < w && epi.pixel(end, view).a == 0.0f) ++end;
-    if (x == 0 || end == w || end - x > kCrack) std::fill(background.begin() + x, background.begin() + end, 1);
+    bool open = x == 0;
+    for (; end < w && epi.pixel(end, view).a == 0.0f; ++end) open = open || joint.pixel(end, view).a == 0.0f;
+    if (open || end == w) std::fill(background.begin() + x, background.begin() + end, 1);
     x = end;
   }
 }
@@ -61,8 +63,8 @@ void blendEpi(Blend mode, const ShearingCamera& interval, int row, int scanline,
               Image& joint) {
   std::vector<uint8_t> aBackground, bBackground;
   for (int v = 0; v < joint.height; ++v) {
-    markBackground(a, v, aBackground);
-    markBackground(b, v, bBackground);
+    markBackground(a, joint, v, aBackground);
+    markBackground(b, joint, v, bBackground);
     for (int x = 0; x < joint.width; ++x) {
       const glm::vec4 j = joint.linear(x, v);
       if (j.a == 0.0f) continue;

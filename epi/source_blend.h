@@ -10,8 +10,8 @@
 //   - both cover it with colours that agree (one surface seen twice): the
 //     mix w A + (1 - w) B;
 //   - one covers it and the other sees background there (its empty run
-//     reaches the EPI row's end or is wider than a crack): the joint
-//     colour at the covering source's weight as coverage. Each source's
+//     reaches the EPI row's end or a pixel neither source covers): the
+//     joint colour at the covering source's weight as coverage. Each source's
 //     outline is exact at its own eye only and is rounded to whole
 //     pixels; the depth-tested union of two rounded outlines stands out
 //     of the true silhouette (issue 18: 60-90 extra pixels a bunny view,

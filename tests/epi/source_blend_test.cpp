@@ -38,7 +38,8 @@ TEST(BlendEpi, MixesOneSurfaceWeightsTheOutlineAndKeepsTheRest) {
   // x 0: only A covers, B sees background (its empty run reaches the row's
   // end). x 1-3: both, the same surface. x 4: both, different surfaces
   // (the joint's depth test chose B's red). x 5: only A, B has a one-pixel
-  // crack. x 6-7: nobody.
+  // crack (or a hole it could not see into: the joint covers all of it).
+  // x 6: only B. x 7: nobody.
   for (int x = 0; x <= 5; ++x) put(a, x, v, grey);
   for (int x = 1; x <= 3; ++x) put(b, x, v, light);
   put(b, 4, v, red);
@@ -52,6 +53,7 @@ TEST(BlendEpi, MixesOneSurfaceWeightsTheOutlineAndKeepsTheRest) {
   EXPECT_FLOAT_EQ(joint.linear(2, v).a, 1.0f);
   EXPECT_EQ(joint.linear(4, v), red);
   EXPECT_EQ(joint.linear(5, v), grey);  // a crack in B is not background
+  EXPECT_FLOAT_EQ(joint.linear(6, v).a, 0.25f);  // B alone, A sees background to the end
   EXPECT_EQ(joint.linear(7, v), glm::vec4(0.0f));
 }
 
