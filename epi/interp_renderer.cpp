@@ -232,7 +232,9 @@ class InterpRenderer final : public Renderer {
     ImageSlices slices;
     {
       ScopedStage s(stats.times, "slicing");
-      slices = sliceSourceLayers(layers, cam, row, {options_.overlap, options_.coalesce, &scene_, splits_});
+      slices = sliceSourceLayers(layers, cam, row,
+                                 {.overlap = options_.overlap, .coalesce = options_.coalesce, .scene = &scene_,
+                                  .splits = splits_, .fitRims = options_.blend != Blend::None});
     }
     countSlices(slices.table.sliceCount(), slices.pixels, stats);
     if (splits_ > 0) stats.counters["highlight_knots"] += double(slices.vertices.knots.size());

@@ -103,8 +103,14 @@ class LayerSlicer {
     for (int k = 0; k < n; ++k) texels_.push_back(glm::vec4(glm::vec3(layer.color.pixel(x + k, j)), 1.0f));
     const auto base = uint32_t(out_.vertices.vertexCount());
     const glm::vec3 c(texels_[0]);
-    const double ends[2] = {x - oL, x + n + oR};  // the ends' pixel x
+    double ends[2] = {x - oL, x + n + oR};  // the ends' pixel x
     float d[2] = {d0 + (-oL - 0.5f) * slope, d0 + (float(n) + oR - 0.5f) * slope};
+    if (options_.fitRims && n == 1) {
+      double e;
+      float zt;
+      if (rimFit(depth, x, -1, e, zt)) ends[0] = e, d[0] = zt;
+      if (rimFit(depth, x, +1, e, zt)) ends[1] = e, d[1] = zt;
+    }
     if (other_) meetOtherOutline(layer, j, ends, d);
     for (int e = 0; e < 2; ++e)
       transform_.add(cam_.unprojectAt(layer.eye.x, layer.eye.y, {ends[e], j + 0.5, d[e]}), c, c, nullptr);
@@ -122,6 +128,37 @@ class LayerSlicer {
     out_.vertices.vectors.push_back(vector);
     scanlineOf.push_back(uint32_t(j));
     out_.pixels += size_t(n);
+  }
+
+  // A rim pixel's outline from the curvature of its surface: pixel i, its
+  // neighbour at i + dir empty, the two inward of it covered and receding
+  // toward it (reversed Z: depth falls toward the rim). Near a smooth
+  // silhouette the surface's profile along the scanline is a parabola
+  // u = ue - a (z - zt)^2, u the pixel offset along dir from i's centre,
+  // with its vertex at the silhouette (offset ue, tangent depth zt).
+  // Through the three centres (u = 0, -1, -2) the equal steps give
+  // (z0 - z1)(z0 + z1 - 2 zt) = (z1 - z2)(z1 + z2 - 2 zt), so
+  //   zt = (z0^2 + z2^2 - 2 z1^2) / (2 (z0 - 2 z1 + z2)),
+  //   a  = -1 / ((z0 - z1)(z0 + z1 - 2 zt)),  ue = a (z0 - zt)^2.
+  // A rim (a > 0) whose edge lies within the pixel (ue <= 0.5: the next
+  // centre is empty) gets its outer end there at the tangent depth: the
+  // end is then the silhouette point itself, which every other view sees
+  // inside its outline, rather than a point of the pixel's flat footprint
+  // whose track leaves the surface. Else the end stays on the boundary.
+  bool rimFit(const float* depth, int i, int dir, double& edge, float& tangentDepth) const {
+    const int w = cam_.width(), i1 = i - dir, i2 = i - 2 * dir;
+    if ((i + dir >= 0 && i + dir < w && depth[i + dir] != 0.0f) || i2 < 0 || i2 >= w) return false;
+    const double z0 = depth[i], z1 = depth[i1], z2 = depth[i2];
+    if (z1 == 0.0 || z2 == 0.0 || !(z0 < z1 && z1 < z2)) return false;
+    const double curvature = z0 - 2.0 * z1 + z2;
+    if (std::abs(curvature) < 1e-9) return false;  // a plane ends at a crease, not a rim
+    const double zt = (z0 * z0 + z2 * z2 - 2.0 * z1 * z1) / (2.0 * curvature);
+    const double a = -1.0 / ((z0 - z1) * (z0 + z1 - 2.0 * zt));
+    const double ue = a * (z0 - zt) * (z0 - zt);
+    if (!(a > 0.0) || !(ue <= 0.5) || std::abs(zt - z0) > 4.0 * (z1 - z0)) return false;
+    edge = i + 0.5 + dir * ue;
+    tangentDepth = float(zt);
+    return true;
   }
 
   // The overlap toward pixel `to` from the run's end pixel `from`: only

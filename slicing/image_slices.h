@@ -55,6 +55,10 @@ struct ImageSliceOptions {
   // Slices meet the nearest other source's outline in its view
   // (LayerSlicer::meetOtherOutline).
   bool meetSilhouettes = true;
+  // A lone pixel at a smooth silhouette ends at the outline and depth its
+  // surface's curvature gives (LayerSlicer::rimFit). Measured to help only
+  // where two sources' outlines are blended (epi/source_blend.h).
+  bool fitRims = false;
 };
 
 struct ImageSlices {
