@@ -371,6 +371,28 @@ TEST_F(InterpTest, HierarchicalAddsSourcesWhereTheEndsLeaveHoles) {
   EXPECT_EQ(test::compareViews(dual, two).minIdentical, 1.0);
 }
 
+// Intervals (more than two sources) and blending in a split job: each
+// share's EPIs are the whole render's, byte for byte.
+TEST_F(InterpTest, IntervalsAndBlendingJoinAcrossShares) {
+  const Scene scene = loadScene(test::assetPath("default.json"));
+  const ShearingCamera cam(*scene.camera, 48, 37, 9);
+  const InterpOptions options{
+      .acquire = Acquire::Hierarchical, .budget = 4, .blend = Blend::Track, .holeFraction = -1.0};
+  auto renderer = makeInterpRenderer(scene, PixelType::U8, options);
+  test::CaptureSink whole;
+  RenderStats stats;
+  renderer->render(cam, whole, stats);
+  EXPECT_EQ(stats.counters["source_views"], 4);
+  for (IndexRange part : {IndexRange{0, 5}, IndexRange{5, 37}}) {
+    RenderShare share = cam.share();
+    share.scanlines = part;
+    test::CaptureSink got;
+    renderer->render(cam.withShare(share), got, stats);
+    EXPECT_EQ(got.epis.size(), size_t(part.size()));
+    for (const auto& [key, epi] : got.epis) EXPECT_EQ(epi.bytes, whole.epis.at(key).bytes) << "scanline " << key.second;
+  }
+}
+
 TEST_F(InterpTest, VisibilityDropsHiddenPixelsWithoutOpeningHoles) {
   const Reference ref(5);
   const Scene& scene = ref.scene;
