@@ -144,15 +144,10 @@ class InterpRenderer final : public Renderer {
   // its own views, in bands of scanlines that bound the EPIs held.
   void renderIntervals(const ShearingCamera& cam, int row, const std::vector<Source>& sources, FrameSink& out,
                        RenderStats& stats) {
-    struct Interval {
-      int first, last;    // views of the two sources
-      ImageSlices slices;
-      uint32_t firstOfB;  // the first layer of the second source
-    };
     std::vector<Interval> intervals;
     for (size_t k = 0; k + 1 < sources.size(); ++k) {
       const int a = viewAt(cam, sources[k].x), b = viewAt(cam, sources[k + 1].x);
-      if (a < 0 || b <= a) fail("interp", "source views between the views of the set");
+      if (a < 0 || b <= a) fail("interp", "a source's eye is not a view of the set");
       std::vector<SourceLayer> layers = sources[k].layers;
       layers.insert(layers.end(), sources[k + 1].layers.begin(), sources[k + 1].layers.end());
       intervals.push_back({a, b, slice(layers, intervalCamera(cam, a, b, cam.share().scanlines), row, stats),
@@ -163,33 +158,47 @@ class InterpRenderer final : public Renderer {
     std::vector<Image> epis;
     for (int first = lines.begin; first < lines.end; first += band) {
       const IndexRange part{first, std::min(lines.end, first + band)};
-      epis.assign(size_t(part.size()), Image());
-      for (const Interval& iv : intervals) {
-        const ShearingCamera sub = intervalCamera(cam, iv.first, iv.last, part);
-        std::vector<Image> joint = draw(iv.slices, iv.slices.table, sub, row, stats);
-        if (options_.blend != Blend::None) {
-          const auto ofB = [&](uint32_t t) { return iv.slices.layerOf[t] >= iv.firstOfB; };
-          const std::vector<Image> a = draw(iv.slices, iv.slices.table.keeping([&](uint32_t t) { return !ofB(t); }),
-                                            sub, row, stats);
-          const std::vector<Image> b = draw(iv.slices, iv.slices.table.keeping(ofB), sub, row, stats);
-          ScopedStage s(stats.times, "blend");
-          parallelFor(0, part.size(), [&](int k) {
-            blendEpi(options_.blend, sub, row, part.begin + k, a[size_t(k)], b[size_t(k)], joint[size_t(k)]);
-          });
-        }
-        if (intervals.size() == 1) {
-          epis = std::move(joint);
-          break;
-        }
-        for (int k = 0; k < part.size(); ++k) {
-          Image& e = epis[size_t(k)];
-          if (e.width == 0) e = Image(cam.width(), cam.views(), joint[size_t(k)].type);
-          for (int v = 0; v < sub.views(); ++v)
-            std::copy_n(joint[size_t(k)].row(v), e.rowBytes(), e.row(iv.first + v));
+      if (intervals.size() == 1) {
+        epis = drawInterval(intervals.front(), cam, part, row, stats);
+      } else {
+        epis.assign(size_t(part.size()), Image());
+        for (const Interval& iv : intervals) {
+          const std::vector<Image> rows = drawInterval(iv, cam, part, row, stats);
+          for (int k = 0; k < part.size(); ++k) {
+            Image& e = epis[size_t(k)];
+            if (e.width == 0) e = Image(cam.width(), cam.views(), rows[size_t(k)].type);
+            for (int v = 0; v < rows[size_t(k)].height; ++v)
+              std::copy_n(rows[size_t(k)].row(v), e.rowBytes(), e.row(iv.first + v));
+          }
         }
       }
       for (int k = 0; k < part.size(); ++k) out.putEpi(row, part.begin + k, epis[size_t(k)]);
     }
+  }
+
+  // Two neighbouring sources' slices, sliced over the views between them.
+  struct Interval {
+    int first, last;    // views of the two sources
+    ImageSlices slices;
+    uint32_t firstOfB;  // the first layer of the second source
+  };
+
+  // One interval's EPIs of the given scanlines: the depth-tested joint
+  // EPIs, blended with each source's own where blending is on.
+  std::vector<Image> drawInterval(const Interval& iv, const ShearingCamera& cam, IndexRange scanlines, int row,
+                                  RenderStats& stats) {
+    const ShearingCamera sub = intervalCamera(cam, iv.first, iv.last, scanlines);
+    std::vector<Image> joint = draw(iv.slices, iv.slices.table, sub, row, stats);
+    if (options_.blend == Blend::None) return joint;
+    const auto ofB = [&](uint32_t t) { return iv.slices.layerOf[t] >= iv.firstOfB; };
+    const std::vector<Image> a = draw(iv.slices, iv.slices.table.keeping([&](uint32_t t) { return !ofB(t); }), sub,
+                                      row, stats);
+    const std::vector<Image> b = draw(iv.slices, iv.slices.table.keeping(ofB), sub, row, stats);
+    ScopedStage s(stats.times, "blend");
+    parallelFor(0, scanlines.size(), [&](int k) {
+      blendEpi(options_.blend, sub, row, scanlines.begin + k, a[size_t(k)], b[size_t(k)], joint[size_t(k)]);
+    });
+    return joint;
   }
 
   // The EPIs of `table`'s scanlines in cam's share, as copies.
