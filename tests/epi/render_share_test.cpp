@@ -64,8 +64,8 @@ TEST_P(RenderShareTest, PartsJoinIntoTheWholeRender) {
 INSTANTIATE_TEST_SUITE_P(EveryBackend, RenderShareTest,
                          ::testing::Values("mvr:cpu", "mvr:quad", "mvr:strip", "mvr:exact",
                                            "mvr:strip:gpu-psts", "interp:dual", "interp:dual:track",
-                                           "interp:hierarchical:1", "svr", "svr-layered",
-                                           "deferred", "warp:dual"),
+                                           "interp:dual:track:gpu-psts", "interp:hierarchical:1", "svr",
+                                           "svr-layered", "deferred", "warp:dual"),
                          [](const auto& info) {
                            std::string name = info.param;
                            for (char& c : name)
