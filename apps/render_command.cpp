@@ -40,8 +40,16 @@ namespace mvr::app {
 
 namespace {
 
+// Whether the stream goes to a file written under a temporary name and
+// renamed when complete: a regular file, or a path with nothing there yet.
+// A device or named pipe (/dev/null, a FIFO a consumer reads) is written
+// in place: a rename would replace it with a regular file (as root, even
+// /dev/null), and elsewhere its folder is seldom writable.
 bool isPlainFile(const std::string& endpoint) {
-  return endpoint != "-" && endpoint.rfind("unix:", 0) != 0 && endpoint.rfind("tcp:", 0) != 0;
+  if (endpoint == "-" || endpoint.rfind("unix:", 0) == 0 || endpoint.rfind("tcp:", 0) == 0) return false;
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(endpoint, ec);
+  return !std::filesystem::exists(status) || std::filesystem::is_regular_file(status);
 }
 
 EpiStreamHeader streamHeader(const ShearingCamera& cam, PixelType type, double imagePlaneZ) {
@@ -54,7 +62,8 @@ EpiStreamHeader streamHeader(const ShearingCamera& cam, PixelType type, double i
 }
 
 // EPIs to a file, stdout or socket as they complete, through a bounded
-// queue. A file is written under a temporary name and renamed when done.
+// queue. A regular file is written under a temporary name and renamed when
+// done; a device or named pipe in place (isPlainFile).
 int streamTo(Renderer& renderer, const ShearingCamera& cam, double imagePlaneZ, const Supersampling& aa,
              const std::string& endpoint, PixelType type, int queue, const ReorderMemory& memory,
              const std::optional<glm::vec4>& background) {

@@ -31,6 +31,8 @@ void QueuedEpiStream::writerLoop(std::ostream& out, EpiStreamHeader header) {
       }
       changed_.notify_all();  // room for the producer
       stream.putEpi(f.row, f.scanline, f.epi);
+      std::lock_guard lock(mutex_);
+      spares_.push_back(std::move(f.epi));
     }
     stream.finish();
   } catch (...) {
@@ -44,14 +46,27 @@ void QueuedEpiStream::writerLoop(std::ostream& out, EpiStreamHeader header) {
   changed_.notify_all();
 }
 
+// The copy is made outside the lock, into an image the writer is done with
+// when there is one: a fresh multi-megabyte image per EPI costs its pages'
+// first-touch faults (and a copy under the lock would stall the writer).
 void QueuedEpiStream::putEpi(int row, int scanline, const Image& epi) {
+  Image copy;
+  {
+    std::lock_guard lock(mutex_);
+    if (!spares_.empty()) {
+      copy = std::move(spares_.back());
+      spares_.pop_back();
+    }
+  }
+  copy.width = epi.width, copy.height = epi.height, copy.type = epi.type;
+  copy.bytes.assign(epi.bytes.begin(), epi.bytes.end());
   std::unique_lock lock(mutex_);
   changed_.wait(lock, [&] { return queue_.size() < capacity_ || writerDone_; });
   if (writerDone_) {
     if (error_) std::rethrow_exception(error_);
     fail("stream", "writer stopped early");
   }
-  queue_.push_back({row, scanline, epi});
+  queue_.push_back({row, scanline, std::move(copy)});
   highWater_ = std::max(highWater_, queue_.size());
   lock.unlock();
   changed_.notify_all();

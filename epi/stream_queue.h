@@ -9,6 +9,7 @@
 #include <mutex>
 #include <ostream>
 #include <thread>
+#include <vector>
 
 #include "epi/epi_stream.h"
 
@@ -34,6 +35,7 @@ class QueuedEpiStream final : public FrameSink {
   std::mutex mutex_;
   std::condition_variable changed_;
   std::deque<Frame> queue_;
+  std::vector<Image> spares_;  // written EPIs' images, reused by putEpi
   bool closing_ = false, writerDone_ = false;
   std::exception_ptr error_;
   std::thread writer_;

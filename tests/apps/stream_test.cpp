@@ -60,6 +60,22 @@ TEST(Stream, UnixSocketProducerToListeningConsumer) {
   expectSameSet(ref, got);
 }
 
+// A named pipe (or a device such as /dev/null) is written in place: a
+// temporary name renamed over it would replace it with a regular file.
+TEST(Stream, NamedPipeIsWrittenInPlace) {
+  auto ref = test::freshDir("fifo_ref"), got = test::freshDir("fifo_got"), dir = test::freshDir("fifo");
+  std::filesystem::create_directories(dir);
+  const std::string fifo = (dir / "epis").string();
+  ASSERT_EQ(test::shell("mkfifo " + fifo).status, 0);
+  ASSERT_EQ(test::runMvr("render" + kArgs + " --out " + ref.string()).status, 0);
+  auto r = test::shell("timeout 60 " + test::consumeBinary() + " --from " + fifo + " --out " + got.string() + " & " +
+                       test::mvrBinary() + " stream" + kArgs + " --to " + fifo + " && wait $!");
+  ASSERT_EQ(r.status, 0) << r.err;
+  expectSameSet(ref, got);
+  EXPECT_TRUE(std::filesystem::is_fifo(fifo));
+  EXPECT_FALSE(std::filesystem::exists(fifo + ".part"));
+}
+
 TEST(Stream, FileStreamAndTruncationIsReported) {
   auto file = test::freshDir("stream_file");
   std::filesystem::create_directories(file);
