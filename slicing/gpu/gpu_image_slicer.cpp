@@ -116,7 +116,13 @@ void writeEnd(uint vertex, float x, float d, double shift, vec3 c) {
   uRecords[at + 1u] = float(uStepPerZOverW * zOverW);
   uRecords[at + 2u] = d;
   uRecords[at + 3u] = invW;
-  for (uint c3 = 0u; c3 < 3u; ++c3) uRecords[at + 4u + c3] = uRecords[at + 7u + c3] = c[c3] * invW;
+  // Front and back colour alike; not one chained assignment, which reads
+  // the writeonly buffer back (NVIDIA refuses to link it, llvmpipe allows it).
+  for (uint c3 = 0u; c3 < 3u; ++c3) {
+    float value = c[c3] * invW;
+    uRecords[at + 4u + c3] = value;
+    uRecords[at + 7u + c3] = value;
+  }
 }
 
 // As LayerSlicer: pixel `to` continues the surface of pixel `from`; the

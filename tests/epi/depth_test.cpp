@@ -116,6 +116,13 @@ TEST(Depth, TiltedPlaneMatchesRayCasting) {
 // within slivers placed for position, not attributes (median 5e-4, 99th
 // percentile 0.019 measured); interp interpolates its sources' depths as
 // their colours (median 0.006, 90th percentile 0.034, 1.8% coverage).
+// The exact class is bounded by the GL's own interpolation: GLSL leaves the
+// precision of an interpolated varying to the implementation, and svr's
+// depth is the GL's interpolation of the depth colour. llvmpipe's agrees
+// with the CPU spans within 1e-5; an NVIDIA H100's differs by 2.2e-5
+// (median), 8.7e-5 (90%) and 2.5e-4 (99%), tens of float ulps at these
+// depths. The bounds are 4x that and stay 10-40x under the affine modes',
+// so an exact mode that fell back to affine interpolation still fails.
 TEST(Depth, EveryBackEndAgreesWithSvr) {
   test::sharedContext();
   const Scene scene = loadScene(test::assetPath("default.json"));
@@ -128,8 +135,8 @@ TEST(Depth, EveryBackEndAgreesWithSvr) {
     float p50, p90, p99;
     double coverage;
   };
-  const Bound bounds[] = {{"deferred", 1e-5f, 1e-5f, 1e-4f, 1e-3},  {"mvr:cpu", 1e-5f, 1e-5f, 1e-4f, 1e-3},
-                          {"mvr:exact", 1e-5f, 1e-5f, 1e-4f, 1e-3}, {"mvr:quad", 1e-3f, 0.01f, 0.04f, 1e-3},
+  const Bound bounds[] = {{"deferred", 1e-4f, 4e-4f, 1e-3f, 1e-3},  {"mvr:cpu", 1e-4f, 4e-4f, 1e-3f, 1e-3},
+                          {"mvr:exact", 1e-4f, 4e-4f, 1e-3f, 1e-3}, {"mvr:quad", 1e-3f, 0.01f, 0.04f, 1e-3},
                           {"mvr:strip", 1e-3f, 0.01f, 0.04f, 1e-3}, {"interp:dual", 0.01f, 0.05f, 0.2f, 0.025}};
   for (const Bound& b : bounds) {
     const auto depth = renderDepth(parseBackendSpec(b.spec), scene, cam);

@@ -180,16 +180,18 @@ TEST_F(MvrVsSvr, StagedReadbackChangesNoPixel) {
     EXPECT_EQ(d.minIdentical, 1.0) << name;
     EXPECT_EQ(images[1].views.size(), 7u) << name;
   }
-  // Thousands of views: a handful of scanlines per batch, so MVR's batches
-  // wrap around the ring several times.
-  ShearingCamera many(*scene.camera, 32, 24, 3000);
+  // Thousands of views: a handful of scanlines per batch (a batch's EPIs
+  // are stacked up to GL_MAX_TEXTURE_SIZE rows: 16384 on llvmpipe, 32768 on
+  // NVIDIA), so MVR's batches wrap around the three-slot ring.
+  ShearingCamera many(*scene.camera, 32, 24, 6000);
   test::CaptureSink epis[2];
   for (int staged = 0; staged < 2; ++staged) {
     setReadbackStaging(staged ? ReadbackStaging::Always : ReadbackStaging::Never);
     auto mvr = makeMvrRenderer(scene, PstMode::Strip, PixelType::U8);
     RenderStats stats;
     mvr->render(many, epis[staged], stats);
-    EXPECT_LE(stats.counters["epis_per_draw"], 6);
+    const int batch = int(stats.counters["epis_per_draw"]);
+    EXPECT_GE((24 + batch - 1) / batch, 4) << batch << " EPIs per draw";
   }
   setReadbackStaging(ReadbackStaging::Auto);
   ASSERT_EQ(epis[1].epis.size(), 24u);
