@@ -31,6 +31,7 @@
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
 #include "mvr/gl/readback_ring.h"
+#include "mvr/image_pool.h"
 #include "mvr/gl/render_target.h"
 #include "shading/gpu_materials.h"
 #include "shading/texture_vector.h"
@@ -121,6 +122,7 @@ class GlRasterizer final : public EpiRasterizer {
     const RenderTarget& target = targetFor(w, batch * chunkRows, storage);
     const size_t rowBytes = size_t(w) * 4 * Image::channelBytes(type_);
     ReadbackRing ring(size_t(batch) * n * rowBytes);
+    ImagePool pool;
     setDepthConvention();
     target.bind();
     const glm::vec2 scale(2.0f / w, 2.0f / (batch * chunkRows));
@@ -143,8 +145,8 @@ class GlRasterizer final : public EpiRasterizer {
         if (materials_) materials_->bind(EpiPass::kTextureUnit);
       }
       // The batch's EPIs, filled chunk by chunk as the ring hands them over.
-      auto epis = std::make_shared<std::vector<Image>>();
-      for (int j = own; j < ownEnd; ++j) epis->emplace_back(w, n, type_);
+      std::vector<std::shared_ptr<Image>> epis;
+      for (int j = own; j < ownEnd; ++j) epis.push_back(pool.take(w, n, type_));
       // A share that owns part of the batch clears and draws only its rows:
       // on a CPU implementation of GL the clear of a whole batch costs as
       // much as filling it.
@@ -162,11 +164,11 @@ class GlRasterizer final : public EpiRasterizer {
           ScopedStage s(stats.times, "readback");
           for (int j = own; j < ownEnd; ++j)
             ring.readRows(target, (j - first) * chunkRows, views,
-                          reinterpret_cast<std::byte*>((*epis)[j - own].row(view0)));
+                          reinterpret_cast<std::byte*>(epis[j - own]->row(view0)));
         }
         if (c + 1 < chunks) continue;
         ring.submit([=, &sink] {
-          for (int j = own; j < ownEnd; ++j) sink.putEpi(row, j, (*epis)[j - own]);
+          for (int j = own; j < ownEnd; ++j) sink.putEpi(row, j, *epis[j - own]);
         });
       }
       if (part) gl::Disable(GL_SCISSOR_TEST);

@@ -9,6 +9,7 @@
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
 #include "mvr/gl/readback_ring.h"
+#include "mvr/image_pool.h"
 #include "mvr/gl/render_target.h"
 #include "mvr/gl/scene_buffers.h"
 #include "shading/gpu_materials.h"
@@ -265,6 +266,7 @@ class LayeredSvrRenderer final : public Renderer {
     const int total = int(matrices.size());
     const size_t layerBytes = size_t(cam.width()) * cam.height() * 4 * Image::channelBytes(type_);
     ReadbackRing ring(size_t(batch) * layerBytes);
+    ImagePool pool;
     for (int first = 0; first < total; first += batch) {
       const int count = std::min(batch, total - first);
       {
@@ -273,14 +275,16 @@ class LayeredSvrRenderer final : public Renderer {
         target.clear();
         buffers_.draw(count);
       }
-      auto images = std::make_shared<std::vector<Image>>(count, Image(cam.width(), cam.height(), type_));
+      std::vector<std::shared_ptr<Image>> images;
       {
         ScopedStage s(stats.times, "readback");
-        for (int k = 0; k < count; ++k)
-          ring.readLayer(target, k, reinterpret_cast<std::byte*>((*images)[k].row(0)));
+        for (int k = 0; k < count; ++k) {
+          images.push_back(pool.take(cam.width(), cam.height(), type_));
+          ring.readLayer(target, k, reinterpret_cast<std::byte*>(images.back()->row(0)));
+        }
       }
       ring.submit([=, &frames, &sink] {
-        for (int k = 0; k < count; ++k) sink.putView(frames[first + k].first, frames[first + k].second, (*images)[k]);
+        for (int k = 0; k < count; ++k) sink.putView(frames[first + k].first, frames[first + k].second, *images[k]);
       });
     }
     ring.drain();

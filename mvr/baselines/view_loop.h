@@ -6,6 +6,7 @@
 
 #include "mvr/gl/readback_ring.h"
 #include "mvr/gl/render_target.h"
+#include "mvr/image_pool.h"
 #include "mvr/renderer.h"
 
 namespace mvr {
@@ -17,10 +18,11 @@ void renderEachView(const ShearingCamera& cam, const RenderTarget& target,
   const PixelType type = target.type();
   ReadbackRing ring(size_t(target.width()) * target.height() * 4 * Image::channelBytes(type));
   const RenderShare& share = cam.share();
+  ImagePool pool;
   for (int row = share.rows.begin; row < share.rows.end; ++row) {
     for (int view = share.views.begin; view < share.views.end; ++view) {
       draw(row, view);
-      auto img = std::make_shared<Image>(target.width(), target.height(), type);
+      std::shared_ptr<Image> img = pool.take(target.width(), target.height(), type);
       {
         ScopedStage s(stats.times, "readback");
         ring.readRows(target, 0, target.height(), reinterpret_cast<std::byte*>(img->row(0)));

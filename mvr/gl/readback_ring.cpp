@@ -1,8 +1,10 @@
 #include "mvr/gl/readback_ring.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "mvr/error.h"
+#include "mvr/parallel.h"
 #include "mvr/timer.h"
 
 namespace mvr {
@@ -87,6 +89,27 @@ void ReadbackRing::drain() {
   for (size_t k = 1; k <= slots_.size(); ++k) finish(slots_[(current_ + k) % slots_.size()]);
 }
 
+// One thread copies mapped memory at a few GB/s, under what the transfer
+// delivers (an H100 host: 1.23 GB read back in 0.27 s, mostly this copy);
+// pieces of a megabyte go to the pool.
+void ReadbackRing::copyOut(const Slot& slot) {
+  constexpr size_t kPiece = size_t(1) << 20;
+  size_t total = 0;
+  for (const Copy& c : slot.copies) total += c.bytes;
+  if (total < 4 * kPiece || threadCount() < 2) {
+    for (const Copy& c : slot.copies) std::memcpy(c.dst, slot.bytes + c.at, c.bytes);
+    return;
+  }
+  std::vector<Copy> pieces;
+  for (const Copy& c : slot.copies)
+    for (size_t at = 0; at < c.bytes; at += kPiece)
+      pieces.push_back({c.at + at, std::min(kPiece, c.bytes - at), c.dst + at});
+  parallelFor(0, int(pieces.size()), [&](int k) {
+    const Copy& p = pieces[size_t(k)];
+    std::memcpy(p.dst, slot.bytes + p.at, p.bytes);
+  });
+}
+
 void ReadbackRing::finish(Slot& slot) {
   if (!slot.fence) return;
   const Stopwatch watch;
@@ -97,7 +120,7 @@ void ReadbackRing::finish(Slot& slot) {
   }
   gl::DeleteSync(slot.fence);
   slot.fence = nullptr;
-  for (const Copy& c : slot.copies) std::memcpy(c.dst, slot.bytes + c.at, c.bytes);
+  copyOut(slot);
   waitSeconds_ += watch.seconds();
   slot.copies.clear();
   slot.used = 0;

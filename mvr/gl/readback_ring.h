@@ -62,6 +62,7 @@ class ReadbackRing {
   };
   void read(const RenderTarget& target, GLuint framebuffer, int y, int h, std::byte* dst);
   void finish(Slot& slot);
+  void copyOut(const Slot& slot);
 
   size_t slotBytes_;
   std::vector<Slot> slots_;  // empty: reads are synchronous

@@ -227,7 +227,11 @@ TEST_F(InterpTest, SourceViewIsReproducedAndDualBeatsCenterAtTheEnds) {
   const test::CaptureSink c = test::renderViews(*center, cam, stats);
   EXPECT_EQ(stats.counters["source_views"], 1);
   EXPECT_GE(stats.counters["layers"], 2);
-  EXPECT_EQ(compareImages(reference.views.at({0, 2}), c.views.at({0, 2})).identicalFraction, 1.0);
+  // The source view is the source's render, by another program than the
+  // reference's: GL promises the same bits only to the same shader, so
+  // within one 8-bit step (render_helpers.h; identical on llvmpipe, 97.4%
+  // identical on an NVIDIA H100).
+  EXPECT_LE(compareImages(reference.views.at({0, 2}), c.views.at({0, 2})).maxError, 1.0 / 255.0 + 1e-6);
   const test::CaptureSink d = test::renderViews(*dual, cam);
   for (int v = 0; v < 5; ++v) {
     const double pd = compareImages(reference.views.at({0, v}), d.views.at({0, v})).psnr;
@@ -271,8 +275,8 @@ TEST_F(InterpTest, EveryRowOfViewsReproducesItsOwnSourceView) {
   const test::CaptureSink reference = test::renderViews(*makeDeferredRenderer(scene, PixelType::U8), cam);
   const test::CaptureSink c = test::renderViews(
       *makeInterpRenderer(scene, PixelType::U8, {.acquire = Acquire::Center}), cam);
-  for (int row : {0, 1})
-    EXPECT_EQ(compareImages(reference.views.at({row, 2}), c.views.at({row, 2})).identicalFraction, 1.0) << row;
+  for (int row : {0, 1})  // within one 8-bit step, as above
+    EXPECT_LE(compareImages(reference.views.at({row, 2}), c.views.at({row, 2})).maxError, 1.0 / 255.0 + 1e-6) << row;
 }
 
 TEST_F(InterpTest, CoalescingCutsSlicesAndKeepsTheSourceViewAndQuality) {
