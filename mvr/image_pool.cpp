@@ -1,33 +1,55 @@
 #include "mvr/image_pool.h"
 
+#include <algorithm>
 #include <utility>
+
+#include "mvr/parallel.h"
 
 namespace mvr {
 
 ImagePool::ImagePool() : shelf_(std::make_shared<Shelf>()) {}
 
-std::shared_ptr<Image> ImagePool::take(int width, int height, PixelType type) {
-  Image* image = nullptr;
-  {
-    std::lock_guard lock(shelf_->mutex);
-    auto& shelf = shelf_->images;
-    for (size_t k = 0; k < shelf.size(); ++k)
-      if (shelf[k].width == width && shelf[k].height == height && shelf[k].type == type) {
-        image = new Image(std::move(shelf[k]));
-        shelf[k] = std::move(shelf.back());
-        shelf.pop_back();
-        break;
-      }
-  }
-  if (!image) image = new Image(width, height, type);
-  // The deleter holds the shelf: an image outliving the pool still frees.
-  return std::shared_ptr<Image>(image, [shelf = shelf_](Image* done) {
+std::unique_ptr<Image> ImagePool::fromShelf(int width, int height, PixelType type) {
+  std::lock_guard lock(shelf_->mutex);
+  auto& shelf = shelf_->images;
+  for (size_t k = 0; k < shelf.size(); ++k)
+    if (shelf[k].width == width && shelf[k].height == height && shelf[k].type == type) {
+      auto image = std::make_unique<Image>(std::move(shelf[k]));
+      shelf[k] = std::move(shelf.back());
+      shelf.pop_back();
+      return image;
+    }
+  return nullptr;
+}
+
+// The deleter holds the shelf: an image outliving the pool still frees.
+std::shared_ptr<Image> ImagePool::lend(std::unique_ptr<Image> image) {
+  return std::shared_ptr<Image>(image.release(), [shelf = shelf_](Image* done) {
     {
       std::lock_guard lock(shelf->mutex);
       shelf->images.push_back(std::move(*done));
     }
     delete done;
   });
+}
+
+std::shared_ptr<Image> ImagePool::take(int width, int height, PixelType type) {
+  std::unique_ptr<Image> image = fromShelf(width, height, type);
+  if (!image) image = std::make_unique<Image>(width, height, type);
+  return lend(std::move(image));
+}
+
+std::vector<std::shared_ptr<Image>> ImagePool::take(int count, int width, int height, PixelType type) {
+  std::vector<std::unique_ptr<Image>> images(size_t(std::max(count, 0)));
+  std::vector<int> fresh;
+  for (int k = 0; k < count; ++k)
+    if (!(images[size_t(k)] = fromShelf(width, height, type))) fresh.push_back(k);
+  parallelFor(0, int(fresh.size()), [&](int k) {
+    images[size_t(fresh[size_t(k)])] = std::make_unique<Image>(width, height, type);
+  });
+  std::vector<std::shared_ptr<Image>> out;
+  for (auto& image : images) out.push_back(lend(std::move(image)));
+  return out;
 }
 
 }  // namespace mvr

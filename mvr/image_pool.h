@@ -18,12 +18,17 @@ class ImagePool {
   // (the caller overwrites them all); back in the pool when the last copy
   // of the pointer goes, on whatever thread.
   std::shared_ptr<Image> take(int width, int height, PixelType type);
+  // `count` of them; the pool's workers make the new ones, so that their
+  // first touch of memory (page faults, zero-fill) runs side by side.
+  std::vector<std::shared_ptr<Image>> take(int count, int width, int height, PixelType type);
 
  private:
   struct Shelf {
     std::mutex mutex;
     std::vector<Image> images;
   };
+  std::unique_ptr<Image> fromShelf(int width, int height, PixelType type);
+  std::shared_ptr<Image> lend(std::unique_ptr<Image> image);
   std::shared_ptr<Shelf> shelf_;
 };
 

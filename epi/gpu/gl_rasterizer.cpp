@@ -145,8 +145,7 @@ class GlRasterizer final : public EpiRasterizer {
         if (materials_) materials_->bind(EpiPass::kTextureUnit);
       }
       // The batch's EPIs, filled chunk by chunk as the ring hands them over.
-      std::vector<std::shared_ptr<Image>> epis;
-      for (int j = own; j < ownEnd; ++j) epis.push_back(pool.take(w, n, type_));
+      const std::vector<std::shared_ptr<Image>> epis = pool.take(ownEnd - own, w, n, type_);
       // A share that owns part of the batch clears and draws only its rows:
       // on a CPU implementation of GL the clear of a whole batch costs as
       // much as filling it.
@@ -162,9 +161,16 @@ class GlRasterizer final : public EpiRasterizer {
         for (const EpiPass& pass : passes_) drawPass(pass, host, slices, b, stats);
         {
           ScopedStage s(stats.times, "readback");
-          for (int j = own; j < ownEnd; ++j)
-            ring.readRows(target, (j - first) * chunkRows, views,
-                          reinterpret_cast<std::byte*>(epis[j - own]->row(view0)));
+          if (views == chunkRows) {
+            // The batch's EPIs are stacked without gaps: one read for all.
+            std::vector<std::byte*> rows;
+            for (const auto& epi : epis) rows.push_back(reinterpret_cast<std::byte*>(epi->row(view0)));
+            ring.readRowRuns(target, (own - first) * chunkRows, views, rows);
+          } else {
+            for (int j = own; j < ownEnd; ++j)
+              ring.readRows(target, (j - first) * chunkRows, views,
+                            reinterpret_cast<std::byte*>(epis[j - own]->row(view0)));
+          }
         }
         if (c + 1 < chunks) continue;
         ring.submit([=, &sink] {

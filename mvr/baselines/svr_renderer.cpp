@@ -275,13 +275,11 @@ class LayeredSvrRenderer final : public Renderer {
         target.clear();
         buffers_.draw(count);
       }
-      std::vector<std::shared_ptr<Image>> images;
+      const std::vector<std::shared_ptr<Image>> images = pool.take(count, cam.width(), cam.height(), type_);
       {
         ScopedStage s(stats.times, "readback");
-        for (int k = 0; k < count; ++k) {
-          images.push_back(pool.take(cam.width(), cam.height(), type_));
-          ring.readLayer(target, k, reinterpret_cast<std::byte*>(images.back()->row(0)));
-        }
+        for (int k = 0; k < count; ++k)
+          ring.readLayer(target, k, reinterpret_cast<std::byte*>(images[size_t(k)]->row(0)));
       }
       ring.submit([=, &frames, &sink] {
         for (int k = 0; k < count; ++k) sink.putView(frames[first + k].first, frames[first + k].second, *images[k]);

@@ -45,7 +45,19 @@ ReadbackRing::~ReadbackRing() {
 }
 
 void ReadbackRing::readRows(const RenderTarget& target, int y, int h, std::byte* dst) {
-  read(target, target.readableFramebuffer(y, h), y, h, dst);
+  std::byte* const one[] = {dst};
+  read(target, target.readableFramebuffer(y, h), y, h, one);
+}
+
+void ReadbackRing::readRowRuns(const RenderTarget& target, int y, int h, std::span<std::byte* const> dsts) {
+  if (dsts.empty()) return;
+  if (!staged()) {
+    // Unstaged reads land in place: one per destination.
+    for (size_t k = 0; k < dsts.size(); ++k) readRows(target, y + int(k) * h, h, dsts[k]);
+    return;
+  }
+  const int rows = h * int(dsts.size());
+  read(target, target.readableFramebuffer(y, rows), y, rows, {dsts.data(), dsts.size()});
 }
 
 void ReadbackRing::readLayer(const RenderTarget& target, int layer, std::byte* dst) {
@@ -53,14 +65,17 @@ void ReadbackRing::readLayer(const RenderTarget& target, int layer, std::byte* d
   // (glGetTextureSubImage) may copy every layer on some drivers.
   gl::NamedFramebufferTextureLayer(layerReader_.id(), GL_COLOR_ATTACHMENT0, target.colorTexture(), 0, layer);
   gl::NamedFramebufferReadBuffer(layerReader_.id(), GL_COLOR_ATTACHMENT0);
-  read(target, layerReader_.id(), 0, target.height(), dst);
+  std::byte* const one[] = {dst};
+  read(target, layerReader_.id(), 0, target.height(), one);
 }
 
-void ReadbackRing::read(const RenderTarget& target, GLuint framebuffer, int y, int h, std::byte* dst) {
+// h rows from y, split evenly among dsts (one unless staged).
+void ReadbackRing::read(const RenderTarget& target, GLuint framebuffer, int y, int h,
+                        std::span<std::byte* const> dsts) {
   const size_t bytes = size_t(target.width()) * h * 4 * Image::channelBytes(target.type());
   gl::BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
   if (!staged()) {
-    readStoredPixels(y, target.width(), h, target.type(), dst);
+    readStoredPixels(y, target.width(), h, target.type(), dsts[0]);
     return;
   }
   Slot& slot = slots_[current_];
@@ -68,7 +83,8 @@ void ReadbackRing::read(const RenderTarget& target, GLuint framebuffer, int y, i
   gl::BindBuffer(GL_PIXEL_PACK_BUFFER, slot.buffer.id());
   readStoredPixels(y, target.width(), h, target.type(), reinterpret_cast<void*>(slot.used));
   gl::BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-  slot.copies.push_back({slot.used, bytes, dst});
+  const size_t each = bytes / dsts.size();
+  for (size_t k = 0; k < dsts.size(); ++k) slot.copies.push_back({slot.used + k * each, each, dsts[k]});
   slot.used += bytes;
 }
 

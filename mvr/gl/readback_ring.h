@@ -11,6 +11,7 @@
 // their destination and each batch completes at submit.
 #include <cstddef>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "mvr/gl/gl_handles.h"
@@ -39,6 +40,9 @@ class ReadbackRing {
   // valid until the batch is done.
   void readRows(const RenderTarget& target, int y, int h, std::byte* dst);
   void readLayer(const RenderTarget& target, int layer, std::byte* dst);
+  // Rows [y, y + h dsts.size()) in one read: h rows into each of dsts in
+  // turn (a batch of stacked EPIs; one call instead of one per EPI).
+  void readRowRuns(const RenderTarget& target, int y, int h, std::span<std::byte* const> dsts);
   // Ends the batch: `done` runs once its reads have landed.
   void submit(Done done);
   // Completes every submitted batch, in order.
@@ -60,7 +64,7 @@ class ReadbackRing {
     std::vector<Copy> copies;
     Done done;
   };
-  void read(const RenderTarget& target, GLuint framebuffer, int y, int h, std::byte* dst);
+  void read(const RenderTarget& target, GLuint framebuffer, int y, int h, std::span<std::byte* const> dsts);
   void finish(Slot& slot);
   void copyOut(const Slot& slot);
 
