@@ -38,6 +38,10 @@ flat out vec4 vA1[NV];
 #ifdef VECTOR
 flat out int vVectorBase;
 #endif
+#ifdef PULLED
+flat out vec4 vEndX;      // x0, dx of both ends
+flat out float vRowBase;  // target row - view
+#endif
 )";
 
 const char* const kSliverVertex = R"(
@@ -83,7 +87,10 @@ void main() {
 )";
 
 // Solves the slice parameter u of the pixel exactly, then interpolates
-// hyperbolically; depth is linear in u and written here.
+// hyperbolically; depth is linear in u and written here. Pulled geometry
+// solves it from the pixel's centre and the ends' tracks rather than from
+// interpolated varyings: GLs interpolate with errors of their own that grow
+// with a PST's extent (an NVIDIA H100 over long tracks: issue 21).
 const char* const kExactFragment = R"(
 noperspective in vec2 vNumDen;
 noperspective in float vView;
@@ -91,9 +98,20 @@ flat in vec4 vEnds;
 flat in vec4 vFlat;
 flat in vec4 vA0[NV];
 flat in vec4 vA1[NV];
+#ifdef PULLED
+flat in vec4 vEndX;
+flat in float vRowBase;
+#endif
 float gU, gInvW;
+vec2 gNumDen;  // x - x0(r), x1(r) - x0(r)
 void prepare() {
-  gU = vNumDen.y == 0.0 ? 0.0 : clamp(vNumDen.x / vNumDen.y, 0.0, 1.0);
+#ifdef PULLED
+  float r = gl_FragCoord.y - vRowBase, x0 = vEndX.x + (r - 0.5) * vEndX.y;
+  gNumDen = vec2(gl_FragCoord.x - x0, vEndX.z + (r - 0.5) * vEndX.w - x0);
+#else
+  gNumDen = vNumDen;
+#endif
+  gU = gNumDen.y == 0.0 ? 0.0 : clamp(gNumDen.x / gNumDen.y, 0.0, 1.0);
   gInvW = mix(vEnds.z, vEnds.w, gU);
   gl_FragDepth = mix(vEnds.x, vEnds.y, gU);
 }
@@ -119,6 +137,8 @@ PstVertex pullExactVertex() {
   PstVertex p = pullPstVertex();
   gl_Position = vec4(vec2(p.x, p.y) * uScale - 1.0, p.e0.depth, 1.0);
   vNumDen = vec2(p.x - xAt(p.e0, p.r), widthAt(p.e0, p.e1, p.r));
+  vEndX = vec4(p.e0.x0, p.e0.dx, p.e1.x0, p.e1.dx);
+  vRowBase = p.y - p.r;
   vView = p.r - 0.5;
   vEnds = vec4(p.e0.depth, p.e1.depth, p.e0.invW, p.e1.invW);
   vFlat = vec4(p.front ? 1.0 : -1.0, p.material, 0.0, 0.0);
@@ -207,7 +227,7 @@ void main() {
 #ifdef EXACT
   // Analytic: dFdx would see u clamped at the slice's ends.
   vec2 a = vec2(vA0[0].x, vA0[0].y), b = vec2(vA1[0].x, vA1[0].y);
-  vec2 duv = (b * vEnds.z - a * vEnds.w) / (gInvW * gInvW) / vNumDen.y;
+  vec2 duv = (b * vEnds.z - a * vEnds.w) / (gInvW * gInvW) / gNumDen.y;
 #else
   vec2 duv = dFdx(uv);
 #endif
@@ -231,7 +251,7 @@ void main() {
   int base = vVectorBase;
 #ifdef EXACT
   float u = mix(vA0[0].x, vA1[0].x, gU), k = vA0[0].z;
-  float perPixel = k * abs(vA1[0].x - vA0[0].x) / abs(vNumDen.y);  // du/dx
+  float perPixel = k * abs(vA1[0].x - vA0[0].x) / abs(gNumDen.y);  // du/dx
 #else
   float u = vA[0].y == 0.0 ? 0.0 : vA[0].x / vA[0].y, k = round(vA[0].w);
   float perPixel = abs(dFdx(u)) * k;
@@ -301,6 +321,7 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bo
   const bool exact = mode == PstMode::Exact;
   std::string header = gl::glslHeader({"NV " + std::to_string(chunks())});
   if (exact) header += "#define EXACT\n";
+  if (pulled) header += "#define PULLED\n";
   if (pass == shading::Pass::ViewDependent && shading.plan.reflect >= 0) header += "#define REFLECT\n";
   if (pass == shading::Pass::Texture && shading.sliceHighlights) header += "#define HIGHLIGHTS\n";
   if (linear()) header += "#define VECTOR\n";
