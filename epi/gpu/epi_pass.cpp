@@ -29,8 +29,6 @@ flat out int vVectorBase;
 const char* const kExactOutputs = R"(
 uniform vec2 uScale;
 invariant gl_Position;
-noperspective out vec2 vNumDen;
-noperspective out float vView;
 flat out vec4 vEnds;
 flat out vec4 vFlat;
 flat out vec4 vA0[NV];
@@ -38,10 +36,8 @@ flat out vec4 vA1[NV];
 #ifdef VECTOR
 flat out int vVectorBase;
 #endif
-#ifdef PULLED
 flat out vec4 vEndX;      // x0, dx of both ends
-flat out float vRowBase;  // target row - view
-#endif
+flat out float vRowBase;  // target row of r = 0
 )";
 
 const char* const kSliverVertex = R"(
@@ -63,22 +59,24 @@ const char* const kSliverFragment = R"(
 noperspective in float vView;
 flat in vec4 vFlat;
 noperspective in vec4 vA[NV];
-void prepare() {}
+float gView;
+void prepare() { gView = vView; }
 float attr(int i) { return vA[i >> 2][i & 3]; }
 )";
 
 const char* const kExactVertex = R"(
-layout(location = 0) in vec4 aPos;    // x, stacked row, x - x0(r), x1(r) - x0(r)
+layout(location = 0) in vec4 aPos;    // x, stacked row, stacked row of r = 0
 layout(location = 1) in vec4 aEnds;   // depth0, depth1, 1/w0, 1/w1
-layout(location = 2) in vec4 aFlat;   // view, side, material
-layout(location = 3) in vec4 aA0[NV];
-layout(location = 3 + NV) in vec4 aA1[NV];
+layout(location = 2) in vec4 aFlat;   // side, material
+layout(location = 3) in vec4 aEndX;   // x0, dx of both ends
+layout(location = 4) in vec4 aA0[NV];
+layout(location = 4 + NV) in vec4 aA1[NV];
 void main() {
   gl_Position = vec4(aPos.xy * uScale - 1.0, aEnds.x, 1.0);
-  vNumDen = aPos.zw;
-  vView = aFlat.x;
+  vEndX = aEndX;
+  vRowBase = aPos.z;
   vEnds = aEnds;
-  vFlat = aFlat.yzww;
+  vFlat = aFlat;
   for (int i = 0; i < NV; ++i) { vA0[i] = aA0[i]; vA1[i] = aA1[i]; }
 #ifdef VECTOR
   vVectorBase = int(round(aA0[0].y));
@@ -87,30 +85,23 @@ void main() {
 )";
 
 // Solves the slice parameter u of the pixel exactly, then interpolates
-// hyperbolically; depth is linear in u and written here. Pulled geometry
-// solves it from the pixel's centre and the ends' tracks rather than from
-// interpolated varyings: GLs interpolate with errors of their own that grow
-// with a PST's extent (an NVIDIA H100 over long tracks: issue 21).
+// hyperbolically; depth is linear in u and written here. The pixel's view
+// and u come from its centre and the ends' tracks, not from interpolated
+// varyings: GLs interpolate with errors of their own that grow with a
+// PST's extent (an NVIDIA H100 over long tracks: issue 21).
 const char* const kExactFragment = R"(
-noperspective in vec2 vNumDen;
-noperspective in float vView;
 flat in vec4 vEnds;
 flat in vec4 vFlat;
 flat in vec4 vA0[NV];
 flat in vec4 vA1[NV];
-#ifdef PULLED
 flat in vec4 vEndX;
 flat in float vRowBase;
-#endif
-float gU, gInvW;
+float gU, gInvW, gView;
 vec2 gNumDen;  // x - x0(r), x1(r) - x0(r)
 void prepare() {
-#ifdef PULLED
   float r = gl_FragCoord.y - vRowBase, x0 = vEndX.x + (r - 0.5) * vEndX.y;
+  gView = r - 0.5;
   gNumDen = vec2(gl_FragCoord.x - x0, vEndX.z + (r - 0.5) * vEndX.w - x0);
-#else
-  gNumDen = vNumDen;
-#endif
   gU = gNumDen.y == 0.0 ? 0.0 : clamp(gNumDen.x / gNumDen.y, 0.0, 1.0);
   gInvW = mix(vEnds.z, vEnds.w, gU);
   gl_FragDepth = mix(vEnds.x, vEnds.y, gU);
@@ -136,10 +127,8 @@ const char* const kPulledExactHead = R"(
 PstVertex pullExactVertex() {
   PstVertex p = pullPstVertex();
   gl_Position = vec4(vec2(p.x, p.y) * uScale - 1.0, p.e0.depth, 1.0);
-  vNumDen = vec2(p.x - xAt(p.e0, p.r), widthAt(p.e0, p.e1, p.r));
   vEndX = vec4(p.e0.x0, p.e0.dx, p.e1.x0, p.e1.dx);
   vRowBase = p.y - p.r;
-  vView = p.r - 0.5;
   vEnds = vec4(p.e0.depth, p.e1.depth, p.e0.invW, p.e1.invW);
   vFlat = vec4(p.front ? 1.0 : -1.0, p.material, 0.0, 0.0);
   return p;
@@ -264,7 +253,7 @@ void main() {
 #else
   vec4 a = vA[1], b = vA[2];
 #endif
-  float t = b.w > a.w ? clamp((vView + 0.5 - a.w) / (b.w - a.w), 0.0, 1.0) : 0.0;
+  float t = b.w > a.w ? clamp((gView + 0.5 - a.w) / (b.w - a.w), 0.0, 1.0) : 0.0;
   oColor.rgb += mix(a.rgb, b.rgb, t);
 #endif
 }
@@ -284,7 +273,7 @@ uniform vec3 uEye0;     // eye of view 0 of this row
 uniform vec3 uEyeStep;  // eye movement per view
 void main() {
   prepare();
-  vec3 eye = uEye0 + vView * uEyeStep;
+  vec3 eye = uEye0 + gView * uEyeStep;
   int material = int(vFlat.y);
   vec3 c = specularLight(material, attr3(0), attr3(3) * vFlat.x, eye);
 #ifdef REFLECT
@@ -321,7 +310,6 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bo
   const bool exact = mode == PstMode::Exact;
   std::string header = gl::glslHeader({"NV " + std::to_string(chunks())});
   if (exact) header += "#define EXACT\n";
-  if (pulled) header += "#define PULLED\n";
   if (pass == shading::Pass::ViewDependent && shading.plan.reflect >= 0) header += "#define REFLECT\n";
   if (pass == shading::Pass::Texture && shading.sliceHighlights) header += "#define HIGHLIGHTS\n";
   if (linear()) header += "#define VECTOR\n";
@@ -364,7 +352,7 @@ bool EpiPass::linear() const {
 bool EpiPass::first() const { return pass_ == shading::Pass::Diffuse || shading_.sliceVectors; }
 
 int EpiPass::stride() const {
-  return mode_ == PstMode::Exact ? 12 + 8 * chunks() : 8 + 4 * chunks();
+  return mode_ == PstMode::Exact ? 16 + 8 * chunks() : 8 + 4 * chunks();
 }
 
 void EpiPass::gather(const SliceEnd& e, bool front, float* out) const {

@@ -318,12 +318,15 @@ class GlRasterizer final : public EpiRasterizer {
         vertices_.resize(at + stride, 0.0f);
         float* out = vertices_.data() + at;
         if (mode_ == PstMode::Exact) {
-          const float head[12] = {x, yBase + r, x - pst.x0(r), pst.width(r), pst.e0.depth,
-                                  pst.e1.depth, iw0, iw1, r - 0.5f, side, material, 0.0f};
-          std::copy_n(head, 12, out);
-          const int chunk = (stride - 12) / 2;
-          std::copy_n(a0, count, out + 12);
-          std::copy_n(a1, count, out + 12 + chunk);
+          // The fragment solves its view and u from its centre and the
+          // ends' tracks (epi_pass.cpp): rows from yBase, x0 and dx.
+          const float head[16] = {x,        yBase + r,    yBase,        0.0f,         pst.e0.depth, pst.e1.depth,
+                                  iw0,      iw1,          side,         material,     0.0f,         0.0f,
+                                  pst.e0.x0, pst.e0.dx,   pst.e1.x0,    pst.e1.dx};
+          std::copy_n(head, 16, out);
+          const int chunk = (stride - 16) / 2;
+          std::copy_n(a0, count, out + 16);
+          std::copy_n(a1, count, out + 16 + chunk);
         } else {
           const float head[8] = {x, yBase + r, pstDepth(pst, u), r - 0.5f, side, material, 0, 0};
           std::copy_n(head, 8, out);
