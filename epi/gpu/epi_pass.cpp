@@ -104,7 +104,10 @@ void prepare() {
   gNumDen = vec2(gl_FragCoord.x - x0, vEndX.z + (r - 0.5) * vEndX.w - x0);
   gU = gNumDen.y == 0.0 ? 0.0 : clamp(gNumDen.x / gNumDen.y, 0.0, 1.0);
   gInvW = mix(vEnds.z, vEnds.w, gU);
-  gl_FragDepth = mix(vEnds.x, vEnds.y, gU);
+  // Later passes test depth EQUAL against the first's: every program must
+  // round this alike, so no contraction into fused multiply-adds.
+  precise float depth = mix(vEnds.x, vEnds.y, gU);
+  gl_FragDepth = depth;
 }
 float attr(int i) { return mix(vA0[i >> 2][i & 3], vA1[i >> 2][i & 3], gU) / gInvW; }
 )";
