@@ -55,7 +55,8 @@ int runInfo(int argc, char** argv) {
 int runCompare(int argc, char** argv) {
   CLI::App app("Pairs view_* and epi_* images by name and prints, per image, PSNR (dB over "
                "RGB), SSIM (luma, 11x11 Gaussian window), the largest channel error (0..1), the "
-               "fraction of identical pixels, and holes and extras: pixels that the first image "
+               "fraction of identical pixels, the fraction within one 8-bit step (what any GL "
+               "promises two renderings of the same image), and holes and extras: pixels that the first image "
                "covers and the second leaves empty (alpha 0), and the reverse. Exits non-zero "
                "when the sets differ in names or image sizes.",
                "mvr compare");
@@ -66,11 +67,12 @@ int runCompare(int argc, char** argv) {
   addThreadsOption(app);
   if (auto exit = parseCommandLine(app, argc - 1, argv + 1)) return *exit;
   auto diffs = compareSets(dirs[0], dirs[1]);
-  double worstPsnr = INFINITY, minIdentical = 1.0, maxError = 0.0, minSsim = 1.0;
+  double worstPsnr = INFINITY, minIdentical = 1.0, minClose = 1.0, maxError = 0.0, minSsim = 1.0;
   long holes = 0;
   for (const auto& d : diffs) {
     worstPsnr = std::min(worstPsnr, d.psnr);
     minIdentical = std::min(minIdentical, d.identicalFraction);
+    minClose = std::min(minClose, d.closeFraction);
     maxError = std::max(maxError, d.maxError);
     minSsim = std::min(minSsim, d.ssim);
     holes += d.holes;
@@ -81,23 +83,25 @@ int runCompare(int argc, char** argv) {
     for (const auto& d : diffs)
       j["images"].push_back({{"name", d.name}, {"psnr_db", std::isinf(d.psnr) ? -1.0 : d.psnr},
                              {"ssim", d.ssim}, {"max_error", d.maxError},
-                             {"identical_fraction", d.identicalFraction}, {"holes", d.holes},
+                             {"identical_fraction", d.identicalFraction},
+                             {"within_one_step_fraction", d.closeFraction}, {"holes", d.holes},
                              {"extras", d.extras}});
     j["min_psnr_db"] = std::isinf(worstPsnr) ? -1.0 : worstPsnr;  // -1: identical
     j["min_ssim"] = minSsim;
     j["min_identical_fraction"] = minIdentical;
+    j["min_within_one_step_fraction"] = minClose;
     j["max_error"] = maxError;
     j["holes"] = holes;
     std::cout << j.dump(2) << "\n";
   } else {
-    std::printf("%-28s %10s %8s %10s %10s %8s %8s\n", "image", "PSNR_dB", "SSIM", "max_err",
-                "identical", "holes", "extras");
+    std::printf("%-28s %10s %8s %10s %10s %9s %8s %8s\n", "image", "PSNR_dB", "SSIM", "max_err",
+                "identical", "one_step", "holes", "extras");
     for (const auto& d : diffs)
-      std::printf("%-28s %10.2f %8.4f %10.4f %10.6f %8ld %8ld\n", d.name.c_str(), d.psnr, d.ssim,
-                  d.maxError, d.identicalFraction, d.holes, d.extras);
+      std::printf("%-28s %10.2f %8.4f %10.4f %10.6f %9.6f %8ld %8ld\n", d.name.c_str(), d.psnr, d.ssim,
+                  d.maxError, d.identicalFraction, d.closeFraction, d.holes, d.extras);
     std::printf("%zu images: min PSNR %.2f dB, min SSIM %.4f, max error %.4f, min identical %.6f, "
-                "%ld holes\n",
-                diffs.size(), worstPsnr, minSsim, maxError, minIdentical, holes);
+                "min within one 8-bit step %.6f, %ld holes\n",
+                diffs.size(), worstPsnr, minSsim, maxError, minIdentical, minClose, holes);
   }
   return 0;
 }
