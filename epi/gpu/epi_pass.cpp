@@ -1,6 +1,7 @@
 #include "epi/gpu/epi_pass.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "epi/gpu/pst_geometry.h"
@@ -102,6 +103,9 @@ void prepare() {
   float r = gl_FragCoord.y - vRowBase, x0 = vEndX.x + (r - 0.5) * vEndX.y;
   gView = r - 0.5;
   gNumDen = vec2(gl_FragCoord.x - x0, vEndX.z + (r - 0.5) * vEndX.w - x0);
+  // The exact span, as the CPU's: centres in [min, max) of the two ends.
+  float x1 = x0 + gNumDen.y;
+  if (!(gl_FragCoord.x >= min(x0, x1) && gl_FragCoord.x < max(x0, x1))) discard;
   gU = gNumDen.y == 0.0 ? 0.0 : clamp(gNumDen.x / gNumDen.y, 0.0, 1.0);
   gInvW = mix(vEnds.z, vEnds.w, gU);
   // Later passes test depth EQUAL against the first's: every program must
@@ -127,9 +131,14 @@ PstVertex pullSliverVertex() {
 )";
 
 const char* const kPulledExactHead = R"(
+uniform float uEdgeSnap;  // EpiPass::edgeSnap()
 PstVertex pullExactVertex() {
   PstVertex p = pullPstVertex();
-  gl_Position = vec4(vec2(p.x, p.y) * uScale - 1.0, p.e0.depth, 1.0);
+  // Widened outward (end 0 at u = 0, end 1 at u = 1; x1 > x0 on a front
+  // piece) so that snapping cannot lose a pixel the exact span covers.
+  float margin = uEdgeSnap * (1.0 + max(abs(p.e0.dx), abs(p.e1.dx)));
+  float x = p.x + (2.0 * p.u - 1.0) * (p.front ? margin : -margin);
+  gl_Position = vec4(vec2(x, p.y) * uScale - 1.0, p.e0.depth, 1.0);
   vEndX = vec4(p.e0.x0, p.e0.dx, p.e1.x0, p.e1.dx);
   vRowBase = p.y - p.r;
   vEnds = vec4(p.e0.depth, p.e1.depth, p.e0.invW, p.e1.invW);
@@ -376,9 +385,17 @@ void EpiPass::gather(const SliceEnd& e, bool front, float* out) const {
   }
 }
 
+float EpiPass::edgeSnap() {
+  // Two snapped vertices per edge, each off by up to half a sub-pixel step.
+  GLint bits = 4;  // the least GL allows
+  gl::GetIntegerv(GL_SUBPIXEL_BITS, &bits);
+  return std::ldexp(1.0f, -std::max(bits, 4) + 1);
+}
+
 void EpiPass::begin(const glm::vec2& scale, const glm::vec3& eye0, const glm::vec3& eyeStep) const {
   gl::UseProgram(program_.id());
   gl::setUniform(program_, "uScale", scale);
+  if (mode_ == PstMode::Exact) gl::setUniform(program_, "uEdgeSnap", edgeSnap());
   if (first()) {
     gl::Disable(GL_BLEND);
     gl::DepthFunc(GL_GREATER);

@@ -45,6 +45,13 @@ class EpiPass {
   // the buffer texture of this batch's vectors). Passes after the first
   // also read the Materials storage block, which the caller binds.
   static constexpr GLuint kTextureUnit = 0, kVectorUnit = 3;
+  // Exact mode: how far the GL's sub-pixel snapping may move a PST's edge
+  // at a row, per unit of (1 + the edge's slope in pixels per view). Exact
+  // quads are widened by it and the fragment keeps only pixel centres in
+  // the exact span, as the CPU spans do: over long tracks (slopes of 30 px
+  // per view) snapping a vertex's row moved edges by a tenth of a pixel
+  // and the depth test then showed the surface behind.
+  static float edgeSnap();
   // Binds this pass's vertex array over these vertex and index buffers.
   void bindVertices(GLuint vertices, GLuint indices) const;
 

@@ -57,7 +57,7 @@ int sliverCount(const Pst& pst, const PstPiece& piece) {
 class GlRasterizer final : public EpiRasterizer {
  public:
   GlRasterizer(PstMode mode, PixelType type, const EpiShading& shading, PstBuilder builder)
-      : mode_(mode), type_(type), shading_(shading) {
+      : mode_(mode), type_(type), shading_(shading), edgeSnap_(EpiPass::edgeSnap()) {
     // Highlight knots are the CPU's.
     const bool gpu = !shading_.sliceHighlights && (builder == PstBuilder::Gpu ||
                                                    (builder == PstBuilder::Auto && !gl::rendersOnCpu()));
@@ -306,13 +306,17 @@ class GlRasterizer final : public EpiRasterizer {
       pass.gather(pst.e0, piece.front, a0);
       pass.gather(pst.e1, piece.front, a1);
     }
+    // Exact quads widened outward by the snapping margin (EpiPass::edgeSnap).
+    const float margin = mode_ == PstMode::Exact
+                             ? edgeSnap_ * (1.0f + std::max(std::abs(pst.e0.dx), std::abs(pst.e1.dx))) * side
+                             : 0.0f;
     for (int k = 0; k <= slivers; ++k) {
       // Rulings evenly spaced in the 3D parameter s, where attributes are
       // linear; the screen parameter is u = s iw0 / ((1 - s) iw1 + s iw0).
       const float s = float(k) / slivers;
       const float u = k == slivers ? 1.0f : s * iw0 / ((1.0f - s) * iw1 + s * iw0);
       for (float r : rows) {
-        const float x = pst.x0(r) + u * pst.width(r);
+        const float x = pst.x0(r) + u * pst.width(r) + (2.0f * u - 1.0f) * margin;
         indices_.push_back(uint32_t(vertices_.size() / stride));
         const size_t at = vertices_.size();
         vertices_.resize(at + stride, 0.0f);
@@ -380,6 +384,7 @@ class GlRasterizer final : public EpiRasterizer {
   PstMode mode_;
   PixelType type_;
   EpiShading shading_;
+  float edgeSnap_;
   std::vector<EpiPass> passes_;
   std::vector<float> vertices_;
   std::vector<uint32_t> indices_;
