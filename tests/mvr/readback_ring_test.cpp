@@ -67,6 +67,36 @@ TEST_P(ReadbackRingTest, ReadsOneLayerOfALayeredTarget) {
   EXPECT_EQ(third.row(h - 1)[4 * (w - 1)], 120);
 }
 
+// A batch of stacked runs read at once, large enough (4.3 MB) that the
+// staged copy goes to the pool in 1 MB pieces: every row lands in its run's
+// image at its place. Bands of 50 rows each have their own grey level.
+TEST_P(ReadbackRingTest, RowRunsLandInTheirImagesInPieces) {
+  const int w = 512, run = 700, runs = 3, band = 50;
+  RenderTarget target(w, run * runs, PixelType::U8);
+  gl::Enable(GL_SCISSOR_TEST);
+  for (int y = 0; y < run * runs; y += band) {
+    gl::Scissor(0, y, w, band);
+    const float level = float((y / band * 7) % 256) / 255.0f, colour[4] = {level, level, level, 1.0f};
+    gl::ClearNamedFramebufferfv(target.framebuffer(), GL_COLOR, 0, colour);
+  }
+  gl::Disable(GL_SCISSOR_TEST);
+  ReadbackRing ring(size_t(w) * 4 * run * runs, 2);
+  std::vector<Image> images(runs, Image(w, run, PixelType::U8));
+  std::vector<std::byte*> dsts;
+  for (Image& image : images) dsts.push_back(reinterpret_cast<std::byte*>(image.row(0)));
+  ring.readRowRuns(target, 0, run, dsts);
+  bool done = false;
+  ring.submit([&done] { done = true; });
+  ring.drain();
+  ASSERT_TRUE(done);
+  for (int k = 0; k < runs; ++k)
+    for (int y = 0; y < run; ++y) {
+      const int expected = ((k * run + y) / band * 7) % 256;
+      ASSERT_EQ(images[k].row(y)[0], expected) << k << " " << y;
+      ASSERT_EQ(images[k].row(y)[4 * (w - 1) + 2], expected) << k << " " << y;
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Staging, ReadbackRingTest,
                          ::testing::Values(ReadbackStaging::Always, ReadbackStaging::Never),
                          [](const auto& info) {
