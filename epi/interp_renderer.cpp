@@ -61,9 +61,14 @@ class SourceViewSink final : public FrameSink {
   void putEpi(int row, int scanline, const Image& epi) override {
     if (views_.empty()) return inner_.putEpi(row, scanline, epi);
     copy_ = epi;
+    putEpiInPlace(row, scanline, copy_);
+  }
+  // No copy (of every EPI: 0.1 s of interp dual's 0.22 at 640x480 x 500
+  // views on an H100).
+  void putEpiInPlace(int row, int scanline, Image& epi) override {
     for (const SourceView& v : views_)
-      for (int x = 0; x < copy_.width; ++x) copy_.setLinear(x, v.view, v.color.pixel(x, scanline));
-    inner_.putEpi(row, scanline, copy_);
+      for (int x = 0; x < epi.width; ++x) epi.setLinear(x, v.view, v.color.pixel(x, scanline));
+    inner_.putEpi(row, scanline, epi);
   }
   void finish() override { inner_.finish(); }
 
@@ -172,7 +177,7 @@ class InterpRenderer final : public Renderer {
           }
         }
       }
-      for (int k = 0; k < part.size(); ++k) out.putEpi(row, part.begin + k, epis[size_t(k)]);
+      for (int k = 0; k < part.size(); ++k) out.putEpiInPlace(row, part.begin + k, epis[size_t(k)]);
     }
   }
 

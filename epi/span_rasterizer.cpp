@@ -51,7 +51,7 @@ class SpanRasterizer final : public EpiRasterizer {
       int half = 0, first = 0, count = 0;
     } pending;
     auto handOn = [&](const Filled& f) {
-      for (int k = 0; k < f.count; ++k) sink.putEpi(row, f.first + k, halves[f.half][k]);
+      for (int k = 0; k < f.count; ++k) sink.putEpiInPlace(row, f.first + k, halves[f.half][k]);
     };
     for (int first = lines.begin, b = 0; first < lines.end; first += batch, ++b) {
       const Filled now{b % 2, first, std::min(batch, lines.end - first)};

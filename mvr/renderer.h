@@ -20,6 +20,9 @@ class FrameSink {
   virtual ~FrameSink() = default;
   virtual void putView(int row, int view, const Image& image);
   virtual void putEpi(int row, int scanline, const Image& epi);
+  // An EPI its producer is done with: the sink may change it in place
+  // before handing it on (interp's source rows) instead of copying it.
+  virtual void putEpiInPlace(int row, int scanline, Image& epi) { putEpi(row, scanline, epi); }
   virtual void finish() {}
 };
 

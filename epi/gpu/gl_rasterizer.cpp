@@ -174,7 +174,7 @@ class GlRasterizer final : public EpiRasterizer {
         }
         if (c + 1 < chunks) continue;
         ring.submit([=, &sink] {
-          for (int j = own; j < ownEnd; ++j) sink.putEpi(row, j, *epis[j - own]);
+          for (int j = own; j < ownEnd; ++j) sink.putEpiInPlace(row, j, *epis[j - own]);
         });
       }
       if (part) gl::Disable(GL_SCISSOR_TEST);
