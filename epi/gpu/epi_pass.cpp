@@ -105,8 +105,9 @@ void prepare() {
   gNumDen = vec2(gl_FragCoord.x - x0, vEndX.z + (r - 0.5) * vEndX.w - x0);
   // The exact span, as the CPU's: centres in [min, max) of the two ends.
   float x1 = x0 + gNumDen.y;
+  // (A slice of no width keeps no centre, so the division below is safe.)
   if (!(gl_FragCoord.x >= min(x0, x1) && gl_FragCoord.x < max(x0, x1))) discard;
-  gU = gNumDen.y == 0.0 ? 0.0 : clamp(gNumDen.x / gNumDen.y, 0.0, 1.0);
+  gU = clamp(gNumDen.x / gNumDen.y, 0.0, 1.0);
   gInvW = mix(vEnds.z, vEnds.w, gU);
   // Later passes test depth EQUAL against the first's: every program must
   // round this alike, so no contraction into fused multiply-adds.
@@ -354,6 +355,7 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bo
                              {{GL_VERTEX_SHADER, vertex}, {GL_FRAGMENT_SHADER, fragment}});
   vao_ = gl::VertexArray::create();
   if (pass != shading::Pass::Diffuse && shading.scene) shading::setLightUniforms(program_, *shading.scene);
+  if (exact && pulled) gl::setUniform(program_, "uEdgeSnap", edgeSnap());
 }
 
 bool EpiPass::linear() const {
@@ -395,7 +397,6 @@ float EpiPass::edgeSnap() {
 void EpiPass::begin(const glm::vec2& scale, const glm::vec3& eye0, const glm::vec3& eyeStep) const {
   gl::UseProgram(program_.id());
   gl::setUniform(program_, "uScale", scale);
-  if (mode_ == PstMode::Exact) gl::setUniform(program_, "uEdgeSnap", edgeSnap());
   if (first()) {
     gl::Disable(GL_BLEND);
     gl::DepthFunc(GL_GREATER);
