@@ -26,6 +26,7 @@
 #include "epi/backend.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_context.h"
+#include "mvr/gl/gpu_clock.h"
 #include "mvr/gl/readback_ring.h"
 #include "mvr/io/compare.h"
 #include "mvr/io/scene_io.h"
@@ -72,6 +73,14 @@ struct Run {
   std::map<int, Image> samples;
 };
 
+// With --gpu-times: every measured run's stages, milliseconds of wall
+// clock and of GPU time (gpu:STAGE), best run of the repeats.
+void printStages(const std::string& name, const ShearingCamera& cam, const RenderStats& stats) {
+  std::printf("#   stages %s %dx%d x %d:", name.c_str(), cam.width(), cam.height(), cam.views());
+  for (const auto& [stage, s] : stats.times.seconds) std::printf(" %s %.3f", stage.c_str(), s * 1e3);
+  std::printf(" (ms)\n");
+}
+
 // The filter's time counts: it is part of anti-aliasing's cost.
 Run measure(Renderer& renderer, const ShearingCamera& cam, const Supersampling& aa, int repeat,
             const std::vector<int>& sampled, PixelType type) {
@@ -81,11 +90,14 @@ Run measure(Renderer& renderer, const ShearingCamera& cam, const Supersampling& 
     SampleSink sink(sampled, cam.width(), cam.height(), type);
     SupersampleSink filter(sink, aa, cam.width(), cam.height(), cam.views());
     RenderStats stats;
+    gl::GpuClock::discard();
     Stopwatch watch;
     renderer.render(samples, aa.active() ? static_cast<FrameSink&>(filter) : sink, stats);
     const double s = watch.seconds();
+    gl::GpuClock::collect(stats.times);
     if (s < best.seconds) best = {s, stats, sink.samples()};
   }
+  if (gl::GpuClock::enabled()) printStages(renderer.name(), samples, best.stats);
   return best;
 }
 
@@ -377,6 +389,10 @@ int runBench(int argc, char** argv) {
   app.add_option("--plots", plots, "write gnuplot scripts and PNG plots (needs gnuplot)")->type_name("DIR");
   app.add_option("--replot", replot, "only plot an earlier run's --json FILE into --plots DIR")
       ->type_name("FILE");
+  bool gpuTimes = false;
+  app.add_flag("--gpu-times", gpuTimes,
+               "also time each stage on the GPU (timestamp queries): printed per run, and in "
+               "--json's stages as gpu:STAGE");
   int shares = 0;
   app.add_option("--shares", shares,
                  "instead of the comparison: time each share of a split over K ranks (mpirun), "
@@ -391,6 +407,7 @@ int runBench(int argc, char** argv) {
   if (linear) cfg.type = PixelType::U8;
 
   setProgressEnabled(false);
+  gl::GpuClock::enable(gpuTimes);
   if (!replot.empty()) {  // plots from an earlier run's JSON: no GL, no rendering
     if (plots.empty()) fail("--replot", "needs --plots DIR");
     const std::vector<BenchRecord> records = readBenchJson(replot);

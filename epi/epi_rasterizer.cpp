@@ -11,8 +11,9 @@ void EpiRasterizer::rasterize(const GpuVertices&, const GpuSliceTable&, const Sh
 
 std::unique_ptr<EpiRasterizer> makeRasterizer(PstMode mode, PixelType type, const EpiShading& shading,
                                               PstBuilder builder) {
-  return mode == PstMode::Cpu ? makeSpanRasterizer(type, shading)
-                              : makeGlRasterizer(mode, type, shading, builder);
+  if (mode == PstMode::Cpu) return makeSpanRasterizer(type, shading);
+  if (mode == PstMode::Spans) return makeGpuSpanRasterizer(type, shading);
+  return makeGlRasterizer(mode, type, shading, builder);
 }
 
 }  // namespace mvr

@@ -15,9 +15,13 @@
 
 namespace mvr {
 
-enum class PstMode { Quad, Strip, Exact, Cpu };
-inline constexpr NameTable<PstMode, 4> kPstModeNames{
-    {{PstMode::Quad, "quad"}, {PstMode::Strip, "strip"}, {PstMode::Exact, "exact"}, {PstMode::Cpu, "cpu"}}};
+// Spans: the CPU's exact spans (Cpu) filled by GPU compute shaders.
+enum class PstMode { Quad, Strip, Exact, Cpu, Spans };
+inline constexpr NameTable<PstMode, 5> kPstModeNames{{{PstMode::Quad, "quad"},
+                                                      {PstMode::Strip, "strip"},
+                                                      {PstMode::Exact, "exact"},
+                                                      {PstMode::Cpu, "cpu"},
+                                                      {PstMode::Spans, "spans"}}};
 
 inline PstMode parsePstMode(const std::string& name) {  // throws on unknown
   return parseName(kPstModeNames, name, "--pst", "mode");
@@ -80,14 +84,17 @@ class EpiRasterizer {
 };
 
 // The one place that chooses between CPU and GL: the span rasterizer for
-// PstMode::Cpu, else the GL rasterizer in that mode (needs a current GL
-// context).
+// PstMode::Cpu, the GPU span rasterizer for PstMode::Spans, else the GL
+// rasterizer in that mode (needs a current GL context).
 std::unique_ptr<EpiRasterizer> makeRasterizer(PstMode mode, PixelType type,
                                               const EpiShading& shading = {},
                                               PstBuilder builder = PstBuilder::Auto);
 
 // Exact spans on every core of the thread pool (mvr/parallel.h).
 std::unique_ptr<EpiRasterizer> makeSpanRasterizer(PixelType type, const EpiShading& shading = {});
+// The CPU's spans by compute shaders (epi/gpu/gpu_span_rasterizer.cpp);
+// diffuse shading only; needs a current GL context.
+std::unique_ptr<EpiRasterizer> makeGpuSpanRasterizer(PixelType type, const EpiShading& shading = {});
 // Quad, strip or exact; needs a current GL context.
 std::unique_ptr<EpiRasterizer> makeGlRasterizer(PstMode mode, PixelType type,
                                                 const EpiShading& shading = {},

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <optional>
 
+#include "mvr/gl/gpu_clock.h"
 #include "shading/lighting.h"
 #include "slicing/extreme_vertices.h"
 #include "slicing/gpu/gpu_slicer.h"
@@ -56,11 +57,13 @@ class MvrRenderer final : public Renderer {
       const GpuVertices* vertices = nullptr;
       {
         ScopedStage s(stats.times, "transform");
+        gl::GpuClock::mark("transform");
         vertices = &gpuTransform_->transform(cam, row);
       }
       std::optional<GpuSliceTable> table;
       {
         ScopedStage s(stats.times, "slicing");
+        gl::GpuClock::mark("slicing");
         table.emplace(gpuSlicer_->build(gpuTransform_->yBuffer(), vertices->triangles.id(),
                                         uint32_t(vertices->triangleCount), cam.height(),
                                         cam.share().scanlines));

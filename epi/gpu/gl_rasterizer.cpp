@@ -30,6 +30,7 @@
 #include "epi/pst.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
+#include "mvr/gl/gpu_clock.h"
 #include "mvr/gl/readback_ring.h"
 #include "mvr/image_pool.h"
 #include "mvr/gl/render_target.h"
@@ -139,6 +140,7 @@ class GlRasterizer final : public EpiRasterizer {
         // Before the clear: on CPU implementations of GL the build's
         // barriers would otherwise flush the clear of the whole target.
         ScopedStage s(stats.times, "pst");
+        gl::GpuClock::mark("pst");
         geometry_->build(*device, slices.device(), first, count, n);
         vectorTexels_ += geometry_->vectorTexels();
         // The build's compute passes use storage bindings of their own.
@@ -156,11 +158,14 @@ class GlRasterizer final : public EpiRasterizer {
       }
       for (int c = 0; c < chunks; ++c) {
         const int view0 = c * chunkRows, views = std::min(chunkRows, n - view0);
+        gl::GpuClock::mark("clear");
         target.clear();
+        gl::GpuClock::mark("draw");
         const Batch b{first, count, n, chunkRows, view0, scale, eye0, eyeStep};
         for (const EpiPass& pass : passes_) drawPass(pass, host, slices, b, stats);
         {
           ScopedStage s(stats.times, "readback");
+          gl::GpuClock::mark("readback");
           if (views == chunkRows) {
             // The batch's EPIs are stacked without gaps: one read for all.
             std::vector<std::byte*> rows;
@@ -402,7 +407,7 @@ class GlRasterizer final : public EpiRasterizer {
 
 std::unique_ptr<EpiRasterizer> makeGlRasterizer(PstMode mode, PixelType type,
                                                 const EpiShading& shading, PstBuilder builder) {
-  if (mode == PstMode::Cpu) fail("--pst", "cpu is not a GL mode");
+  if (mode == PstMode::Cpu || mode == PstMode::Spans) fail("--pst", std::string(pstModeName(mode)) + " is not a GL mode");
   return std::make_unique<GlRasterizer>(mode, type, shading, builder);
 }
 

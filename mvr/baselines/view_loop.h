@@ -4,6 +4,7 @@
 // travel), hand each to the sink in order.
 #include <memory>
 
+#include "mvr/gl/gpu_clock.h"
 #include "mvr/gl/readback_ring.h"
 #include "mvr/gl/render_target.h"
 #include "mvr/image_pool.h"
@@ -21,10 +22,12 @@ void renderEachView(const ShearingCamera& cam, const RenderTarget& target,
   ImagePool pool;
   for (int row = share.rows.begin; row < share.rows.end; ++row) {
     for (int view = share.views.begin; view < share.views.end; ++view) {
+      gl::GpuClock::mark("draw");
       draw(row, view);
       std::shared_ptr<Image> img = pool.take(target.width(), target.height(), type);
       {
         ScopedStage s(stats.times, "readback");
+        gl::GpuClock::mark("readback");
         ring.readRows(target, 0, target.height(), reinterpret_cast<std::byte*>(img->row(0)));
       }
       ring.submit([img, row, view, &sink] { sink.putView(row, view, *img); });

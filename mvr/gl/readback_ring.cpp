@@ -69,6 +69,22 @@ void ReadbackRing::readLayer(const RenderTarget& target, int layer, std::byte* d
   read(target, layerReader_.id(), 0, target.height(), one);
 }
 
+void ReadbackRing::readBuffer(GLuint buffer, size_t bytes, std::span<std::byte* const> dsts) {
+  if (dsts.empty()) return;
+  gl::MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the copy reads what shaders wrote
+  const size_t each = bytes / dsts.size();
+  if (!staged()) {
+    for (size_t k = 0; k < dsts.size(); ++k)
+      gl::GetNamedBufferSubData(buffer, GLintptr(k * each), GLsizeiptr(each), dsts[k]);
+    return;
+  }
+  Slot& slot = slots_[current_];
+  if (slot.used + bytes > slotBytes_) fail("ReadbackRing", "a batch reads more than a slot holds");
+  gl::CopyNamedBufferSubData(buffer, slot.buffer.id(), 0, GLintptr(slot.used), GLsizeiptr(bytes));
+  for (size_t k = 0; k < dsts.size(); ++k) slot.copies.push_back({slot.used + k * each, each, dsts[k]});
+  slot.used += bytes;
+}
+
 // h rows from y, split evenly among dsts (one unless staged).
 void ReadbackRing::read(const RenderTarget& target, GLuint framebuffer, int y, int h,
                         std::span<std::byte* const> dsts) {

@@ -43,6 +43,9 @@ class ReadbackRing {
   // Rows [y, y + h dsts.size()) in one read: h rows into each of dsts in
   // turn (a batch of stacked EPIs; one call instead of one per EPI).
   void readRowRuns(const RenderTarget& target, int y, int h, std::span<std::byte* const> dsts);
+  // `bytes` of a storage buffer that shaders wrote, split evenly among
+  // dsts (a batch of EPIs a compute pass filled).
+  void readBuffer(GLuint buffer, size_t bytes, std::span<std::byte* const> dsts);
   // Ends the batch: `done` runs once its reads have landed.
   void submit(Done done);
   // Completes every submitted batch, in order.
