@@ -34,6 +34,50 @@ namespace {
 // multiply-add would round otherwise; the GPU's division is within a few
 // ulps of the CPU's, so a pixel may differ by a step where a span's end or
 // a depth tie lands within that of a pixel centre.
+// What both passes know of a slice's track: its ends' x0 and dx, their
+// depths and 1/w, and its pieces as rows of views [begin, end) with the
+// piece's facing in bit 31 of end (epi/pst.cpp's pieces).
+const char* const kTrack = R"(
+struct Track { vec4 x; vec4 d; uvec4 rows; };
+layout(std430, binding = 7) buffer Tracks { Track uTracks[]; };
+)";
+
+// Per slice of the batch, once: the ends' records interpolated and the
+// pieces found here, so that the tile pass's two walks over the slices
+// compute each fragment's depth from the same floats.
+const char* const kTrackPass = R"(
+layout(local_size_x = 64) in;
+uniform uint uFirst, uCount;  // slices [uFirst, uFirst + uCount)
+void addPiece(inout uvec4 rows, inout int count, float top, float bottom, bool front, bool cull) {
+  if (!(bottom > top) || (!front && cull)) return;
+  uint views = uint(uViews);
+  uint begin = uint(max(0.0, ceil(top - 0.5))), end = uint(min(float(views), ceil(bottom - 0.5)));
+  uint facing = front ? 0x80000000u : 0u;
+  if (count == 0) rows.xy = uvec2(begin, end | facing); else rows.zw = uvec2(begin, end | facing);
+  count += 1;
+}
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= uCount) return;
+  End e0, e1;
+  uint word;
+  sliceEnds(uFirst + i, e0, e1, word);
+  bool cull = (word >> 31) != 0u;
+  float n = uViews;
+  precise float dL = widthAt(e0, e1, 0.0), dR = widthAt(e0, e1, n);
+  uvec4 rows = uvec4(0u);
+  int count = 0;
+  if ((dL < 0.0 && dR > 0.0) || (dL > 0.0 && dR < 0.0)) {
+    precise float rStar = n * dL / (dL - dR);  // Halle 5.6.3: the edge-on view
+    addPiece(rows, count, 0.0, rStar, dL > 0.0, cull);
+    addPiece(rows, count, rStar, n, dR > 0.0, cull);
+  } else if (dL != 0.0 || dR != 0.0) {
+    addPiece(rows, count, 0.0, n, dL + dR > 0.0, cull);
+  }
+  uTracks[uFirst + i] = Track(vec4(e0.x0, e0.dx, e1.x0, e1.dx), vec4(e0.depth, e1.depth, e0.invW, e1.invW), rows);
+}
+)";
+
 const char* const kSpans = R"(
 layout(local_size_x = 256) in;
 layout(std430, binding = 5) readonly buffer Offsets { uint uOffsets[]; };
@@ -51,40 +95,16 @@ uniform float uSrgbUpper[255];  // mvr/color.h: byte b rounds up to b + 1 at uSr
 shared uint sDepth[TILE];
 shared uint sWinner[TILE];
 
-int gViews, gX0, gXEnd, gI0, gIEnd;
+int gX0, gXEnd, gI0, gIEnd;
 uint gFirst;  // the scanline's first slice
 
-// The pieces of epi/pst.cpp as rows of views [x, y) (centres in
-// [rTop, rBottom)) and their facing.
-struct Pieces { ivec2 rows[2]; bool front[2]; int count; };
-void addPiece(inout Pieces p, float top, float bottom, bool front, bool cull) {
-  if (!(bottom > top) || (!front && cull)) return;
-  p.rows[p.count] = ivec2(max(0, int(ceil(top - 0.5))), min(gViews, int(ceil(bottom - 0.5))));
-  p.front[p.count] = front;
-  p.count += 1;
-}
-Pieces piecesOf(End e0, End e1, bool cull) {
-  Pieces p;
-  p.count = 0;
-  float n = float(gViews);
-  precise float dL = widthAt(e0, e1, 0.0), dR = widthAt(e0, e1, n);
-  if ((dL < 0.0 && dR > 0.0) || (dL > 0.0 && dR < 0.0)) {
-    precise float rStar = n * dL / (dL - dR);
-    addPiece(p, 0.0, rStar, dL > 0.0, cull);
-    addPiece(p, rStar, n, dR > 0.0, cull);
-  } else if (dL != 0.0 || dR != 0.0) {
-    addPiece(p, 0.0, n, dL + dR > 0.0, cull);
-  }
-  return p;
-}
-
-// A row's span: the row's left end xa and width, and the tile's columns
-// [x, y) whose centres it covers.
+// A row's span: its left end xa and width (pst.h's x0(r) and width(r)),
+// and the tile's columns [x, y) whose centres it covers.
 struct Span { float xa, width; ivec2 columns; };
-Span spanAt(End e0, End e1, int i) {
+Span spanAt(Track t, int i) {
   Span s;
   float r = float(i) + 0.5;
-  precise float xa = xAt(e0, r), x1 = xAt(e1, r);
+  precise float xa = t.x.x + (r - 0.5) * t.x.y, x1 = t.x.z + (r - 0.5) * t.x.w;
   precise float width = x1 - xa, xb = xa + width;
   s.xa = xa;
   s.width = width;
@@ -95,23 +115,31 @@ Span spanAt(End e0, End e1, int i) {
   if (!(width != 0.0)) s.columns = ivec2(0);  // no width, or NaN
   return s;
 }
-float uAt(Span s, int x) { precise float u = (float(x) + 0.5 - s.xa) / s.width; return clamp(u, 0.0, 1.0); }
-float depthAt(End e0, End e1, float u) { precise float z = e0.depth + (e1.depth - e0.depth) * u; return z; }
+float uAt(Span s, int x) {
+  precise float u = (float(x) + 0.5 - s.xa) / s.width;
+  return clamp(u, 0.0, 1.0);
+}
+float depthAt(Track t, float u) {
+  precise float z = t.d.x + (t.d.y - t.d.x) * u;
+  return z;
+}
+ivec2 pieceRows(Track t, int k) {
+  uvec2 r = k == 0 ? t.rows.xy : t.rows.zw;
+  return ivec2(r.x, r.y & 0x7FFFFFFFu);
+}
 
 // Phase 0: nearest depth per pixel; phase 1: first slice at that depth.
 void visit(uint s, int phase) {
-  End e0, e1;
-  uint word;
-  sliceEnds(s, e0, e1, word);
-  Pieces p = piecesOf(e0, e1, (word >> 31) != 0u);
-  for (int k = 0; k < p.count; ++k) {
-    for (int i = max(p.rows[k].x, gI0); i < min(p.rows[k].y, gIEnd); ++i) {
-      Span span = spanAt(e0, e1, i);
-      uint row = uint((i - gI0) * uTileColumns - gX0);
+  Track t = uTracks[s];
+  for (int k = 0; k < 2; ++k) {
+    ivec2 rows = pieceRows(t, k);
+    for (int i = max(rows.x, gI0); i < min(rows.y, gIEnd); ++i) {
+      Span span = spanAt(t, i);
+      int row = (i - gI0) * uTileColumns - gX0;
       for (int x = span.columns.x; x < span.columns.y; ++x) {
-        float z = depthAt(e0, e1, uAt(span, x));
+        float z = depthAt(t, uAt(span, x));
         if (!(z > 0.0)) continue;  // behind the cleared depth, or NaN
-        uint at = row + uint(x), bits = floatBitsToUint(z);
+        uint at = uint(row + x), bits = floatBitsToUint(z);
         if (phase == 0) atomicMax(sDepth[at], bits);
         else if (sDepth[at] == bits) atomicMin(sWinner[at], s - gFirst);
       }
@@ -119,17 +147,19 @@ void visit(uint s, int phase) {
   }
 }
 
+// The winner's colour: hyperbolic in u, as pstColor.
 vec4 shade(uint s, int i, int x) {
+  Track t = uTracks[s];
   End e0, e1;
   uint word;
   sliceEnds(s, e0, e1, word);
-  Pieces p = piecesOf(e0, e1, (word >> 31) != 0u);
-  bool front = p.front[p.count > 1 && i >= p.rows[1].x ? 1 : 0];
-  float u = uAt(spanAt(e0, e1, i), x);
+  bool second = i >= pieceRows(t, 1).x && i < pieceRows(t, 1).y;
+  bool front = ((second ? t.rows.w : t.rows.y) & 0x80000000u) != 0u;
+  float u = uAt(spanAt(t, i), x);
   int at = front ? 4 : 7;  // GpuVertices records: colour / w, front then back
   vec3 c0 = vec3(endAttribute(e0, at), endAttribute(e0, at + 1), endAttribute(e0, at + 2));
   vec3 c1 = vec3(endAttribute(e1, at), endAttribute(e1, at + 1), endAttribute(e1, at + 2));
-  precise float invW = e0.invW + (e1.invW - e0.invW) * u;
+  precise float invW = t.d.z + (t.d.w - t.d.z) * u;
   precise vec3 c = (c0 + (c1 - c0) * u) / invW;
   return vec4(clamp(c, 0.0, 1.0), 1.0);
 }
@@ -150,27 +180,30 @@ uint byteOf(float v) {
 #endif
 
 void main() {
-  gViews = int(uViews);
+  int views = int(uViews);
   gX0 = int(gl_WorkGroupID.x) * uTileColumns;
   gXEnd = min(uWidth, gX0 + uTileColumns);
   gI0 = int(gl_WorkGroupID.y) * uTileRows;
-  gIEnd = min(gViews, gI0 + uTileRows);
+  gIEnd = min(views, gI0 + uTileRows);
   uint j = uint(uFirstScanline) + gl_WorkGroupID.z, tid = gl_LocalInvocationIndex;
   uint pixels = uint(uTileColumns * uTileRows);
   for (uint at = tid; at < pixels; at += 256u) { sDepth[at] = 0u; sWinner[at] = 0xFFFFFFFFu; }
   gFirst = uOffsets[j];
   uint last = uOffsets[j + 1u];
+  memoryBarrierShared();
   barrier();
   for (uint s = gFirst + tid; s < last; s += 256u) visit(s, 0);
+  memoryBarrierShared();
   barrier();
   for (uint s = gFirst + tid; s < last; s += 256u) visit(s, 1);
+  memoryBarrierShared();
   barrier();
   for (uint at = tid; at < pixels; at += 256u) {
     int x = gX0 + int(at) % uTileColumns, i = gI0 + int(at) / uTileColumns;
     if (x >= gXEnd || i >= gIEnd) continue;
     uint winner = sWinner[at];
     vec4 c = winner == 0xFFFFFFFFu ? vec4(0.0) : shade(gFirst + winner, i, x);
-    uint dst = (gl_WorkGroupID.z * uint(gViews) + uint(i)) * uint(uWidth) + uint(x);
+    uint dst = (gl_WorkGroupID.z * uint(views) + uint(i)) * uint(uWidth) + uint(x);
 #ifdef FLOAT_OUT
     uEpis[dst] = c;
 #else
@@ -200,8 +233,9 @@ class GpuSpanRasterizer final : public EpiRasterizer {
     std::string defines = "#define TILE " + std::to_string(tile_) + "\n";
     if (type == PixelType::F32) defines += "#define FLOAT_OUT\n";
     if (type == PixelType::Srgb8) defines += "#define SRGB\n";
-    program_ = gl::linkProgram("epi-spans", {{GL_COMPUTE_SHADER, gl::glslHeader() + defines +
-                                                                    PstGeometry::glslLibrary(recordStride_) + kSpans}});
+    const std::string library = PstGeometry::glslLibrary(recordStride_) + kTrack;
+    tracks_ = gl::linkProgram("epi-span-tracks", {{GL_COMPUTE_SHADER, gl::glslHeader() + library + kTrackPass}});
+    program_ = gl::linkProgram("epi-spans", {{GL_COMPUTE_SHADER, gl::glslHeader() + defines + library + kSpans}});
     if (type == PixelType::Srgb8) {
       const auto& upper = detail::srgb8Table().upper;
       gl::ProgramUniform1fv(program_.id(), gl::GetUniformLocation(program_.id(), "uSrgbUpper"), 255, upper.data());
@@ -238,7 +272,12 @@ class GpuSpanRasterizer final : public EpiRasterizer {
       if (outputBytes_ < size_t(batch) * epiBytes) b = gl::makeBuffer<std::byte>(nullptr, size_t(batch) * epiBytes);
     outputBytes_ = std::max(outputBytes_, size_t(batch) * epiBytes);
     ImagePool pool;
-    gl::UseProgram(program_.id());
+    if (table.sliceCount() > trackCapacity_) {
+      trackCapacity_ = table.sliceCount() + table.sliceCount() / 4;
+      trackBuffer_ = gl::makeBuffer<std::byte>(nullptr, trackCapacity_ * kTrackBytes);
+    }
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTracks, trackBuffer_.id());
+    gl::setUniform(tracks_, "uViews", float(n));
     gl::setUniform(program_, "uViews", float(n));
     gl::setUniform(program_, "uWidth", w);
     gl::setUniform(program_, "uTileColumns", tile.columns);
@@ -253,6 +292,16 @@ class GpuSpanRasterizer final : public EpiRasterizer {
       {
         ScopedStage s(stats.times, "raster");
         gl::GpuClock::mark("raster");
+        const uint32_t firstSlice = table.offsets()[size_t(first)];
+        const uint32_t slices = table.offsets()[size_t(first + count)] - firstSlice;
+        if (slices > 0) {
+          gl::UseProgram(tracks_.id());
+          gl::ProgramUniform1ui(tracks_.id(), gl::GetUniformLocation(tracks_.id(), "uFirst"), firstSlice);
+          gl::ProgramUniform1ui(tracks_.id(), gl::GetUniformLocation(tracks_.id(), "uCount"), slices);
+          gl::DispatchCompute((slices + 63) / 64, 1, 1);
+          gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        }
+        gl::UseProgram(program_.id());
         gl::setUniform(program_, "uFirstScanline", first);
         gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kEpis, out.id());
         gl::DispatchCompute(GLuint((w + tile.columns - 1) / tile.columns), GLuint((n + tile.rows - 1) / tile.rows),
@@ -289,11 +338,14 @@ class GpuSpanRasterizer final : public EpiRasterizer {
     return {columns, tile_ / columns};
   }
 
-  static constexpr GLuint kEpis = 6;
+  static constexpr GLuint kEpis = 6, kTracks = 7;
+  static constexpr size_t kTrackBytes = 48;  // kTrack's struct, std430
   PixelType type_;
   int recordStride_ = GpuVertices::kRecordHead;
   int tile_ = 0;  // pixels per work group's tile
-  gl::Program program_;
+  gl::Program tracks_, program_;
+  gl::Buffer trackBuffer_;
+  size_t trackCapacity_ = 0;
   std::array<gl::Buffer, 2> outputs_;  // the batch being filled while the other is copied out
   size_t outputBytes_ = 0;
   std::optional<GpuVertices> uploaded_;  // host vertices, uploaded
