@@ -95,6 +95,9 @@ std::unique_ptr<EpiRasterizer> makeSpanRasterizer(PixelType type, const EpiShadi
 // The CPU's spans by compute shaders (epi/gpu/gpu_span_rasterizer.cpp);
 // diffuse shading only; needs a current GL context.
 std::unique_ptr<EpiRasterizer> makeGpuSpanRasterizer(PixelType type, const EpiShading& shading = {});
+// The most bytes of EPIs one of its dispatches fills (default 64 MB),
+// process-wide: tests make sets of a few EPIs take several batches.
+void setGpuSpanBatchBytes(size_t bytes);
 // Quad, strip or exact; needs a current GL context.
 std::unique_ptr<EpiRasterizer> makeGlRasterizer(PstMode mode, PixelType type,
                                                 const EpiShading& shading = {},

@@ -219,7 +219,7 @@ void main() {
 
 // Storage for one batch's EPIs: each slot's bytes at most (the copy into
 // the readback ring is as large).
-constexpr size_t kBatchBudget = size_t(64) << 20;
+size_t gBatchBytes = size_t(64) << 20;
 
 size_t pixelBytes(PixelType type) { return 4 * Image::channelBytes(type); }
 
@@ -268,7 +268,7 @@ class GpuSpanRasterizer final : public EpiRasterizer {
     const int n = cam.views(), w = cam.width();
     const size_t epiBytes = size_t(w) * n * pixelBytes(type_);
     const IndexRange lines = cam.share().scanlines;
-    const int batch = int(std::clamp<size_t>(kBatchBudget / epiBytes, 1, size_t(std::min(lines.size(), 65535))));
+    const int batch = int(std::clamp<size_t>(gBatchBytes / epiBytes, 1, size_t(std::min(lines.size(), 65535))));
     const Tile tile = tileFor(w);
     ReadbackRing ring(size_t(batch) * epiBytes);
     for (gl::Buffer& b : outputs_)
@@ -355,6 +355,8 @@ class GpuSpanRasterizer final : public EpiRasterizer {
 };
 
 }  // namespace
+
+void setGpuSpanBatchBytes(size_t bytes) { gBatchBytes = bytes; }
 
 std::unique_ptr<EpiRasterizer> makeGpuSpanRasterizer(PixelType type, const EpiShading& shading) {
   return std::make_unique<GpuSpanRasterizer>(type, shading);

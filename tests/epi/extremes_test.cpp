@@ -79,7 +79,7 @@ void expectAgree(const test::SetDifference& d, double close, double psnr = 25.0)
 // Renders with every mode; returns cpu's agreement with SVR (8-bit).
 test::SetDifference checkAll(const Scene& scene, const ShearingCamera& cam, const std::string& what) {
   test::sharedContext();
-  for (PstMode mode : {PstMode::Cpu, PstMode::Exact, PstMode::Strip}) {
+  for (PstMode mode : {PstMode::Cpu, PstMode::Exact, PstMode::Strip, PstMode::Spans}) {
     auto mvr = makeMvrRenderer(scene, mode, PixelType::F32);
     expectFiniteInRange(test::renderViews(*mvr, cam, PixelType::F32), what + " " + pstModeName(mode));
   }
@@ -87,7 +87,12 @@ test::SetDifference checkAll(const Scene& scene, const ShearingCamera& cam, cons
   expectFiniteInRange(test::renderViews(*svrF, cam, PixelType::F32), what + " svr");
   auto svr = makeSvrRenderer(scene, PixelType::U8);
   auto cpu = makeMvrRenderer(scene, PstMode::Cpu, PixelType::U8);
-  return test::compareViews(test::renderViews(*svr, cam), test::renderViews(*cpu, cam));
+  const test::CaptureSink oracle = test::renderViews(*cpu, cam);
+  // GPU spans are the CPU's rule: every pixel within one 8-bit step.
+  auto spans = makeMvrRenderer(scene, PstMode::Spans, PixelType::U8);
+  const test::SetDifference gpu = test::compareViews(oracle, test::renderViews(*spans, cam));
+  EXPECT_EQ(gpu.minClose, 1.0) << what << ": spans against cpu, identical " << gpu.minIdentical;
+  return test::compareViews(test::renderViews(*svr, cam), oracle);
 }
 
 TEST(Extremes, OneTwoAnd4096Views) {
@@ -101,7 +106,10 @@ TEST(Extremes, OneTwoAnd4096Views) {
   auto cpu = makeMvrRenderer(s, PstMode::Cpu, PixelType::U8);
   auto exact = makeMvrRenderer(s, PstMode::Exact, PixelType::U8);
   test::sharedContext();
-  auto d = test::compareViews(test::renderViews(*cpu, cam), test::renderViews(*exact, cam));
+  const test::CaptureSink oracle = test::renderViews(*cpu, cam);
+  auto d = test::compareViews(oracle, test::renderViews(*exact, cam));
+  auto spans = makeMvrRenderer(s, PstMode::Spans, PixelType::U8);
+  EXPECT_EQ(test::compareViews(oracle, test::renderViews(*spans, cam)).minClose, 1.0) << "spans, 4096 views";
   // 24 x 6 pixels: one silhouette pixel that differs costs 21 dB, and over
   // 4096 views the edges pass within llvmpipe's 1/256-pixel snapping of
   // some pixel centre now and then.
