@@ -38,7 +38,7 @@ namespace mvr::app {
 namespace {
 
 const char* const kDefaultBackends =
-    "svr,svr-layered,deferred,mvr:quad,mvr:strip,mvr:exact,mvr:cpu,interp:center:c1,"
+    "svr,svr-layered,deferred,mvr:quad,mvr:strip,mvr:exact,mvr:spans,mvr:cpu,interp:center:c1,"
     "interp:hierarchical:2:c1";
 
 std::vector<std::string> splitList(const std::string& s) {

@@ -25,6 +25,7 @@
 #include "mvr/gl/gpu_clock.h"
 #include "mvr/gl/readback_ring.h"
 #include "mvr/image_pool.h"
+#include "shading/texture_vector.h"
 
 namespace mvr {
 namespace {
@@ -150,6 +151,22 @@ void visit(uint s, int phase) {
   }
 }
 
+#ifdef VECTORS
+// Image slices: each coloured by its own texture vector of source pixels,
+// its parameter linear in u from u0 to u1 (the CPU spans' Colors path).
+layout(std430, binding = 8) readonly buffer Vectors { uvec4 uVectors[]; };  // GpuVertices::vectors
+layout(binding = 3) uniform samplerBuffer uVectorTexels;
+vec4 shade(uint s, int i, int x) {
+  Track t = uTracks[s];
+  uvec4 v = uVectors[uSlices[s].x];
+  float k = float(v.y), u0 = uintBitsToFloat(v.z), u1 = uintBitsToFloat(v.w);
+  Span span = spanAt(t, i);
+  float u = uAt(span, x);
+  float perPixel = k * abs((u1 - u0) / span.width);
+  vec4 c = k == 0.0 ? vec4(1.0) : sampleTextureVector(uVectorTexels, int(v.x), k, u0 + (u1 - u0) * u, perPixel);
+  return vec4(clamp(c.rgb, 0.0, 1.0), 1.0);
+}
+#else
 // The winner's colour: hyperbolic in u, as pstColor.
 vec4 shade(uint s, int i, int x) {
   Track t = uTracks[s];
@@ -166,6 +183,7 @@ vec4 shade(uint s, int i, int x) {
   precise vec3 c = (c0 + (c1 - c0) * u) / invW;
   return vec4(clamp(c, 0.0, 1.0), 1.0);
 }
+#endif
 
 #ifndef FLOAT_OUT
 uint byteOf(float v) {
@@ -226,7 +244,9 @@ size_t pixelBytes(PixelType type) { return 4 * Image::channelBytes(type); }
 class GpuSpanRasterizer final : public EpiRasterizer {
  public:
   GpuSpanRasterizer(PixelType type, const EpiShading& shading) : type_(type) {
-    if (shading.sliceVectors || shading.plan.passes().size() != 1)
+    if (shading.sliceHighlights)
+      fail("--pst spans", "GPU spans do not add split highlight tracks; use exact");
+    if (!shading.sliceVectors && shading.plan.passes().size() != 1)
       fail("--pst spans", "GPU spans shade diffuse scenes only (this one needs " + shading.plan.passNames() +
                               "); use exact");
     recordStride_ = GpuVertices::kRecordHead + shading.plan.extraCount;
@@ -236,6 +256,7 @@ class GpuSpanRasterizer final : public EpiRasterizer {
     std::string defines = "#define TILE " + std::to_string(tile_) + "\n";
     if (type == PixelType::F32) defines += "#define FLOAT_OUT\n";
     if (type == PixelType::Srgb8) defines += "#define SRGB\n";
+    if (shading.sliceVectors) defines += std::string("#define VECTORS\n") + shading::glslTextureVector();
     const std::string library = PstGeometry::glslLibrary(recordStride_) + kTrack;
     tracks_ = gl::linkProgram("epi-span-tracks", {{GL_COMPUTE_SHADER, gl::glslHeader() + library + kTrackPass}});
     program_ = gl::linkProgram("epi-spans", {{GL_COMPUTE_SHADER, gl::glslHeader() + defines + library + kSpans}});
@@ -280,6 +301,7 @@ class GpuSpanRasterizer final : public EpiRasterizer {
       trackBuffer_ = gl::makeBuffer<std::byte>(nullptr, trackCapacity_ * kTrackBytes);
     }
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTracks, trackBuffer_.id());
+    if (v.hasVectors()) bindVectors(v);
     gl::setUniform(tracks_, "uViews", float(n));
     gl::setUniform(program_, "uViews", float(n));
     gl::setUniform(program_, "uWidth", w);
@@ -330,6 +352,20 @@ class GpuSpanRasterizer final : public EpiRasterizer {
     stats.counters["tile_rows"] = tile.rows;
   }
 
+  // Image slices' vectors and their texels (a buffer texture, as the GL
+  // passes sample them).
+  void bindVectors(const GpuVertices& v) {
+    GLint limit = 0;
+    gl::GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &limit);
+    if (v.texelCount > size_t(limit))
+      fail("GPU spans", "the row's " + std::to_string(v.texelCount) + " vector texels pass the GL's texture-buffer limit of " +
+                            std::to_string(limit));
+    texels_ = gl::Texture(GL_TEXTURE_BUFFER);
+    gl::TextureBuffer(texels_.id(), GL_RGBA32F, v.texelBuffer);
+    gl::BindTextureUnit(kTexelUnit, texels_.id());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kVectors, v.vectors.id());
+  }
+
   // Columns x rows of one work group's tile: whole rows of the EPI when
   // four or more fit (the slices' walk is paid per row of a tile), else
   // four rows of a part of it.
@@ -341,13 +377,14 @@ class GpuSpanRasterizer final : public EpiRasterizer {
     return {columns, tile_ / columns};
   }
 
-  static constexpr GLuint kEpis = 6, kTracks = 7;
+  static constexpr GLuint kEpis = 6, kTracks = 7, kVectors = 8, kTexelUnit = 3;
   static constexpr size_t kTrackBytes = 48;  // kTrack's struct, std430
   PixelType type_;
   int recordStride_ = GpuVertices::kRecordHead;
   int tile_ = 0;  // pixels per work group's tile
   gl::Program tracks_, program_;
   gl::Buffer trackBuffer_;
+  gl::Texture texels_;  // over the vertices' texel buffer
   size_t trackCapacity_ = 0;
   std::array<gl::Buffer, 2> outputs_;  // the batch being filled while the other is copied out
   size_t outputBytes_ = 0;

@@ -8,6 +8,7 @@
 // teacup set is.
 #include <gtest/gtest.h>
 
+#include "epi/backend.h"
 #include "epi/epi_rasterizer.h"
 #include "mvr/error.h"
 #include "mvr/io/scene_io.h"
@@ -65,6 +66,21 @@ TEST_F(GpuSpans, BatchesChangeNoByte) {
   EXPECT_EQ(one.counters.at("epis_per_dispatch"), 40);
   EXPECT_EQ(several.counters.at("epis_per_dispatch"), 3);
   EXPECT_EQ(test::compareViews(whole, batched).minIdentical, 1.0);
+}
+
+// interp's image slices, each coloured by its own texture vector: on the
+// GPU image slicer's path (dual, no blending) and on the host's (blended
+// intervals, hierarchical acquisition).
+TEST_F(GpuSpans, EqualTheCpuSpansForImageSlices) {
+  Scene scene = loadScene(test::assetPath("default.json"));
+  const ShearingCamera cam(*scene.camera, 96, 72, 9);
+  for (const char* spec : {"interp:dual", "interp:dual:track", "interp:hierarchical:1"}) {
+    auto cpu = makeRenderer(parseBackendSpec(std::string(spec) + ":cpu"), scene, PixelType::U8);
+    auto spans = makeRenderer(parseBackendSpec(std::string(spec) + ":spans"), scene, PixelType::U8);
+    const test::SetDifference d = test::compareViews(test::renderViews(*cpu, cam), test::renderViews(*spans, cam));
+    EXPECT_EQ(d.minClose, 1.0) << spec << ", identical " << d.minIdentical;
+    EXPECT_GE(d.minIdentical, 0.999) << spec;
+  }
 }
 
 // Scenes that need more than the diffuse pass are refused by name, not

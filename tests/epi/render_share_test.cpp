@@ -64,7 +64,7 @@ TEST_P(RenderShareTest, PartsJoinIntoTheWholeRender) {
 INSTANTIATE_TEST_SUITE_P(EveryBackend, RenderShareTest,
                          ::testing::Values("mvr:cpu", "mvr:spans", "mvr:quad", "mvr:strip", "mvr:exact",
                                            "mvr:strip:gpu-psts", "interp:dual", "interp:dual:track",
-                                           "interp:dual:track:gpu-psts", "interp:hierarchical:1", "svr",
+                                           "interp:dual:track:gpu-psts", "interp:dual:spans", "interp:hierarchical:1", "svr",
                                            "svr-layered", "deferred", "warp:dual"),
                          [](const auto& info) {
                            std::string name = info.param;
