@@ -1,21 +1,30 @@
 // GPU spans (--pst spans) against the CPU spans they reimplement. The
-// tolerance: every pixel within one 8-bit step (closeFraction 1.0). The
 // slice ends come from the GPU's transform and slicer and u from the GPU's
-// division, each within a few ulps of the CPU's, which moves a colour by far
-// less than a step; a span end or a depth tie would have to fall within
-// those ulps of a pixel centre to change which surface a pixel shows. On
-// llvmpipe the two are identical; on an H100, 99.999% of a 640x480 x 100
-// teacup set is.
+// division, each within a few ulps of the CPU's (the GPU slicer's ends: 4
+// ulps of the edge parameter times the edge, slice_table_test.cpp), which
+// moves a colour by far less than an 8-bit step. Only where a pixel centre
+// lies within those ulps of a span end (1e-4 px over a track ten times the
+// distance) can it show another surface: a pixel in thousands at most.
+// So: at least 99.9% of pixels within one step, and every one where GL runs
+// on the CPU, whose division is the CPU's (llvmpipe: identical sets). On an
+// H100: 99.999% identical at 640x480 x 100 views of the teacup, 1 pixel of
+// 6912 off over the long track.
 #include <gtest/gtest.h>
 
 #include "epi/backend.h"
 #include "epi/epi_rasterizer.h"
 #include "mvr/error.h"
+#include "mvr/gl/gl_api.h"
 #include "mvr/io/scene_io.h"
 #include "tests/support/render_helpers.h"
 
 namespace mvr {
 namespace {
+
+void expectSpansMatchCpu(const test::SetDifference& d, const std::string& label) {
+  EXPECT_GE(d.minClose, 0.999) << label << ", identical " << d.minIdentical;
+  if (gl::rendersOnCpu()) EXPECT_EQ(d.minClose, 1.0) << label << ", identical " << d.minIdentical;
+}
 
 class GpuSpans : public test::GlTest {
  protected:
@@ -31,7 +40,7 @@ TEST_F(GpuSpans, EqualTheCpuSpansInEveryPixelType) {
   const ShearingCamera cam(*scene.camera, 120, 90, 7);
   for (PixelType type : {PixelType::U8, PixelType::Srgb8, PixelType::F32}) {
     const test::SetDifference d = againstCpu(scene, cam, type);
-    EXPECT_EQ(d.minClose, 1.0) << "type " << int(type) << ", identical " << d.minIdentical;
+    expectSpansMatchCpu(d, "type " + std::to_string(int(type)));
     // Floats differ in their last bits where bytes round alike: 100 dB is
     // an error of 1e-5, 80 times a float's step at 1.
     if (type == PixelType::F32)
@@ -45,11 +54,11 @@ TEST_F(GpuSpans, EqualTheCpuSpansInEveryPixelType) {
 TEST_F(GpuSpans, EqualTheCpuSpansOverALongTrackAndOnAGrid) {
   Scene scene = loadScene(test::assetPath("cube.json"));
   const ShearingCamera grid(*scene.camera, 64, 48, 5, 3);
-  EXPECT_EQ(againstCpu(scene, grid, PixelType::U8).minClose, 1.0) << "grid";
+  expectSpansMatchCpu(againstCpu(scene, grid, PixelType::U8), "grid");
   scene.camera->trackLeft = -5.0 * scene.camera->distance;
   scene.camera->trackRight = 5.0 * scene.camera->distance;
   const ShearingCamera wide(*scene.camera, 96, 72, 5);
-  EXPECT_EQ(againstCpu(scene, wide, PixelType::U8).minClose, 1.0) << "track ten times the distance";
+  expectSpansMatchCpu(againstCpu(scene, wide, PixelType::U8), "track ten times the distance");
 }
 
 // A set in several dispatches fills the same EPIs as one dispatch, byte for
@@ -78,7 +87,7 @@ TEST_F(GpuSpans, EqualTheCpuSpansForImageSlices) {
     auto cpu = makeRenderer(parseBackendSpec(std::string(spec) + ":cpu"), scene, PixelType::U8);
     auto spans = makeRenderer(parseBackendSpec(std::string(spec) + ":spans"), scene, PixelType::U8);
     const test::SetDifference d = test::compareViews(test::renderViews(*cpu, cam), test::renderViews(*spans, cam));
-    EXPECT_EQ(d.minClose, 1.0) << spec << ", identical " << d.minIdentical;
+    expectSpansMatchCpu(d, spec);
     EXPECT_GE(d.minIdentical, 0.999) << spec;
   }
 }
