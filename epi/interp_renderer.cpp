@@ -7,6 +7,7 @@
 
 #include "mvr/baselines/source_layers.h"
 #include "mvr/error.h"
+#include "mvr/gl/gpu_clock.h"
 #include "mvr/parallel.h"
 #include "shading/shading_plan.h"
 #include "slicing/gpu/gpu_image_slicer.h"
@@ -274,15 +275,19 @@ class InterpRenderer final : public Renderer {
     for (double x : xs) {
       stats.counters["source_views"] += 1;
       const int first = store_.count();
+      gl::GpuClock::mark("acquire");
       const int added =
           sources_->render(sourceCamera(cam), {x, cam.rowY(row)}, options_.maxLayers, trackWidth(cam), stats, store_);
-      if (const int v = passesThrough() ? viewAt(cam, x) : -1; v >= 0)
+      if (const int v = passesThrough() ? viewAt(cam, x) : -1; v >= 0) {
+        ScopedStage s(stats.times, "source_readback");
         views.push_back({v, added > 0 ? store_.readColor(first) : Image(cam.width(), cam.height(), PixelType::F32)});
+      }
     }
     stats.counters["layers"] += double(store_.count());
     std::optional<GpuImageSlices> slices;
     {
       ScopedStage s(stats.times, "slicing");
+      gl::GpuClock::mark("image_slicing");
       slices.emplace(gpuSlicer_->build(store_, cam, {options_.overlap, options_.coalesce}));
     }
     countSlices(slices->table.sliceCount(), slices->pixels, stats);
