@@ -5,13 +5,14 @@
 // track tall, are the worst shape for it: 287K PSTs into 640x1000 EPIs
 // took the H100's rasterizer 139 ms of GPU time.
 //
-// A work group owns a tile of one EPI (columns x view rows) in on-chip
-// memory and walks the scanline's slices, a thread per slice, a span per
-// row, three times: the nearest depth of every pixel (atomic max of the
-// float's bits: depth is reversed, in (0, 1]); then the first slice in
-// table order that reaches it (atomic min of the slice's index), which is
-// the CPU's "strictly nearer replaces" rule; then the winner's colour,
-// shaded once per pixel. Tiles are written to a storage buffer in the
+// Per batch of scanlines, a first pass finds every slice's track (its ends
+// and pieces). Then a work group owns a tile of one EPI (columns x view
+// rows) in on-chip memory and walks the scanline's slices, a thread per
+// slice and a span per row, twice: the nearest depth of every pixel (atomic
+// max of the float's bits: depth is reversed, in (0, 1]); then the first
+// slice in table order that reaches it (atomic min of the slice's index),
+// which is the CPU's "strictly nearer replaces" rule. Last, each pixel's
+// winner is shaded once. Tiles are written to a storage buffer in the
 // stacked-EPI layout and copied into the readback ring.
 #include <algorithm>
 #include <array>
@@ -30,11 +31,6 @@
 namespace mvr {
 namespace {
 
-// Needs the slice library (PstGeometry::glslLibrary: End, sliceEnds, xAt).
-// Arithmetic is the CPU's, term for term, and `precise` where a fused
-// multiply-add would round otherwise; the GPU's division is within a few
-// ulps of the CPU's, so a pixel may differ by a step where a span's end or
-// a depth tie lands within that of a pixel centre.
 // What both passes know of a slice's track: its ends' x0 and dx, their
 // depths and 1/w, and its pieces as rows of views [begin, end) with the
 // piece's facing in bit 31 of end (epi/pst.cpp's pieces).
@@ -79,6 +75,12 @@ void main() {
 }
 )";
 
+// The tile pass; needs the slice library (PstGeometry::glslLibrary: End,
+// sliceEnds) and kTrack. Arithmetic is the CPU's, term for term, and
+// `precise` where a fused multiply-add would round otherwise; the GPU's
+// division is within a few ulps of the CPU's, so a pixel may differ by a
+// step where a span's end or a depth tie lands within that of a pixel
+// centre.
 const char* const kSpans = R"(
 layout(local_size_x = 256) in;
 layout(std430, binding = 5) readonly buffer Offsets { uint uOffsets[]; };
@@ -283,6 +285,19 @@ class GpuSpanRasterizer final : public EpiRasterizer {
   }
 
  private:
+  // Columns x rows of one work group's tile: whole rows of the EPI when
+  // four or more fit (the slices' walk is paid per row of a tile), else
+  // four rows of a part of it.
+  struct Tile {
+    int columns, rows;
+  };
+  Tile tileFor(int width) const {
+    const int columns = std::min(width, tile_ / 4);
+    return {columns, tile_ / columns};
+  }
+
+  // The share's scanlines in batches of at most gBatchBytes of EPIs: one
+  // batch is filled while the one before is copied out.
   void fill(const GpuVertices& v, const GpuSliceTable& table, const ShearingCamera& cam, int row, FrameSink& sink,
             RenderStats& stats) {
     if (v.recordStride != recordStride_) fail("GPU spans", "vertices carry another attribute count");
@@ -292,24 +307,8 @@ class GpuSpanRasterizer final : public EpiRasterizer {
     const int batch = int(std::clamp<size_t>(gBatchBytes / epiBytes, 1, size_t(std::min(lines.size(), 65535))));
     const Tile tile = tileFor(w);
     ReadbackRing ring(size_t(batch) * epiBytes);
-    for (gl::Buffer& b : outputs_)
-      if (outputBytes_ < size_t(batch) * epiBytes) b = gl::makeBuffer<std::byte>(nullptr, size_t(batch) * epiBytes);
-    outputBytes_ = std::max(outputBytes_, size_t(batch) * epiBytes);
     ImagePool pool;
-    if (table.sliceCount() > trackCapacity_) {
-      trackCapacity_ = table.sliceCount() + table.sliceCount() / 4;
-      trackBuffer_ = gl::makeBuffer<std::byte>(nullptr, trackCapacity_ * kTrackBytes);
-    }
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTracks, trackBuffer_.id());
-    if (v.hasVectors()) bindVectors(v);
-    gl::setUniform(tracks_, "uViews", float(n));
-    gl::setUniform(program_, "uViews", float(n));
-    gl::setUniform(program_, "uWidth", w);
-    gl::setUniform(program_, "uTileColumns", tile.columns);
-    gl::setUniform(program_, "uTileRows", tile.rows);
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, PstGeometry::kRecords, v.records.id());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, PstGeometry::kTriangles, v.triangles.id());
-    table.bind(PstGeometry::kSlices, PstGeometry::kOffsets);
+    bind(v, table, size_t(batch) * epiBytes, n, w, tile);
     int k = 0;
     for (int first = lines.begin; first < lines.end; first += batch, ++k) {
       const int count = std::min(batch, lines.end - first);
@@ -317,20 +316,7 @@ class GpuSpanRasterizer final : public EpiRasterizer {
       {
         ScopedStage s(stats.times, "raster");
         gl::GpuClock::mark("raster");
-        const uint32_t firstSlice = table.offsets()[size_t(first)];
-        const uint32_t slices = table.offsets()[size_t(first + count)] - firstSlice;
-        if (slices > 0) {
-          gl::UseProgram(tracks_.id());
-          gl::ProgramUniform1ui(tracks_.id(), gl::GetUniformLocation(tracks_.id(), "uFirst"), firstSlice);
-          gl::ProgramUniform1ui(tracks_.id(), gl::GetUniformLocation(tracks_.id(), "uCount"), slices);
-          gl::DispatchCompute((slices + 63) / 64, 1, 1);
-          gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        }
-        gl::UseProgram(program_.id());
-        gl::setUniform(program_, "uFirstScanline", first);
-        gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kEpis, out.id());
-        gl::DispatchCompute(GLuint((w + tile.columns - 1) / tile.columns), GLuint((n + tile.rows - 1) / tile.rows),
-                            GLuint(count));
+        dispatch(table, first, count, out, n, w, tile);
       }
       const std::vector<std::shared_ptr<Image>> epis = pool.take(count, w, n, type_);
       {
@@ -352,6 +338,48 @@ class GpuSpanRasterizer final : public EpiRasterizer {
     stats.counters["tile_rows"] = tile.rows;
   }
 
+  // Buffers sized for this set, and everything that is the same for each
+  // of its batches bound.
+  void bind(const GpuVertices& v, const GpuSliceTable& table, size_t batchBytes, int n, int w, const Tile& tile) {
+    for (gl::Buffer& b : outputs_)
+      if (outputBytes_ < batchBytes) b = gl::makeBuffer<std::byte>(nullptr, batchBytes);
+    outputBytes_ = std::max(outputBytes_, batchBytes);
+    if (table.sliceCount() > trackCapacity_) {
+      trackCapacity_ = table.sliceCount() + table.sliceCount() / 4;
+      trackBuffer_ = gl::makeBuffer<std::byte>(nullptr, trackCapacity_ * kTrackBytes);
+    }
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTracks, trackBuffer_.id());
+    if (v.hasVectors()) bindVectors(v);
+    gl::setUniform(tracks_, "uViews", float(n));
+    gl::setUniform(program_, "uViews", float(n));
+    gl::setUniform(program_, "uWidth", w);
+    gl::setUniform(program_, "uTileColumns", tile.columns);
+    gl::setUniform(program_, "uTileRows", tile.rows);
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, PstGeometry::kRecords, v.records.id());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, PstGeometry::kTriangles, v.triangles.id());
+    table.bind(PstGeometry::kSlices, PstGeometry::kOffsets);
+  }
+
+  // Scanlines [first, first + count): their slices' tracks, then their
+  // EPIs' tiles into `out`.
+  void dispatch(const GpuSliceTable& table, int first, int count, const gl::Buffer& out, int n, int w,
+                const Tile& tile) {
+    const uint32_t firstSlice = table.offsets()[size_t(first)];
+    const uint32_t slices = table.offsets()[size_t(first + count)] - firstSlice;
+    if (slices > 0) {
+      gl::UseProgram(tracks_.id());
+      gl::ProgramUniform1ui(tracks_.id(), gl::GetUniformLocation(tracks_.id(), "uFirst"), firstSlice);
+      gl::ProgramUniform1ui(tracks_.id(), gl::GetUniformLocation(tracks_.id(), "uCount"), slices);
+      gl::DispatchCompute((slices + 63) / 64, 1, 1);
+      gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    gl::UseProgram(program_.id());
+    gl::setUniform(program_, "uFirstScanline", first);
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kEpis, out.id());
+    gl::DispatchCompute(GLuint((w + tile.columns - 1) / tile.columns), GLuint((n + tile.rows - 1) / tile.rows),
+                        GLuint(count));
+  }
+
   // Image slices' vectors and their texels (a buffer texture, as the GL
   // passes sample them).
   void bindVectors(const GpuVertices& v) {
@@ -364,17 +392,6 @@ class GpuSpanRasterizer final : public EpiRasterizer {
     gl::TextureBuffer(texels_.id(), GL_RGBA32F, v.texelBuffer);
     gl::BindTextureUnit(kTexelUnit, texels_.id());
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kVectors, v.vectors.id());
-  }
-
-  // Columns x rows of one work group's tile: whole rows of the EPI when
-  // four or more fit (the slices' walk is paid per row of a tile), else
-  // four rows of a part of it.
-  struct Tile {
-    int columns, rows;
-  };
-  Tile tileFor(int width) const {
-    const int columns = std::min(width, tile_ / 4);
-    return {columns, tile_ / columns};
   }
 
   static constexpr GLuint kEpis = 6, kTracks = 7, kVectors = 8, kTexelUnit = 3;
