@@ -78,11 +78,19 @@ void ReadbackRing::readBuffer(GLuint buffer, size_t bytes, std::span<std::byte* 
       gl::GetNamedBufferSubData(buffer, GLintptr(k * each), GLsizeiptr(each), dsts[k]);
     return;
   }
+  const size_t at = reserve(bytes, dsts);
+  gl::CopyNamedBufferSubData(buffer, slots_[current_].buffer.id(), 0, GLintptr(at), GLsizeiptr(bytes));
+}
+
+// `bytes` of the current slot for one read, split evenly among dsts once
+// the batch lands; returns where in the slot's buffer the GPU writes them.
+size_t ReadbackRing::reserve(size_t bytes, std::span<std::byte* const> dsts) {
   Slot& slot = slots_[current_];
   if (slot.used + bytes > slotBytes_) fail("ReadbackRing", "a batch reads more than a slot holds");
-  gl::CopyNamedBufferSubData(buffer, slot.buffer.id(), 0, GLintptr(slot.used), GLsizeiptr(bytes));
-  for (size_t k = 0; k < dsts.size(); ++k) slot.copies.push_back({slot.used + k * each, each, dsts[k]});
+  const size_t at = slot.used, each = bytes / dsts.size();
+  for (size_t k = 0; k < dsts.size(); ++k) slot.copies.push_back({at + k * each, each, dsts[k]});
   slot.used += bytes;
+  return at;
 }
 
 // h rows from y, split evenly among dsts (one unless staged).
@@ -94,14 +102,10 @@ void ReadbackRing::read(const RenderTarget& target, GLuint framebuffer, int y, i
     readStoredPixels(y, target.width(), h, target.type(), dsts[0]);
     return;
   }
-  Slot& slot = slots_[current_];
-  if (slot.used + bytes > slotBytes_) fail("ReadbackRing", "a batch reads more than a slot holds");
-  gl::BindBuffer(GL_PIXEL_PACK_BUFFER, slot.buffer.id());
-  readStoredPixels(y, target.width(), h, target.type(), reinterpret_cast<void*>(slot.used));
+  const size_t at = reserve(bytes, dsts);
+  gl::BindBuffer(GL_PIXEL_PACK_BUFFER, slots_[current_].buffer.id());
+  readStoredPixels(y, target.width(), h, target.type(), reinterpret_cast<void*>(at));
   gl::BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-  const size_t each = bytes / dsts.size();
-  for (size_t k = 0; k < dsts.size(); ++k) slot.copies.push_back({slot.used + k * each, each, dsts[k]});
-  slot.used += bytes;
 }
 
 void ReadbackRing::submit(Done done) {

@@ -68,6 +68,7 @@ class ReadbackRing {
     Done done;
   };
   void read(const RenderTarget& target, GLuint framebuffer, int y, int h, std::span<std::byte* const> dsts);
+  size_t reserve(size_t bytes, std::span<std::byte* const> dsts);
   void finish(Slot& slot);
   void copyOut(const Slot& slot);
 
