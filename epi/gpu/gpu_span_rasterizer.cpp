@@ -32,8 +32,9 @@ namespace mvr {
 namespace {
 
 // What both passes know of a slice's track: its ends' x0 and dx, their
-// depths and 1/w, and its pieces as rows of views [begin, end) with the
-// piece's facing in bit 31 of end (epi/pst.cpp's pieces).
+// depths and 1/w, and its pieces (pstPieces: piece 0 in rows.xy, the one
+// past the edge-on view in rows.zw) as rows of views [begin, end) with the
+// piece's facing in bit 31 of end; a piece not drawn has no rows.
 const char* const kTrack = R"(
 struct Track { vec4 x; vec4 d; uvec4 rows; };
 layout(std430, binding = 7) buffer Tracks { Track uTracks[]; };
@@ -45,13 +46,12 @@ layout(std430, binding = 7) buffer Tracks { Track uTracks[]; };
 const char* const kTrackPass = R"(
 layout(local_size_x = 64) in;
 uniform uint uFirst, uCount;  // slices [uFirst, uFirst + uCount)
-void addPiece(inout uvec4 rows, inout int count, float top, float bottom, bool front, bool cull) {
-  if (!(bottom > top) || (!front && cull)) return;
-  uint views = uint(uViews);
-  uint begin = uint(max(0.0, ceil(top - 0.5))), end = uint(min(float(views), ceil(bottom - 0.5)));
-  uint facing = front ? 0x80000000u : 0u;
-  if (count == 0) rows.xy = uvec2(begin, end | facing); else rows.zw = uvec2(begin, end | facing);
-  count += 1;
+// Views whose row centre i + 0.5 lies in [top, bottom), with the facing
+// in bit 31 of the end; none where the piece is not drawn.
+uvec2 rowsOf(bool drawn, float top, float bottom, bool front) {
+  if (!drawn) return uvec2(0u);
+  uint begin = uint(max(0.0, ceil(top - 0.5))), end = uint(min(uViews, ceil(bottom - 0.5)));
+  return uvec2(begin, end | (front ? 0x80000000u : 0u));
 }
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -59,18 +59,9 @@ void main() {
   End e0, e1;
   uint word;
   sliceEnds(uFirst + i, e0, e1, word);
-  bool cull = (word >> 31) != 0u;
-  float n = uViews;
-  precise float dL = widthAt(e0, e1, 0.0), dR = widthAt(e0, e1, n);
-  uvec4 rows = uvec4(0u);
-  int count = 0;
-  if ((dL < 0.0 && dR > 0.0) || (dL > 0.0 && dR < 0.0)) {
-    precise float rStar = n * dL / (dL - dR);  // Halle 5.6.3: the edge-on view
-    addPiece(rows, count, 0.0, rStar, dL > 0.0, cull);
-    addPiece(rows, count, rStar, n, dR > 0.0, cull);
-  } else if (dL != 0.0 || dR != 0.0) {
-    addPiece(rows, count, 0.0, n, dL + dR > 0.0, cull);
-  }
+  PstPieces p = pstPieces(e0, e1, uViews, (word >> 31) != 0u);
+  uvec4 rows = uvec4(rowsOf(p.drawn.x, p.top.x, p.bottom.x, p.front.x),
+                     rowsOf(p.drawn.y, p.top.y, p.bottom.y, p.front.y));
   uTracks[uFirst + i] = Track(vec4(e0.x0, e0.dx, e1.x0, e1.dx), vec4(e0.depth, e1.depth, e0.invW, e1.invW), rows);
 }
 )";

@@ -56,6 +56,25 @@ void sliceEnds(uint s, out End e0, out End e1, out uint word) {
 }
 float xAt(End e, float r) { return e.x0 + (r - 0.5) * e.dx; }
 float widthAt(End e0, End e1, float r) { return xAt(e1, r) - xAt(e0, r); }
+
+// epi/pst.cpp's makePst over N = n views: piece 0 runs from row 0 to the
+// edge-on view r* where the i-edges cross (Halle 5.6.3), else to N; piece
+// 1 from r* to N when they cross. Each has its facing, and is drawn unless
+// it is empty or faces away from a culled triangle. `precise`: the CPU's
+// rounding, so that every pass finds the same r*.
+struct PstPieces { vec2 top, bottom; bvec2 front, drawn; bool split; };
+PstPieces pstPieces(End e0, End e1, float n, bool cull) {
+  PstPieces p;
+  precise float dL = widthAt(e0, e1, 0.0), dR = widthAt(e0, e1, n);
+  p.split = (dL < 0.0 && dR > 0.0) || (dL > 0.0 && dR < 0.0);
+  precise float rStar = p.split ? n * dL / (dL - dR) : n;
+  p.top = vec2(0.0, rStar);
+  p.bottom = vec2(rStar, n);
+  p.front = p.split ? bvec2(dL > 0.0, dR > 0.0) : bvec2(dL + dR > 0.0, false);
+  p.drawn = bvec2(p.bottom.x > p.top.x && (dL != 0.0 || dR != 0.0) && (p.front.x || !cull),
+                  p.split && p.bottom.y > p.top.y && (p.front.y || !cull));
+  return p;
+}
 )";
 
 // Per slice: its pieces (epi/pst.cpp) and their sliver counts
@@ -94,19 +113,10 @@ void main() {
   End e0, e1;
   uint word;
   sliceEnds(s, e0, e1, word);
-  bool cull = (word >> 31) != 0u;
-  float n = uViews, dL = widthAt(e0, e1, 0.0), dR = widthAt(e0, e1, n);
-  uint k0 = 0u, k1 = 0u, flags = 0u;
-  if ((dL < 0.0 && dR > 0.0) || (dL > 0.0 && dR < 0.0)) {
-    float rStar = n * dL / (dL - dR);  // Halle 5.6.3: the edge-on view
-    flags = 1u | (dL > 0.0 ? 2u : 0u) | (dR > 0.0 ? 4u : 0u);
-    if (rStar > 0.0 && (dL > 0.0 || !cull)) k0 = slivers(e0, e1, 0.0, rStar);
-    if (n > rStar && (dR > 0.0 || !cull)) k1 = slivers(e0, e1, rStar, n);
-  } else if (dL != 0.0 || dR != 0.0) {
-    bool front = dL + dR > 0.0;
-    flags = front ? 2u : 0u;
-    if (front || !cull) k0 = slivers(e0, e1, 0.0, n);
-  }
+  PstPieces pieces = pstPieces(e0, e1, uViews, (word >> 31) != 0u);
+  uint k0 = pieces.drawn.x ? slivers(e0, e1, pieces.top.x, pieces.bottom.x) : 0u;
+  uint k1 = pieces.drawn.y ? slivers(e0, e1, pieces.top.y, pieces.bottom.y) : 0u;
+  uint flags = (pieces.split ? 1u : 0u) | (pieces.front.x ? 2u : 0u) | (pieces.front.y ? 4u : 0u);
   uFirstVertex[i] = 6u * (k0 + k1);
   uPieces[i] = uvec2(k0 | (k1 << 16), (lo - uFirstScanline) | (flags << 16));
 }
@@ -148,14 +158,10 @@ PstVertex pullPstVertex() {
   p.slice = lo;
   p.triangle = uSlices[uFirstSlice + lo].x;
   p.material = float(word & 0x7FFFFFFFu);
-  float n = uViews, top = 0.0, bottom = n;
   bool second = local >= 6u * k0;
   if (second) local -= 6u * k0;
-  if ((flags & 1u) != 0u) {
-    float dL = widthAt(p.e0, p.e1, 0.0), dR = widthAt(p.e0, p.e1, n);
-    float rStar = n * dL / (dL - dR);
-    if (second) top = rStar; else bottom = rStar;
-  }
+  PstPieces pieces = pstPieces(p.e0, p.e1, uViews, false);
+  float top = second ? pieces.top.y : pieces.top.x, bottom = second ? pieces.bottom.y : pieces.bottom.x;
   p.front = (flags & (second ? 4u : 2u)) != 0u;
   uint slivers = second ? k1 : k0, corner = local % 6u;
   uint ruling = local / 6u + ((0x2Cu >> corner) & 1u);

@@ -39,9 +39,8 @@ void main() {
   uvec2 piece = uPieces[i];
   uint k0 = piece.x & 0xFFFFu, k1 = piece.x >> 16, flags = piece.y >> 16, k = 0u;
   if ((k0 | k1) != 0u && textureLayer(word) >= 0.0) {
-    float n = uViews, dL = widthAt(e0, e1, 0.0), bottom = n;
-    if ((flags & 1u) != 0u && k1 == 0u) bottom = n * dL / (dL - widthAt(e0, e1, n));
-    k = lengthFor(max(abs(dL), abs(widthAt(e0, e1, bottom))));
+    float n = uViews, bottom = k1 == 0u ? pstPieces(e0, e1, n, false).bottom.x : n;
+    k = lengthFor(max(abs(widthAt(e0, e1, 0.0)), abs(widthAt(e0, e1, bottom))));
   }
   uBase[i] = k == 0u ? 0u : 2u * k - 1u;
   uLength[i] = k;
