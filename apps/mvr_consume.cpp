@@ -40,12 +40,12 @@ int consume(int argc, char** argv) {
   mvr::FdStreamBuf buffer(mvr::openForReading(from));
   std::istream in(&buffer);
   mvr::EpiStreamReader reader(in);
-  mvr::preloadImageCodec();  // loads while the stream arrives
   const mvr::EpiStreamHeader& h = reader.header();
   const mvr::PixelType type = h.pixelType();
   std::optional<mvr::ShearingCamera> camera;  // checked before any output
   if (h.camera) camera.emplace(h.camera->spec, int(h.width), int(h.height), int(h.views), int(h.rows));
   if (format.empty()) format = mvr::isByteType(type) ? "png" : "exr";
+  if (format != "png") mvr::preloadImageCodec();  // loads while the stream arrives
   const size_t viewBytes = h.epiBytes() / h.views * h.height, rowBytes = h.epiBytes() * h.height;
   const mvr::ReorderMemory reorder =
       memory.reorder(viewBytes, mvr::BoundedTasks::defaultLimit(), out);

@@ -470,14 +470,15 @@ int runRender(int argc, char** argv, RenderCommand command) {
     if (mpi->rank() != 0) setProgressEnabled(false);
   }
 
-  // OpenImageIO (about 260 libraries) loads beside the scene's loading.
-  // Not later: dlopen holds the dynamic loader's lock, which GL start-up
-  // (its driver), the pool's start-up and llvmpipe's shader compiler (its
-  // symbol lookups) all take, so whatever runs beside the load waits for
-  // it unless it is pure computation like reading the scene. Started
-  // after GL, a one-view render took 0.78-0.82 s against 0.69-0.70 s.
+  // OpenImageIO (about 260 libraries) loads beside the scene's loading,
+  // for the files PNG is not (mvr/io/png_encoder.h writes PNGs). Not later:
+  // dlopen holds the dynamic loader's lock, which GL start-up (its driver),
+  // the pool's start-up and llvmpipe's shader compiler (its symbol
+  // lookups) all take, so whatever runs beside the load waits for it
+  // unless it is pure computation like reading the scene. Started after
+  // GL, a one-view render took 0.78-0.82 s against 0.69-0.70 s.
   startPool();
-  if (!streaming) preloadImageCodec();
+  if (!streaming && (format != "png" || f.depth)) preloadImageCodec();
   // Where start-up time goes, in the manifest (issue 15).
   StageTimes startup;
   Stopwatch phase, sinceStart;
@@ -653,7 +654,7 @@ int runRender(int argc, char** argv, RenderCommand command) {
   if (background) m["background"] = {(*background).r, (*background).g, (*background).b, (*background).a};
   m["timings_s"] = stats.times.seconds;
   m["timings_s"]["total"] = total.seconds();
-  startup.add("image_module_load", imageCodecLoadSeconds());
+  if (const double load = imageCodecLoadSeconds(); load > 0.0) startup.add("image_module_load", load);
   m["startup_s"] = startup.seconds;
   m["counters"] = stats.counters;
   m["notes"] = stats.notes;

@@ -9,6 +9,7 @@
 #include "mvr/error.h"
 #include "mvr/io/atomic_file.h"
 #include "mvr/io/image_codec.h"
+#include "mvr/io/png_encoder.h"
 
 namespace mvr {
 
@@ -58,6 +59,38 @@ Image floatFor(const Image& image, bool encode) {
   return out;
 }
 
+// A float sample as an integer file stores it: rounded, clamped (NaN to 0).
+template <typename T>
+T quantise(float v) {
+  constexpr float top = float(T(~T(0)));
+  return v >= 0.0f ? (v < 1.0f ? T(v * top + 0.5f) : T(~T(0))) : T(0);
+}
+
+// One row of pixels as the PNG stores it: bytes as they are, or floats
+// quantised to 8 bits or to 16 bits big-endian.
+std::span<const uint8_t> pngRow(const Image& pixels, int y, int bits, std::vector<uint8_t>& room) {
+  if (isByteType(pixels.type)) return {pixels.row(y), pixels.rowBytes()};
+  const float* v = reinterpret_cast<const float*>(pixels.row(y));
+  const size_t n = size_t(pixels.width) * 4;
+  room.resize(n * size_t(bits / 8));
+  for (size_t i = 0; i < n; ++i) {
+    if (bits == 8) {
+      room[i] = quantise<uint8_t>(v[i]);
+    } else {
+      const uint16_t q = quantise<uint16_t>(v[i]);
+      room[2 * i] = uint8_t(q >> 8);
+      room[2 * i + 1] = uint8_t(q);
+    }
+  }
+  return room;
+}
+
+void encodePng(const Image& pixels, const ImageEncoding& e, bool srgb, std::vector<unsigned char>& out) {
+  PngEncoder png({pixels.width, pixels.height, e.bits, e.pngLevel, srgb, e.attributes}, out);
+  std::vector<uint8_t> room;
+  for (int y = 0; y < pixels.height; ++y) png.addRow(pngRow(pixels, y, e.bits, room));
+}
+
 }  // namespace
 
 void writeImage(const Image& image, const std::string& path, const ImageEncoding& encoding) {
@@ -75,8 +108,15 @@ void writeImage(const Image& image, const std::string& path, const ImageEncoding
   // report a failed write (a full disk gave a truncated file and success).
   // A worker's buffer, reused from file to file (no fresh pages each time).
   thread_local std::vector<unsigned char> encoded;
-  if (std::string error = imageCodec().encode(pixels, format, encoding, srgb, encoded); !error.empty())
+  if (format == "png") {
+    try {
+      encodePng(pixels, encoding, srgb, encoded);
+    } catch (const Error& e) {
+      fail(path, e.what());
+    }
+  } else if (std::string error = imageCodec().encode(pixels, format, encoding, srgb, encoded); !error.empty()) {
     fail(path, error);
+  }
   writeFileAtomically(path, std::as_bytes(std::span(encoded)));
 }
 

@@ -39,6 +39,10 @@ std::string encode(const Image& pixels, const std::string& format, const ImageEn
     spec.attribute("compression", encoding.codec.empty() ? defaultCodec(format) : encoding.codec);
   }
   for (const auto& [name, value] : encoding.attributes) spec.attribute(name, value);
+  // Our images hold straight alpha (docs/CONVENTIONS.md). Unless told so,
+  // OpenImageIO takes them as premultiplied: it divided a PNG's colour by
+  // its alpha once more, and tags a TIFF's alpha as associated.
+  spec.attribute("oiio:UnassociatedAlpha", 1);
   const OIIO::TypeDesc memType = isByteType(pixels.type) ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT;
   out.clear();
   OIIO::Filesystem::IOVecOutput proxy(out);
@@ -66,7 +70,12 @@ std::string encodeDepth(const DepthImage& depth, const ImageEncoding& encoding, 
 }
 
 std::string decode(const std::string& path, Image& img) {
-  auto in = OIIO::ImageInput::open(path);
+  // Pixels as the file stores them: OpenImageIO premultiplies a PNG's
+  // colour by its alpha on reading unless told not to, and PNG, like our
+  // images, holds straight alpha.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
   if (!in) return "cannot read image: " + OIIO::geterror();
   const OIIO::ImageSpec& spec = in->spec();
   const bool isFloat = spec.format.basetype == OIIO::TypeDesc::FLOAT ||

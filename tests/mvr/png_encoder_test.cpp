@@ -1,0 +1,179 @@
+// Our PNG encoder (mvr/io/png_encoder.h) against OpenImageIO, which wrote
+// every PNG before it and still reads them: the same pixels, the same tags
+// and text, at every level and bit depth, for byte and float images.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include "mvr/color.h"
+#include "mvr/error.h"
+#include "mvr/io/image_codec.h"
+#include "mvr/io/image_file.h"
+#include "mvr/io/png_encoder.h"
+#include "tests/support/cli.h"
+
+namespace mvr {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A pattern with runs, gradients and noise, so every filter wins somewhere.
+Image bytePattern(int w, int h, PixelType type) {
+  Image img(w, h, type);
+  uint32_t seed = 12345;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 4; ++c) {
+        seed = seed * 1664525u + 1013904223u;
+        const int noise = int(seed >> 28);
+        img.row(y)[4 * x + c] = uint8_t(x < w / 3 ? 200 : x < 2 * w / 3 ? x * 3 + y * c : noise * 17);
+      }
+  return img;
+}
+
+// Float samples at and around every rounding edge, out of range, and NaN.
+Image floatEdges() {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::vector<float> values = {-1.0f, -0.0f, 0.0f, 0.5f / 255.0f, 0.49f / 255.0f, 0.51f / 255.0f, 0.5f,
+                               127.5f / 255.0f, 1.0f - 1e-7f, 1.0f, 1.5f, 1e30f, nan, 0.5f / 65535.0f, 0.25f};
+  for (int i = 0; i < 49; ++i) values.push_back(float(i) / 48.0f);
+  Image img(int(values.size()), 2, PixelType::F32);
+  float* v = reinterpret_cast<float*>(img.bytes.data());
+  for (size_t i = 0; i < values.size() * 8; ++i) v[i] = values[(i / 4 + i % 4 * 7) % values.size()];
+  return img;
+}
+
+fs::path emptyDir(const std::string& name) {
+  const fs::path dir = test::freshDir(name);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::vector<unsigned char> fileBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// Writes through OpenImageIO's encoder (the module), as writeImage did.
+void writeWithModule(const Image& pixels, const fs::path& path, const ImageEncoding& e, bool srgb) {
+  std::vector<unsigned char> out;
+  ASSERT_EQ(imageCodec().encode(pixels, "png", e, srgb, out), "");
+  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(out.data()), std::streamsize(out.size()));
+}
+
+TEST(PngEncoder, BytesRoundTripAtEveryLevel) {
+  const fs::path dir = emptyDir("png_bytes");
+  for (PixelType type : {PixelType::U8, PixelType::Srgb8}) {
+    const Image img = bytePattern(37, 23, type);
+    for (int level : {0, 1, 3, 4, 6, 9}) {
+      const fs::path file = dir / ("l" + std::to_string(level) + ".png");
+      writeImage(img, file.string(), {.pngLevel = level});
+      const Image back = readImage(file.string());
+      EXPECT_EQ(back.type, type) << "level " << level << ": the tag says how to read it";
+      EXPECT_EQ(back.bytes, img.bytes) << "level " << level;
+      EXPECT_EQ(readImageEncoding(file.string()).srgb, type == PixelType::Srgb8);
+    }
+  }
+}
+
+// The adaptive filters pay off on a gradient: the file is smaller than
+// with no filter at the same zlib level.
+TEST(PngEncoder, FiltersShrinkGradients) {
+  Image img(256, 64, PixelType::U8);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 256; ++x)
+      for (int c = 0; c < 4; ++c) img.row(y)[4 * x + c] = uint8_t(x + 3 * y + 50 * c);
+  std::vector<unsigned char> plain, filtered;
+  PngEncoder a({256, 64, 8, 3, true}, plain), b({256, 64, 8, 4, true}, filtered);
+  for (int y = 0; y < 64; ++y) {
+    a.addRow({img.row(y), img.rowBytes()});
+    b.addRow({img.row(y), img.rowBytes()});
+  }
+  ASSERT_TRUE(a.finished() && b.finished());
+  EXPECT_LT(filtered.size() * 2, plain.size());
+}
+
+// Float images quantised as OpenImageIO quantised them (round to nearest,
+// clamped, NaN to 0), to 8 and 16 bits, tagged sRGB or linear.
+TEST(PngEncoder, FloatsQuantisedAsOpenImageIoDid) {
+  const fs::path dir = emptyDir("png_floats");
+  const Image img = floatEdges();
+  for (int bits : {8, 16})
+    for (bool srgb : {true, false}) {
+      const std::string what = std::to_string(bits) + (srgb ? " bits sRGB" : " bits linear");
+      const ImageEncoding e{.bits = bits, .srgb = srgb};
+      const fs::path ours = dir / "ours.png", theirs = dir / "theirs.png";
+      writeImage(img, ours.string(), e);
+      const ImageEncoding stored = readImageEncoding(ours.string());
+      EXPECT_EQ(stored.bits, bits) << what;
+      EXPECT_EQ(stored.srgb, srgb) << what;
+      // The module gets what writeImage quantises: colour sRGB-encoded
+      // for an sRGB file, alpha linear.
+      Image encoded = img;
+      if (srgb) {
+        float* v = reinterpret_cast<float*>(encoded.bytes.data());
+        for (size_t i = 0; i < size_t(img.width) * img.height * 4; ++i)
+          if (i % 4 != 3) v[i] = srgbEncode(v[i]);
+      }
+      writeWithModule(encoded, theirs, e, srgb);
+      EXPECT_EQ(readImage(ours.string()).bytes, readImage(theirs.string()).bytes) << what;
+    }
+}
+
+// Images hold straight alpha, and so do the files: a half-transparent
+// pixel keeps its colour in every format (OpenImageIO had divided a PNG's
+// colour by alpha on writing and multiplied it back on reading).
+TEST(PngEncoder, StraightAlphaInEveryFormat) {
+  const fs::path dir = emptyDir("png_alpha");
+  Image img(3, 2, PixelType::F32);
+  float* v = reinterpret_cast<float*>(img.bytes.data());
+  for (int i = 0; i < 6; ++i) {
+    v[4 * i] = v[4 * i + 1] = v[4 * i + 2] = 0.4f;
+    v[4 * i + 3] = 0.5f;
+  }
+  for (const char* name : {"a.png", "a.tif", "a.exr"}) {
+    const std::string file = (dir / name).string();
+    writeImage(img, file, {.bits = std::string(name) == "a.exr" ? 32 : 8});
+    const glm::vec4 p = readImage(file).linear(1, 1);
+    EXPECT_NEAR(p.r, 0.4f, 0.01f) << name;
+    EXPECT_NEAR(p.a, 0.5f, 0.003f) << name;
+  }
+}
+
+TEST(PngEncoder, TextChunksReadBack) {
+  const fs::path file = emptyDir("png_text") / "quilt.png";
+  const std::string json = R"({"LKGAspect":1.33,"LKGColumns":2})";
+  writeImage(bytePattern(8, 4, PixelType::Srgb8), file.string(), {.attributes = {{"Exif:UserComment", json}}});
+  EXPECT_EQ(readImageAttribute(file.string(), "Exif:UserComment"), json);
+}
+
+TEST(PngEncoder, BadInputsAreOneLineErrorsAndLeaveNoFile) {
+  const fs::path dir = emptyDir("png_errors"), file = dir / "bad.png";
+  const Image img = bytePattern(8, 4, PixelType::U8);
+  for (const std::string& key : {std::string(), std::string(80, 'k'), std::string(" lead")}) {
+    try {
+      writeImage(img, file.string(), {.attributes = {{key, "v"}}});
+      ADD_FAILURE() << "key '" << key << "' accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(file.string() + ": "), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+    }
+    EXPECT_FALSE(fs::exists(file));
+    EXPECT_FALSE(fs::exists(file.string() + ".part"));
+  }
+  std::vector<unsigned char> out;
+  PngEncoder png({8, 1, 8, 1, true}, out);
+  const std::vector<uint8_t> row(png.rowBytes());
+  EXPECT_THROW(png.addRow(std::span(row).first(row.size() - 1)), Error);
+  png.addRow(row);
+  EXPECT_THROW(png.addRow(row), Error);
+  EXPECT_THROW(PngEncoder({0, 4, 8, 1, true}, out), Error);
+  EXPECT_THROW(PngEncoder({4, 4, 12, 1, true}, out), Error);
+}
+
+}  // namespace
+}  // namespace mvr
