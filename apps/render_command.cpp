@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
+#include <future>
 #include <iostream>
 #include <optional>
 
@@ -481,10 +482,25 @@ int runRender(int argc, char** argv, RenderCommand command) {
   if (!streaming && (format != "png" || f.depth)) preloadImageCodec();
   // Where start-up time goes, in the manifest (issue 15).
   StageTimes startup;
-  Stopwatch phase, sinceStart;
-  // Input problems first, before any GL or file work.
-  Scene scene = synthesize ? Scene{} : loadInputScene(scenePath, f.strict);
-  startup.add("scene", phase.restart());
+  Stopwatch sinceStart;
+  // The scene loads on a worker while GL starts here (a context belongs to
+  // the thread that made it): 143K triangles take 0.13 s, GL 0.08 s.
+  auto loading = std::async(std::launch::async, [&] {
+    const Stopwatch watch;
+    Scene loaded = synthesize ? Scene{} : loadInputScene(scenePath, f.strict);
+    return std::pair{std::move(loaded), watch.seconds()};
+  });
+  std::unique_ptr<GlContext> context;
+  try {
+    context = GlContext::create(platform);
+  } catch (...) {
+    (void)loading.get();  // input problems first: the scene's error, if it has one
+    throw;
+  }
+  startup.add("gl", sinceStart.seconds());
+  auto [scene, sceneSeconds] = loading.get();
+  startup.add("scene", sceneSeconds);
+  Stopwatch phase;
   if (const shading::ShadingPlan plan = shading::planShading(scene); plan.texture || plan.reflection)
     preloadImageCodec();  // a stream of a textured scene reads images too
   const double imagePlaneZ = f.camera.placeFocalPlane(scene);
@@ -500,8 +516,6 @@ int runRender(int argc, char** argv, RenderCommand command) {
   if (f.aa.views > 1 && views < 2) fail("--aa-views", "needs at least 2 views: one view has no track to sample");
   // Anti-aliasing: the back end renders the samples, a sink filters them.
   const ShearingCamera renderCamera = f.aa.active() ? supersampledCamera(camera, f.aa) : camera;
-  auto context = GlContext::create(platform);
-  startup.add("gl", phase.restart());
   const size_t referenceCount = synthesize ? references->references.size() : 0;
   auto renderer = synthesize ? makeWarpRenderer(std::move(references->references), type, f.warp)
                              : makeRenderer(choice, scene, type);
