@@ -3,10 +3,9 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <cstring>
-#include <memory>
-#include <mutex>
 
 #include "mvr/error.h"
 
@@ -14,8 +13,6 @@ namespace mvr {
 namespace {
 
 constexpr unsigned char kSignature[8] = {137, 'P', 'N', 'G', '\r', '\n', 26, '\n'};
-// IDAT chunks of at most this many bytes (a chunk may hold 2^31 - 1).
-constexpr size_t kIdatChunk = size_t(1) << 20;
 
 void put32(std::vector<unsigned char>& out, uint32_t v) {
   const unsigned char b[4] = {uint8_t(v >> 24), uint8_t(v >> 16), uint8_t(v >> 8), uint8_t(v)};
@@ -96,26 +93,48 @@ size_t filterCost(const uint8_t* filtered, size_t n) {
 
 }  // namespace
 
-// A deflate stream, kept for the next image: deflateInit allocates 256
-// KiB, and fresh pages per file cost page faults that serialise the
-// encoders on the kernel's memory lock.
-struct PngStream {
-  z_stream z{};
-  int level = -1, strategy = -1;
-  std::vector<unsigned char> idat;  // the compressed rows: idat[0, used)
-  size_t used = 0;
-};
-
 namespace {
 
-std::mutex& spareMutex() {
-  static std::mutex m;
-  return m;
+// A worker's raw deflate stream, reset for every segment: deflateInit
+// allocates 256 KiB, and fresh pages per file cost page faults that
+// serialise the encoders on the kernel's memory lock.
+struct Deflater {
+  z_stream z{};
+  int level = -1, strategy = -1;
+  std::vector<unsigned char> chunk;  // an IDAT chunk's data as it is made
+
+  ~Deflater() {
+    if (level >= 0) deflateEnd(&z);
+  }
+  z_stream& reset(int newLevel, int newStrategy) {
+    if (newLevel == level && newStrategy == strategy) {
+      deflateReset(&z);
+      return z;
+    }
+    if (level >= 0) deflateEnd(&z);
+    level = -1;
+    z = {};
+    // Raw deflate (no zlib wrapper): the encoder writes the one header and
+    // the one checksum of the file's stream around its segments.
+    if (deflateInit2(&z, newLevel, Z_DEFLATED, -15, 8, newStrategy) != Z_OK)
+      throw Error("cannot start a deflate stream");
+    level = newLevel;
+    strategy = newStrategy;
+    return z;
+  }
+};
+
+Deflater& deflater() {
+  thread_local Deflater d;
+  return d;
 }
 
-std::vector<std::unique_ptr<PngStream>>& spares() {
-  static std::vector<std::unique_ptr<PngStream>> s;
-  return s;
+// The zlib header (RFC 1950): deflate with a 32 KiB window, FLEVEL from
+// the level, FCHECK making the pair a multiple of 31.
+std::array<unsigned char, 2> zlibHeader(int level) {
+  const int flevel = level < 2 ? 0 : level < 6 ? 1 : level == 6 ? 2 : 3;
+  const unsigned cmf = 0x78, flg = unsigned(flevel) << 6;
+  return {uint8_t(cmf), uint8_t(flg + (31 - (cmf * 256 + flg) % 31) % 31)};
 }
 
 }  // namespace
@@ -126,92 +145,83 @@ PngEncoder::PngEncoder(const PngFormat& format, std::vector<unsigned char>& out)
   if (format.level < 0 || format.level > 9) throw Error("zlib level must be 0..9");
   rowBytes_ = size_t(format.width) * 4 * (format.bits / 8);
   rowsLeft_ = format.height;
+  segmentRows_ = int(std::clamp<size_t>(kSegmentBytes / (rowBytes_ + 1), 1, size_t(format.height)));
   putHeader(out_, format_);
-  previous_.assign(rowBytes_, 0);
-  filtered_.resize(rowBytes_ + 1);
-  if (pngFilters(format.level)) trial_.resize(rowBytes_ + 1);
-  // libpng's choice: Z_FILTERED where rows are filtered.
-  const int strategy = pngFilters(format.level) ? Z_FILTERED : Z_DEFAULT_STRATEGY;
-  {
-    std::lock_guard lock(spareMutex());
-    auto& s = spares();
-    for (auto it = s.begin(); it != s.end(); ++it)
-      if ((*it)->level == format.level && (*it)->strategy == strategy) {
-        stream_ = it->release();
-        s.erase(it);
-        break;
-      }
+  if (pngFilters(format.level)) {
+    previous_.assign(rowBytes_, 0);
+    trial_.resize(rowBytes_ + 1);
   }
-  if (stream_) {
-    deflateReset(&stream_->z);
-  } else {
-    auto stream = std::make_unique<PngStream>();
-    if (deflateInit2(&stream->z, format.level, Z_DEFLATED, 15, 8, strategy) != Z_OK)
-      throw Error("cannot start a deflate stream");
-    stream->level = format.level;
-    stream->strategy = strategy;
-    stream_ = stream.release();
-  }
-  stream_->used = 0;
+  staged_.reserve(size_t(segmentRows_) * (rowBytes_ + 1));
 }
 
-PngEncoder::~PngEncoder() {
-  if (stream_->idat.size() > (size_t(16) << 20)) stream_->idat = {};  // a huge image's room is not kept
-  std::lock_guard lock(spareMutex());
-  if (spares().size() < 64) {
-    spares().emplace_back(stream_);
-  } else {
-    deflateEnd(&stream_->z);
-    delete stream_;
-  }
-}
-
-void PngEncoder::filterRow(std::span<const uint8_t> row) {
-  const size_t bpp = 4 * size_t(format_.bits / 8);
+void PngEncoder::stageRow(std::span<const uint8_t> row) {
+  const size_t at = staged_.size();
+  staged_.resize(at + rowBytes_ + 1);
+  uint8_t* out = staged_.data() + at;
   if (!pngFilters(format_.level)) {
-    filtered_[0] = 0;
-    std::memcpy(filtered_.data() + 1, row.data(), rowBytes_);
+    out[0] = 0;
+    std::memcpy(out + 1, row.data(), rowBytes_);
     return;
   }
+  const size_t bpp = 4 * size_t(format_.bits / 8);
   size_t best = SIZE_MAX;
   for (int type = 0; type <= 4; ++type) {
     applyFilter(type, row.data(), previous_.data(), rowBytes_, bpp, trial_.data());
     if (const size_t cost = filterCost(trial_.data() + 1, rowBytes_); cost < best) {
       best = cost;
-      filtered_.swap(trial_);
+      std::memcpy(out, trial_.data(), rowBytes_ + 1);
     }
   }
   std::memcpy(previous_.data(), row.data(), rowBytes_);
 }
 
-void PngEncoder::deflateRow(bool last) {
-  z_stream& z = stream_->z;
-  std::vector<unsigned char>& idat = stream_->idat;
-  z.next_in = filtered_.data();
-  z.avail_in = uInt(filtered_.size());
-  for (;;) {
-    if (stream_->used == idat.size()) idat.resize(std::max<size_t>(size_t(64) << 10, idat.size() * 2));
-    z.next_out = idat.data() + stream_->used;
-    z.avail_out = uInt(std::min<size_t>(idat.size() - stream_->used, UINT32_MAX));
-    const int result = deflate(&z, last ? Z_FINISH : Z_NO_FLUSH);
-    stream_->used = idat.size() - z.avail_out;
-    if (result == Z_STREAM_END) return;
-    if (result != Z_OK && result != Z_BUF_ERROR) throw Error("deflate failed");
-    if (!last && z.avail_in == 0) return;
+// The staged rows as one IDAT chunk: deflated on their own, ending on a
+// byte boundary (a sync flush) so that the next segment's blocks follow.
+void PngEncoder::deflateSegment(bool last) {
+  Deflater& d = deflater();
+  z_stream& z = d.reset(format_.level, pngFilters(format_.level) ? Z_FILTERED : Z_DEFAULT_STRATEGY);
+  std::vector<unsigned char>& chunk = d.chunk;
+  const bool first = !started_;
+  started_ = true;
+  chunk.resize(deflateBound(&z, uLong(staged_.size())) + 16);
+  size_t used = 0;
+  if (first) {
+    const auto header = zlibHeader(format_.level);
+    chunk[0] = header[0];
+    chunk[1] = header[1];
+    used = 2;
   }
+  if (!dictionary_.empty()) deflateSetDictionary(&z, dictionary_.data(), uInt(dictionary_.size()));
+  z.next_in = staged_.data();
+  z.avail_in = uInt(staged_.size());
+  for (;;) {
+    z.next_out = chunk.data() + used;
+    z.avail_out = uInt(chunk.size() - used);
+    const int result = deflate(&z, last ? Z_FINISH : Z_SYNC_FLUSH);
+    used = chunk.size() - z.avail_out;
+    if (result != Z_OK && result != Z_STREAM_END && result != Z_BUF_ERROR) throw Error("deflate failed");
+    if (last ? result == Z_STREAM_END : z.avail_in == 0 && z.avail_out > 0) break;
+    chunk.resize(chunk.size() * 2);
+  }
+  adler_ = adler32(first ? adler32(0, nullptr, 0) : adler_, staged_.data(), uInt(staged_.size()));
+  const size_t keep = std::min(staged_.size(), kDictionaryRows * (rowBytes_ + 1));
+  dictionary_.assign(staged_.end() - std::ptrdiff_t(keep), staged_.end());
+  staged_.clear();
+  if (last) {
+    chunk.resize(used);
+    put32(chunk, uint32_t(adler_));
+    used = chunk.size();
+  }
+  putChunk(out_, "IDAT", std::span(chunk.data(), used));
 }
 
 void PngEncoder::addRow(std::span<const uint8_t> samples) {
   if (rowsLeft_ == 0) throw Error("more rows than the image has");
   if (samples.size() != rowBytes_) throw Error("a row of the wrong length");
-  filterRow(samples);
+  stageRow(samples);
   --rowsLeft_;
-  deflateRow(rowsLeft_ == 0);
-  if (rowsLeft_ > 0) return;
-  const std::span<const unsigned char> idat(stream_->idat.data(), stream_->used);
-  for (size_t at = 0; at < idat.size(); at += kIdatChunk)
-    putChunk(out_, "IDAT", idat.subspan(at, std::min(kIdatChunk, idat.size() - at)));
-  putChunk(out_, "IEND", {});
+  if (rowsLeft_ == 0 || staged_.size() == size_t(segmentRows_) * (rowBytes_ + 1)) deflateSegment(rowsLeft_ == 0);
+  if (rowsLeft_ == 0) putChunk(out_, "IEND", {});
 }
 
 }  // namespace mvr

@@ -24,35 +24,48 @@ struct PngFormat {
   std::vector<std::pair<std::string, std::string>> text = {};
 };
 
-struct PngStream;  // a deflate stream and its output, reused across images
-
 class PngEncoder {
  public:
   // Writes the signature and the chunks before the pixels into out
-  // (cleared). Throws mvr::Error with the reason (the caller names the
-  // file) for a format PNG cannot store.
+  // (cleared); the rest follows as rows come, the last row finishing the
+  // file. Throws mvr::Error with the reason (the caller names the file)
+  // for a format PNG cannot store. out must outlive the encoder.
   PngEncoder(const PngFormat& format, std::vector<unsigned char>& out);
-  ~PngEncoder();
-  PngEncoder(const PngEncoder&) = delete;
-  PngEncoder& operator=(const PngEncoder&) = delete;
 
   // The next row, top first: width * 4 samples as the file stores them
-  // (bytes, or 16-bit values big-endian). The last row finishes the file.
+  // (bytes, or 16-bit values big-endian).
   void addRow(std::span<const uint8_t> samples);
   // Bytes of one row as addRow takes it.
   size_t rowBytes() const { return rowBytes_; }
   bool finished() const { return rowsLeft_ == 0; }
 
+  // Rows are deflated in segments of about this many bytes, each by a
+  // deflate stream reset for it and ended by a sync flush, stored as one
+  // IDAT chunk: an encoder holds one segment, not a deflate stream's 256
+  // KiB, so a thousand views can be encoded side by side as their rows
+  // arrive, and a file's bytes depend on its pixels alone, however they
+  // were fed. A segment starts from the last kDictionaryRows rows of the
+  // one before as its history: a row's best match is mostly the row
+  // above. Measured on a rendered 640x480 teacup view at level 1: 64 KiB
+  // segments with 2 rows of history 66.1 KB in 2.7 ms, OpenImageIO's
+  // libpng 66.8 KB in 2.9-3.5 ms; with no history 69.8 KB, with 32 KiB of
+  // it 65.4 KB in 3.4 ms (the history is hashed again per segment).
+  static constexpr size_t kSegmentBytes = size_t(64) << 10;
+  static constexpr size_t kDictionaryRows = 2;
+
  private:
-  void filterRow(std::span<const uint8_t> samples);
-  void deflateRow(bool last);
+  void stageRow(std::span<const uint8_t> row);
+  void deflateSegment(bool last);
 
   PngFormat format_;
   std::vector<unsigned char>& out_;
   size_t rowBytes_ = 0;
-  int rowsLeft_ = 0;
-  std::vector<uint8_t> previous_, filtered_, trial_;  // filter byte + row
-  PngStream* stream_ = nullptr;
+  int rowsLeft_ = 0, segmentRows_ = 1;
+  std::vector<uint8_t> staged_;           // filtered rows (filter byte + row) not yet deflated
+  std::vector<uint8_t> dictionary_;       // the end of the last segment, the next one's history
+  std::vector<uint8_t> previous_, trial_;  // the adaptive filters' rows
+  unsigned long adler_ = 0;                // the stream's checksum so far
+  bool started_ = false;                   // the zlib header is out
 };
 
 // Row filters: none at the fast levels, the adaptive choice (libpng's

@@ -65,18 +65,45 @@ void writeWithModule(const Image& pixels, const fs::path& path, const ImageEncod
   std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(out.data()), std::streamsize(out.size()));
 }
 
+// One segment (37 x 23), many (300 x 200: 54 rows a segment, 4 IDAT
+// chunks) and rows longer than a segment (17000 wide: a row a segment),
+// at every kind of level: stored, fast, filtered.
 TEST(PngEncoder, BytesRoundTripAtEveryLevel) {
   const fs::path dir = emptyDir("png_bytes");
-  for (PixelType type : {PixelType::U8, PixelType::Srgb8}) {
-    const Image img = bytePattern(37, 23, type);
-    for (int level : {0, 1, 3, 4, 6, 9}) {
-      const fs::path file = dir / ("l" + std::to_string(level) + ".png");
-      writeImage(img, file.string(), {.pngLevel = level});
-      const Image back = readImage(file.string());
-      EXPECT_EQ(back.type, type) << "level " << level << ": the tag says how to read it";
-      EXPECT_EQ(back.bytes, img.bytes) << "level " << level;
-      EXPECT_EQ(readImageEncoding(file.string()).srgb, type == PixelType::Srgb8);
+  for (PixelType type : {PixelType::U8, PixelType::Srgb8})
+    for (const glm::ivec2 size : {glm::ivec2(37, 23), glm::ivec2(300, 200), glm::ivec2(17000, 3)}) {
+      const Image img = bytePattern(size.x, size.y, type);
+      for (int level : {0, 1, 3, 4, 6, 9}) {
+        const std::string what = std::to_string(size.x) + " wide, level " + std::to_string(level);
+        const fs::path file = dir / ("l" + std::to_string(level) + ".png");
+        writeImage(img, file.string(), {.pngLevel = level});
+        const Image back = readImage(file.string());
+        EXPECT_EQ(back.type, type) << what << ": the tag says how to read it";
+        EXPECT_EQ(back.bytes, img.bytes) << what;
+        EXPECT_EQ(readImageEncoding(file.string()).srgb, type == PixelType::Srgb8);
+      }
     }
+}
+
+// Encoders fed side by side, row by row, on one thread (as views are fed
+// from EPIs) write the bytes each writes alone: a file depends on its
+// pixels, not on what else was encoded meanwhile.
+TEST(PngEncoder, InterleavedEncodersWriteWhatEachWritesAlone) {
+  const fs::path dir = emptyDir("png_interleaved");
+  for (int level : {1, 6}) {
+    const Image a = bytePattern(300, 200, PixelType::Srgb8), b = bytePattern(200, 300, PixelType::Srgb8);
+    writeImage(a, (dir / "a.png").string(), {.pngLevel = level});
+    writeImage(b, (dir / "b.png").string(), {.pngLevel = level});
+    std::vector<unsigned char> outA, outB;
+    PngEncoder encA({.width = 300, .height = 200, .level = level}, outA);
+    PngEncoder encB({.width = 200, .height = 300, .level = level}, outB);
+    for (int y = 0; y < 300; ++y) {
+      if (y < 200) encA.addRow({a.row(y), a.rowBytes()});
+      encB.addRow({b.row(y), b.rowBytes()});
+    }
+    ASSERT_TRUE(encA.finished() && encB.finished());
+    EXPECT_EQ(outA, fileBytes(dir / "a.png")) << "level " << level;
+    EXPECT_EQ(outB, fileBytes(dir / "b.png")) << "level " << level;
   }
 }
 
