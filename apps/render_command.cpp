@@ -30,6 +30,7 @@
 #include "mvr/io/fd_stream.h"
 #include "mvr/io/image_codec.h"
 #include "mvr/io/image_set.h"
+#include "mvr/io/png_views.h"
 #include "mvr/io/rgbd_set.h"
 #include "mvr/io/scene_io.h"
 #include "mvr/parallel.h"
@@ -588,6 +589,7 @@ int runRender(int argc, char** argv, RenderCommand command) {
   std::vector<std::unique_ptr<FrameSink>> chain;
   FrameSink* sink = &writer;
   const FrameTranspose* transpose = nullptr;
+  bool pngRows = false;  // EPIs straight into the views' PNG encoders
   std::optional<SplitOutput> split;
   if (mpi) {
     // Set-up is done on every rank once they agree; then each renders its share.
@@ -608,7 +610,12 @@ int runRender(int argc, char** argv, RenderCommand command) {
     if (quilt && f.quiltOnly) sink = quilt.get();
     else if (quilt) sink = chain.emplace_back(std::make_unique<TeeSink>(std::vector<FrameSink*>{&writer, quilt.get()})).get();
     // Reorder only when the renderer's natural order is not the one asked for.
-    if (renderer->order() == FrameOrder::Epi && order == "view") {
+    if (renderer->order() == FrameOrder::Epi && order == "view" && !quilt && !scratch &&
+        EpisToPngViews::handles(writer.manifest(), type)) {
+      // The views encoded as their rows come; no volume.
+      sink = chain.emplace_back(std::make_unique<EpisToPngViews>(writer, type)).get();
+      pngRows = true;
+    } else if (renderer->order() == FrameOrder::Epi && order == "view") {
       auto reorderer = std::make_unique<EpisToViews>(*sink, width, height, views, type, reorder);
       transpose = &reorderer->transpose();
       sink = chain.emplace_back(std::move(reorderer)).get();
@@ -683,9 +690,14 @@ int runRender(int argc, char** argv, RenderCommand command) {
     if (!quiltLayout->preset.empty()) m["quilt_layout"]["preset"] = quiltLayout->preset;
   }
   if (transpose)
-    m["reorder"] = {{"budget_bytes", reorder.budget},
+    m["reorder"] = {{"method", transpose->usesScratch() ? "scratch file" : "volume in memory"},
+                    {"budget_bytes", reorder.budget},
                     {"scratch_file", transpose->usesScratch()},
                     {"frames_per_pass", transpose->outputsPerPass()}};
+  if (pngRows)
+    m["reorder"] = {{"method", "EPI rows into the views' PNG encoders"},
+                    {"budget_bytes", reorder.budget},
+                    {"scratch_file", false}};
   if (!lut.empty()) m["predistortion"] = f.predistort;
   if (f.depth) {
     m["timings_s"]["color"] = colorSeconds;

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "mvr/error.h"
+#include "mvr/io/atomic_file.h"
 #include "mvr/io/image_file.h"
 
 namespace mvr {
@@ -95,6 +96,12 @@ void ImageSetWriter::putView(int row, int view, const Image& image) {
 void ImageSetWriter::putExtra(const std::string& name, const Image& image,
                               std::vector<std::pair<std::string, std::string>> attributes) {
   put(name, image, std::move(attributes));
+}
+
+void ImageSetWriter::putEncoded(const std::string& name, std::vector<unsigned char> bytes) {
+  submit(name, [bytes = std::move(bytes)](const std::string& path) {
+    writeFileAtomically(path, std::as_bytes(std::span(bytes)));
+  });
 }
 
 void ImageSetWriter::putEpi(int row, int scanline, const Image& epi) {

@@ -34,6 +34,9 @@ class ImageSetWriter final : public FrameSink {
   // with metadata attributes (ImageEncoding::attributes).
   void putExtra(const std::string& name, const Image& image,
                 std::vector<std::pair<std::string, std::string>> attributes = {});
+  // A file of the set encoded elsewhere (mvr/io/png_views.h): written on
+  // the pool like the rest, removed like the rest on failure.
+  void putEncoded(const std::string& name, std::vector<unsigned char> bytes);
   // What commit() writes; fill its info before.
   Manifest& manifest() { return manifest_; }
   // Waits until every image put so far is on disk; rethrows an encoding

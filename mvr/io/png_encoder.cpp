@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 
 #include "mvr/error.h"
 
@@ -151,13 +152,13 @@ PngEncoder::PngEncoder(const PngFormat& format, std::vector<unsigned char>& out)
     previous_.assign(rowBytes_, 0);
     trial_.resize(rowBytes_ + 1);
   }
-  staged_.reserve(size_t(segmentRows_) * (rowBytes_ + 1));
 }
 
 void PngEncoder::stageRow(std::span<const uint8_t> row) {
-  const size_t at = staged_.size();
-  staged_.resize(at + rowBytes_ + 1);
-  uint8_t* out = staged_.data() + at;
+  // Not zero-filled: every byte is written before it is read.
+  if (!staged_) staged_ = std::make_unique_for_overwrite<uint8_t[]>((kDictionaryRows + size_t(segmentRows_)) * (rowBytes_ + 1));
+  uint8_t* out = staged_.get() + stagedEnd_;
+  stagedEnd_ += rowBytes_ + 1;
   if (!pngFilters(format_.level)) {
     out[0] = 0;
     std::memcpy(out + 1, row.data(), rowBytes_);
@@ -183,7 +184,8 @@ void PngEncoder::deflateSegment(bool last) {
   std::vector<unsigned char>& chunk = d.chunk;
   const bool first = !started_;
   started_ = true;
-  chunk.resize(deflateBound(&z, uLong(staged_.size())) + 16);
+  const std::span<const uint8_t> rows(staged_.get() + history_, stagedEnd_ - history_);
+  chunk.resize(deflateBound(&z, uLong(rows.size())) + 16);
   size_t used = 0;
   if (first) {
     const auto header = zlibHeader(format_.level);
@@ -191,9 +193,9 @@ void PngEncoder::deflateSegment(bool last) {
     chunk[1] = header[1];
     used = 2;
   }
-  if (!dictionary_.empty()) deflateSetDictionary(&z, dictionary_.data(), uInt(dictionary_.size()));
-  z.next_in = staged_.data();
-  z.avail_in = uInt(staged_.size());
+  if (history_ > 0) deflateSetDictionary(&z, staged_.get(), uInt(history_));
+  z.next_in = const_cast<uint8_t*>(rows.data());  // zlib's API is not const
+  z.avail_in = uInt(rows.size());
   for (;;) {
     z.next_out = chunk.data() + used;
     z.avail_out = uInt(chunk.size() - used);
@@ -203,11 +205,13 @@ void PngEncoder::deflateSegment(bool last) {
     if (last ? result == Z_STREAM_END : z.avail_in == 0 && z.avail_out > 0) break;
     chunk.resize(chunk.size() * 2);
   }
-  adler_ = adler32(first ? adler32(0, nullptr, 0) : adler_, staged_.data(), uInt(staged_.size()));
-  const size_t keep = std::min(staged_.size(), kDictionaryRows * (rowBytes_ + 1));
-  dictionary_.assign(staged_.end() - std::ptrdiff_t(keep), staged_.end());
-  staged_.clear();
+  adler_ = adler32(first ? adler32(0, nullptr, 0) : adler_, rows.data(), uInt(rows.size()));
+  // The segment's last rows are the next one's history.
+  history_ = std::min(stagedEnd_, kDictionaryRows * (rowBytes_ + 1));
+  std::memmove(staged_.get(), staged_.get() + stagedEnd_ - history_, history_);
+  stagedEnd_ = history_;
   if (last) {
+    staged_.reset();
     chunk.resize(used);
     put32(chunk, uint32_t(adler_));
     used = chunk.size();
@@ -220,7 +224,7 @@ void PngEncoder::addRow(std::span<const uint8_t> samples) {
   if (samples.size() != rowBytes_) throw Error("a row of the wrong length");
   stageRow(samples);
   --rowsLeft_;
-  if (rowsLeft_ == 0 || staged_.size() == size_t(segmentRows_) * (rowBytes_ + 1)) deflateSegment(rowsLeft_ == 0);
+  if (rowsLeft_ == 0 || stagedEnd_ - history_ == size_t(segmentRows_) * (rowBytes_ + 1)) deflateSegment(rowsLeft_ == 0);
   if (rowsLeft_ == 0) putChunk(out_, "IEND", {});
 }
 

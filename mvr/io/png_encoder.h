@@ -6,6 +6,7 @@
 // stream of filtered rows (RFC 2083); the rows are fed one at a time, so
 // an image can be encoded as its rows arrive.
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <utility>
@@ -43,14 +44,16 @@ class PngEncoder {
   // deflate stream reset for it and ended by a sync flush, stored as one
   // IDAT chunk: an encoder holds one segment, not a deflate stream's 256
   // KiB, so a thousand views can be encoded side by side as their rows
-  // arrive, and a file's bytes depend on its pixels alone, however they
-  // were fed. A segment starts from the last kDictionaryRows rows of the
-  // one before as its history: a row's best match is mostly the row
-  // above. Measured on a rendered 640x480 teacup view at level 1: 64 KiB
-  // segments with 2 rows of history 66.1 KB in 2.7 ms, OpenImageIO's
-  // libpng 66.8 KB in 2.9-3.5 ms; with no history 69.8 KB, with 32 KiB of
-  // it 65.4 KB in 3.4 ms (the history is hashed again per segment).
-  static constexpr size_t kSegmentBytes = size_t(64) << 10;
+  // arrive (mvr/io/png_views.h), and a file's bytes depend on its pixels
+  // alone, however they were fed. A segment starts from the last
+  // kDictionaryRows rows of the one before as its history: a row's best
+  // match is mostly the row above. Measured at level 1 on the rendered
+  // 143K teacup (docs/BENCHMARKS.md): a 640x480 view in 2.0 ms and 66.7
+  // KB (libpng through OpenImageIO: 2.9 ms, 66.8 KB; no history: 74.6 KB;
+  // 32 KiB of it: 3.7 ms, the history hashed again per segment); 1000
+  // views of 160x140 fed row by row side by side, 0.29 ms a view (16 KiB
+  // segments 0.25 ms, 64 KiB 0.38 ms: a segment's first touch).
+  static constexpr size_t kSegmentBytes = size_t(32) << 10;
   static constexpr size_t kDictionaryRows = 2;
 
  private:
@@ -61,8 +64,10 @@ class PngEncoder {
   std::vector<unsigned char>& out_;
   size_t rowBytes_ = 0;
   int rowsLeft_ = 0, segmentRows_ = 1;
-  std::vector<uint8_t> staged_;           // filtered rows (filter byte + row) not yet deflated
-  std::vector<uint8_t> dictionary_;       // the end of the last segment, the next one's history
+  // Filtered rows (filter byte + row): [0, history_) the last rows of the
+  // segment before, [history_, stagedEnd_) those not yet deflated.
+  std::unique_ptr<uint8_t[]> staged_;
+  size_t history_ = 0, stagedEnd_ = 0;
   std::vector<uint8_t> previous_, trial_;  // the adaptive filters' rows
   unsigned long adler_ = 0;                // the stream's checksum so far
   bool started_ = false;                   // the zlib header is out

@@ -1,0 +1,51 @@
+#pragma once
+// A row of views written as PNG files straight from its EPIs: view i's
+// file row j is EPI j's row i, so each arriving EPI hands one row to every
+// view's encoder (mvr/io/png_encoder.h), and each file is written as soon
+// as its last row is in. Where EpisToViews (epi/volume.h) first fills the
+// whole W x H x N volume (memory, its zero-fill and a copy of every pixel)
+// and encodes after the last EPI, this encodes while the EPIs come and
+// holds the views' compressed bytes and one deflate segment each: what a
+// whole MVR render to PNG costs beyond rendering (issue 15).
+//
+// The files are byte for byte those ImageSetWriter::putView writes for
+// the same views. For byte images into 8-bit PNG files (handles()); other
+// encodings go through EpisToViews.
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "mvr/io/image_set.h"
+#include "mvr/io/png_encoder.h"
+
+namespace mvr {
+
+class EpisToPngViews final : public FrameSink {
+ public:
+  // The set's files are 8-bit PNGs of images of this type as stored.
+  static bool handles(const Manifest& manifest, PixelType type);
+
+  // The writer names, writes and records the files (putEncoded); its
+  // manifest gives the size, the views per row and the zlib level.
+  EpisToPngViews(ImageSetWriter& writer, PixelType type);
+  // EPIs of a row in any order (early ones are held until their turn),
+  // rows one after another.
+  void putEpi(int row, int scanline, const Image& epi) override;
+  // Throws if a row was left with scanlines missing.
+  void finish() override;
+
+ private:
+  void startRow(int row);
+  void feed(const Image& epi);
+
+  ImageSetWriter& writer_;
+  PngFormat format_;
+  PixelType type_;
+  int views_;
+  int row_ = -1, next_ = 0;  // the row being encoded, its next scanline
+  std::vector<std::vector<unsigned char>> files_;  // view i's encoded bytes so far
+  std::vector<std::unique_ptr<PngEncoder>> encoders_;
+  std::map<int, Image> early_;  // scanlines that came before their turn
+};
+
+}  // namespace mvr

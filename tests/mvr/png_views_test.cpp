@@ -1,0 +1,109 @@
+// Views encoded straight from EPIs (mvr/io/png_views.h): the files must be
+// the bytes ImageSetWriter writes for the same views, whatever order the
+// EPIs come in, and a render that ends early must not pass for complete.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "mvr/error.h"
+#include "mvr/io/png_views.h"
+#include "tests/support/cli.h"
+
+namespace mvr {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<unsigned char> fileBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+Manifest manifestFor(int width, int height, int views, int rows, int level) {
+  return {.views = views, .rows = rows, .width = width, .height = height, .compression = level};
+}
+
+// EPIs with runs (so the files deflate) and noise; epis[row][scanline].
+std::vector<std::vector<Image>> makeEpis(int width, int height, int views, int rows, PixelType type) {
+  std::mt19937 rng(11);
+  std::vector<std::vector<Image>> epis(static_cast<size_t>(rows));
+  for (auto& row : epis)
+    for (int j = 0; j < height; ++j) {
+      Image epi(width, views, type);
+      for (int i = 0; i < views; ++i)
+        for (int x = 0; x < width * 4; ++x) epi.row(i)[x] = uint8_t(x < width * 2 ? (x / 4 + i + j) : rng());
+      row.push_back(std::move(epi));
+    }
+  return epis;
+}
+
+// 2 rows of 40 views of 301 x 90: 3 PNG segments a view. The views
+// through ImageSetWriter::putView (transposed here by hand) and straight
+// from the EPIs, in order and shuffled within each row: the same files.
+TEST(EpisToPngViews, FilesAreThoseOfTheViews) {
+  const int width = 301, height = 90, views = 40, rows = 2;
+  for (PixelType type : {PixelType::Srgb8, PixelType::U8}) {
+    const auto epis = makeEpis(width, height, views, rows, type);
+    const fs::path expected = test::freshDir("pngviews_expected");
+    {
+      ImageSetWriter writer(expected.string(), manifestFor(width, height, views, rows, 1));
+      for (int r = 0; r < rows; ++r)
+        for (int i = 0; i < views; ++i) {
+          Image view(width, height, type);
+          for (int j = 0; j < height; ++j) std::copy_n(epis[size_t(r)][size_t(j)].row(i), view.rowBytes(), view.row(j));
+          writer.putView(r, i, view);
+        }
+      writer.commit();
+    }
+    for (bool shuffled : {false, true}) {
+      const fs::path got = test::freshDir("pngviews_got");
+      ImageSetWriter writer(got.string(), manifestFor(width, height, views, rows, 1));
+      EpisToPngViews sink(writer, type);
+      std::mt19937 rng(5);
+      for (int r = 0; r < rows; ++r) {
+        std::vector<int> order(static_cast<size_t>(height));
+        for (int j = 0; j < height; ++j) order[size_t(j)] = j;
+        if (shuffled) std::shuffle(order.begin(), order.end(), rng);
+        for (int j : order) sink.putEpi(r, j, epis[size_t(r)][size_t(j)]);
+      }
+      sink.finish();
+      writer.commit();
+      EXPECT_EQ(writer.filesWritten(), size_t(views * rows));
+      for (int r = 0; r < rows; ++r)
+        for (int i = 0; i < views; ++i) {
+          const std::string name = writer.manifest().viewName(r, i);
+          ASSERT_TRUE(fs::exists(got / name)) << name;
+          EXPECT_EQ(fileBytes(got / name), fileBytes(expected / name))
+              << name << (shuffled ? ", shuffled" : "") << (type == PixelType::U8 ? ", linear" : ", sRGB");
+        }
+    }
+  }
+}
+
+TEST(EpisToPngViews, MisuseIsAnError) {
+  const fs::path dir = test::freshDir("pngviews_errors");
+  ImageSetWriter writer(dir.string(), manifestFor(8, 4, 3, 2, 1));
+  EXPECT_FALSE(EpisToPngViews::handles(writer.manifest(), PixelType::F32));
+  EXPECT_THROW(EpisToPngViews(writer, PixelType::F32), Error);
+  EpisToPngViews sink(writer, PixelType::Srgb8);
+  const Image epi(8, 3, PixelType::Srgb8);
+  EXPECT_THROW(sink.putEpi(0, 0, Image(8, 2, PixelType::Srgb8)), Error) << "views";
+  EXPECT_THROW(sink.putEpi(0, 0, Image(8, 3, PixelType::U8)), Error) << "type";
+  EXPECT_THROW(sink.putEpi(0, 4, epi), Error) << "scanline";
+  sink.putEpi(0, 0, epi);
+  sink.putEpi(0, 2, epi);
+  EXPECT_THROW(sink.putEpi(0, 2, epi), Error) << "a scanline twice, early";
+  EXPECT_THROW(sink.putEpi(0, 0, epi), Error) << "a scanline twice, done";
+  EXPECT_THROW(sink.putEpi(1, 0, epi), Error) << "the next row before this one is done";
+  EXPECT_THROW(sink.finish(), Error) << "a row with scanlines missing";
+  sink.putEpi(0, 1, epi);  // brings 2 in
+  sink.putEpi(0, 3, epi);
+  writer.flush();
+  EXPECT_EQ(writer.filesWritten(), 3u);
+}
+
+}  // namespace
+}  // namespace mvr
