@@ -19,13 +19,4 @@ Pst makePst(const SliceEnd& e0, const SliceEnd& e1, int views, bool cullBack) {
   return p;
 }
 
-glm::vec3 pstColor(const Pst& pst, bool front, float u) {
-  const glm::vec3 c0 = front ? pst.e0.frontOverW : pst.e0.backOverW;
-  const glm::vec3 c1 = front ? pst.e1.frontOverW : pst.e1.backOverW;
-  const float invW = pst.e0.invW + (pst.e1.invW - pst.e0.invW) * u;
-  return (c0 + (c1 - c0) * u) / invW;
-}
-
-float pstDepth(const Pst& pst, float u) { return pst.e0.depth + (pst.e1.depth - pst.e0.depth) * u; }
-
 }  // namespace mvr

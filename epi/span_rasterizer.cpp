@@ -16,6 +16,16 @@
 namespace mvr {
 namespace {
 
+// int(std::ceil(v)) for |v| up to 1e9, clamped beyond (an extrapolated
+// corner can lie far outside). Without SSE4.1 the compiler builds ceil
+// from masks and magic numbers; rows of a PST cost two of them each, and
+// at 160x140 x 1000 views the rows, not the pixels, are the fill's work.
+inline int ceilToInt(float v) {
+  v = std::clamp(v, -1e9f, 1e9f);
+  const int t = int(v);  // towards zero
+  return t + (float(t) < v);
+}
+
 class SpanRasterizer final : public EpiRasterizer {
  public:
   SpanRasterizer(PixelType type, const EpiShading& shading) : type_(type), shading_(shading) {
@@ -102,35 +112,101 @@ class SpanRasterizer final : public EpiRasterizer {
     return glm::mix(knots[k].specular, knots[k + 1].specular, t);
   }
 
+  // A piece is walked by rows (a span per view) or, when it is narrower
+  // than it is tall, by columns (the views whose span holds the pixel):
+  // a PST of the 143K teacup at 160x140 x 1000 views crosses 1000 rows
+  // and a few dozen columns, and most of its rows hold no pixel. Both
+  // walks test each pixel with the same fill rule, so they fill the same
+  // pixels.
   void fillPiece(const Pst& pst, const PstPiece& piece, uint32_t material, Colors colors,
                  Image& epi, std::vector<float>& depth) const {
     const int w = epi.width, n = epi.height;
     // Views whose row centre i + 0.5 lies in [rTop, rBottom).
-    const int iFirst = std::max(0, int(std::ceil(piece.rTop - 0.5f)));
-    const int iLast = std::min(n, int(std::ceil(piece.rBottom - 0.5f)));
-    for (int i = iFirst; i < iLast; ++i) {
-      const float r = i + 0.5f;
-      const float xa = pst.x0(r), width = pst.width(r);
-      if (width == 0) continue;
-      const float lo = std::min(xa, xa + width), hi = std::max(xa, xa + width);
-      const int pxFirst = std::max(0, int(std::ceil(lo - 0.5f)));
-      const int pxLast = std::min(w, int(std::ceil(hi - 0.5f)));
-      for (int x = pxFirst; x < pxLast; ++x) {
-        const float u = std::clamp((x + 0.5f - xa) / width, 0.0f, 1.0f);
-        const float z = pstDepth(pst, u);
-        float& dz = depth[size_t(i) * w + x];
-        if (!(z > dz)) continue;
-        dz = z;
-        if (colors.vector) {
-          const SliceVector& sv = *colors.vector;
-          const float t = sv.u0 + (sv.u1 - sv.u0) * u, perPixel = sv.length * std::abs((sv.u1 - sv.u0) / width);
-          const glm::vec3 c(colors.texels->sample(sv.base, sv.length, t, perPixel));
-          store(epi, x, i, c + highlight(colors.knots + sv.firstKnot, sv.knotCount, r));
-        } else {
-          store(epi, x, i, shade(pst, piece.front, material, u, 1.0f / width, float(i)));
-        }
+    const int iFirst = std::max(0, ceilToInt(piece.rTop - 0.5f));
+    const int iLast = std::min(n, ceilToInt(piece.rBottom - 0.5f));
+    if (iFirst >= iLast) return;
+    auto pixel = [&](int x, int i, float xa, float width) {
+      const float u = std::clamp((x + 0.5f - xa) / width, 0.0f, 1.0f);
+      const float z = pstDepth(pst, u);
+      float& dz = depth[size_t(i) * w + x];
+      if (!(z > dz)) return;
+      dz = z;
+      if (colors.vector) {
+        const SliceVector& sv = *colors.vector;
+        const float t = sv.u0 + (sv.u1 - sv.u0) * u, perPixel = sv.length * std::abs((sv.u1 - sv.u0) / width);
+        const glm::vec3 c(colors.texels->sample(sv.base, sv.length, t, perPixel));
+        store(epi, x, i, c + highlight(colors.knots + sv.firstKnot, sv.knotCount, i + 0.5f));
+      } else {
+        store(epi, x, i, shade(pst, piece.front, material, u, 1.0f / width, float(i)));
+      }
+    };
+    // The fill rule: pixel x is in row i's span when its centre lies in
+    // [lo, hi) (ceil(lo - 0.5) <= x < ceil(hi - 0.5)).
+    const Columns columns = columnsOf(pst, iFirst, iLast, w);
+    if (columns.end - columns.begin >= iLast - iFirst) {
+      for (int i = iFirst; i < iLast; ++i) {
+        const float r = i + 0.5f;
+        const float xa = pst.x0(r), width = pst.width(r);
+        if (width == 0) continue;
+        const float lo = std::min(xa, xa + width), hi = std::max(xa, xa + width);
+        const int pxFirst = std::max(0, ceilToInt(lo - 0.5f));
+        const int pxLast = std::min(w, ceilToInt(hi - 0.5f));
+        for (int x = pxFirst; x < pxLast; ++x) pixel(x, i, xa, width);
+      }
+      return;
+    }
+    for (int x = columns.begin; x < columns.end; ++x) {
+      const auto [first, last] = rowsHolding(pst, x + 0.5f, iFirst, iLast, columns.slack);
+      for (int i = first; i < last; ++i) {
+        const float r = i + 0.5f;
+        const float xa = pst.x0(r), width = pst.width(r);
+        if (width == 0) continue;
+        const float lo = std::min(xa, xa + width), hi = std::max(xa, xa + width);
+        if (lo - 0.5f <= float(x) && float(x) < hi - 0.5f) pixel(x, i, xa, width);
       }
     }
+  }
+
+  // The pixel columns a piece's rows [iFirst, iLast) can reach, and how
+  // far (in pixels) the rounded edges may stray from the exact lines.
+  struct Columns {
+    int begin = 0, end = 0;
+    float slack = 0.0f;
+  };
+  static Columns columnsOf(const Pst& pst, int iFirst, int iLast, int w) {
+    const float ends[4] = {pst.x0(iFirst + 0.5f), pst.x0(iLast - 0.5f), pst.x1(iFirst + 0.5f), pst.x1(iLast - 0.5f)};
+    float lo = ends[0], hi = ends[0], size = 0.0f;
+    for (float e : ends) lo = std::min(lo, e), hi = std::max(hi, e), size = std::max(size, std::abs(e));
+    size = std::max({size, std::abs(pst.e0.x0), std::abs(pst.e1.x0)});
+    // A few float steps of the largest magnitude the edges pass through.
+    const float slack = 1e-3f + 1e-5f * size;
+    return {std::max(0, int(std::floor(std::max(lo, -1e9f))) - 1), std::min(w, int(std::min(hi, 1e9f)) + 2), slack};
+  }
+
+  // The rows of [iFirst, iLast) where centre c may lie between the two
+  // edges, a superset of those where it does: for each order of the
+  // edges, the rows where one is at most c and the other above it (each a
+  // half-line of rows), widened by `slack` pixels and a row.
+  static std::pair<int, int> rowsHolding(const Pst& pst, float c, int iFirst, int iLast, float slack) {
+    // Row i's edge is x0 + i dx (r - 0.5 = i).
+    const float e[2] = {pst.e0.x0, pst.e1.x0}, d[2] = {pst.e0.dx, pst.e1.dx};
+    auto rows = [&](int k, bool atMost) -> std::pair<int, int> {
+      const float bound = atMost ? c + slack : c - slack;
+      if (d[k] == 0) return (atMost ? e[k] <= bound : e[k] > bound) ? std::pair(iFirst, iLast) : std::pair(0, 0);
+      const double t = std::clamp((double(bound) - e[k]) / d[k], double(iFirst) - 4, double(iLast) + 4);
+      // e + i d <= bound: i <= t when d > 0, i >= t when d < 0.
+      const bool upTo = (d[k] > 0) == atMost;
+      return upTo ? std::pair(iFirst, std::min(iLast, int(std::floor(t)) + 2))
+                  : std::pair(std::max(iFirst, int(std::ceil(t)) - 1), iLast);
+    };
+    int first = iLast, last = iFirst;
+    for (int k = 0; k < 2; ++k) {
+      const auto [a0, a1] = rows(k, true);
+      const auto [b0, b1] = rows(1 - k, false);
+      const int lo = std::max(a0, b0), hi = std::min(a1, b1);
+      if (lo < hi) first = std::min(first, lo), last = std::max(last, hi);
+    }
+    return {first, last};
   }
 
   // Every pass of the plan at once, in the order the GL passes accumulate.
