@@ -610,15 +610,16 @@ int runRender(int argc, char** argv, RenderCommand command) {
     if (quilt && f.quiltOnly) sink = quilt.get();
     else if (quilt) sink = chain.emplace_back(std::make_unique<TeeSink>(std::vector<FrameSink*>{&writer, quilt.get()})).get();
     // Reorder only when the renderer's natural order is not the one asked for.
-    if (renderer->order() == FrameOrder::Epi && order == "view" && !quilt && !scratch &&
-        EpisToPngViews::handles(writer.manifest(), type)) {
-      // The views encoded as their rows come; no volume.
-      sink = chain.emplace_back(std::make_unique<EpisToPngViews>(writer, type)).get();
-      pngRows = true;
-    } else if (renderer->order() == FrameOrder::Epi && order == "view") {
-      auto reorderer = std::make_unique<EpisToViews>(*sink, width, height, views, type, reorder);
-      transpose = &reorderer->transpose();
-      sink = chain.emplace_back(std::move(reorderer)).get();
+    if (renderer->order() == FrameOrder::Epi && order == "view") {
+      if (!quilt && !scratch && EpisToPngViews::handles(writer.manifest(), type)) {
+        // The views encoded as their rows come; no volume.
+        sink = chain.emplace_back(std::make_unique<EpisToPngViews>(writer, type)).get();
+        pngRows = true;
+      } else {
+        auto reorderer = std::make_unique<EpisToViews>(*sink, width, height, views, type, reorder);
+        transpose = &reorderer->transpose();
+        sink = chain.emplace_back(std::move(reorderer)).get();
+      }
     } else if (renderer->order() == FrameOrder::View && order == "epi") {
       auto reorderer = std::make_unique<ViewsToEpis>(*sink, width, height, views, type, reorder);
       transpose = &reorderer->transpose();

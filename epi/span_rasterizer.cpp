@@ -145,26 +145,32 @@ class SpanRasterizer final : public EpiRasterizer {
     const Columns columns = columnsOf(pst, iFirst, iLast, w);
     if (columns.end - columns.begin >= iLast - iFirst) {
       for (int i = iFirst; i < iLast; ++i) {
-        const float r = i + 0.5f;
-        const float xa = pst.x0(r), width = pst.width(r);
-        if (width == 0) continue;
-        const float lo = std::min(xa, xa + width), hi = std::max(xa, xa + width);
-        const int pxFirst = std::max(0, ceilToInt(lo - 0.5f));
-        const int pxLast = std::min(w, ceilToInt(hi - 0.5f));
-        for (int x = pxFirst; x < pxLast; ++x) pixel(x, i, xa, width);
+        const RowSpan s = rowSpan(pst, i);
+        if (s.width == 0) continue;
+        const int pxFirst = std::max(0, ceilToInt(s.lo - 0.5f));
+        const int pxLast = std::min(w, ceilToInt(s.hi - 0.5f));
+        for (int x = pxFirst; x < pxLast; ++x) pixel(x, i, s.xa, s.width);
       }
       return;
     }
     for (int x = columns.begin; x < columns.end; ++x) {
       const auto [first, last] = rowsHolding(pst, x + 0.5f, iFirst, iLast, columns.slack);
       for (int i = first; i < last; ++i) {
-        const float r = i + 0.5f;
-        const float xa = pst.x0(r), width = pst.width(r);
-        if (width == 0) continue;
-        const float lo = std::min(xa, xa + width), hi = std::max(xa, xa + width);
-        if (lo - 0.5f <= float(x) && float(x) < hi - 0.5f) pixel(x, i, xa, width);
+        const RowSpan s = rowSpan(pst, i);
+        if (s.width != 0 && s.lo - 0.5f <= float(x) && float(x) < s.hi - 0.5f) pixel(x, i, s.xa, s.width);
       }
     }
+  }
+
+  // Row i's span: the slice's first end xa, the signed width to its
+  // second, and the two ends in order, [lo, hi).
+  struct RowSpan {
+    float xa, width, lo, hi;
+  };
+  static RowSpan rowSpan(const Pst& pst, int i) {
+    const float r = i + 0.5f;
+    const float xa = pst.x0(r), width = pst.width(r);
+    return {xa, width, std::min(xa, xa + width), std::max(xa, xa + width)};
   }
 
   // The pixel columns a piece's rows [iFirst, iLast) can reach, and how
@@ -180,7 +186,8 @@ class SpanRasterizer final : public EpiRasterizer {
     size = std::max({size, std::abs(pst.e0.x0), std::abs(pst.e1.x0)});
     // A few float steps of the largest magnitude the edges pass through.
     const float slack = 1e-3f + 1e-5f * size;
-    return {std::max(0, int(std::floor(std::max(lo, -1e9f))) - 1), std::min(w, int(std::min(hi, 1e9f)) + 2), slack};
+    lo = std::clamp(lo, -1e9f, 1e9f), hi = std::clamp(hi, -1e9f, 1e9f);  // far corners: no int overflow
+    return {std::max(0, int(std::floor(lo)) - 1), std::min(w, int(hi) + 2), slack};
   }
 
   // The rows of [iFirst, iLast) where centre c may lie between the two

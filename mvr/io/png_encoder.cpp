@@ -92,10 +92,6 @@ size_t filterCost(const uint8_t* filtered, size_t n) {
   return sum;
 }
 
-}  // namespace
-
-namespace {
-
 // A worker's raw deflate stream, reset for every segment: deflateInit
 // allocates 256 KiB, and fresh pages per file cost page faults that
 // serialise the encoders on the kernel's memory lock.

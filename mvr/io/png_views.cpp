@@ -41,7 +41,6 @@ void EpisToPngViews::feed(const Image& epi) {
   for (int i = 0; i < views_; ++i) {
     encoders_[size_t(i)].reset();
     writer_.putEncoded(writer_.manifest().viewName(row_, i), std::move(files_[size_t(i)]));
-    files_[size_t(i)] = {};
   }
 }
 
