@@ -90,8 +90,17 @@ std::unique_ptr<EpiRasterizer> makeRasterizer(PstMode mode, PixelType type,
                                               const EpiShading& shading = {},
                                               PstBuilder builder = PstBuilder::Auto);
 
+// How the span rasterizer walks a PST and fills untextured diffuse slices.
+// Every choice fills the same pixels with the same bytes; the defaults are
+// the fastest, and tests force the others to compare them.
+struct SpanPaths {
+  enum class Walk { Auto, Rows, Columns } walk = Walk::Auto;
+  bool fastDiffuse = true;  // four pixels at a time, and one encoding for a slice whose pixels share it
+};
+
 // Exact spans on every core of the thread pool (mvr/parallel.h).
-std::unique_ptr<EpiRasterizer> makeSpanRasterizer(PixelType type, const EpiShading& shading = {});
+std::unique_ptr<EpiRasterizer> makeSpanRasterizer(PixelType type, const EpiShading& shading = {},
+                                                  SpanPaths paths = {});
 // The CPU's spans by compute shaders (epi/gpu/gpu_span_rasterizer.cpp);
 // diffuse shading only; needs a current GL context.
 std::unique_ptr<EpiRasterizer> makeGpuSpanRasterizer(PixelType type, const EpiShading& shading = {});

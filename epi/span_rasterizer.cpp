@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 
 #include "epi/epi_rasterizer.h"
 #include "epi/pst.h"
@@ -28,7 +29,8 @@ inline int ceilToInt(float v) {
 
 class SpanRasterizer final : public EpiRasterizer {
  public:
-  SpanRasterizer(PixelType type, const EpiShading& shading) : type_(type), shading_(shading) {
+  SpanRasterizer(PixelType type, const EpiShading& shading, SpanPaths paths)
+      : type_(type), shading_(shading), paths_(paths) {
     if (shading_.plan.passes().size() > 1 && !shading_.scene && !shading_.sliceVectors)
       fail("cpu rasterizer", "shading passes need a scene");
     if (shading_.plan.texture && !shading_.textures) fail("cpu rasterizer", "texturing needs textures");
@@ -83,7 +85,7 @@ class SpanRasterizer final : public EpiRasterizer {
                Image& epi, std::vector<float>& depth) const {
     const int w = cam.width(), n = cam.views();
     std::fill(epi.bytes.begin(), epi.bytes.end(), uint8_t(0));
-    depth.assign(size_t(w) * n, 0.0f);  // reversed Z: 0 is far
+    depth.assign(size_t(w) * n + 3, 0.0f);  // reversed Z: 0 is far; 3 floats for plainRun's last lanes
     for (const Slice& s : table.scanline(j)) {
       auto [e0, e1] = sliceEnds(v, s);
       const Pst pst = makePst(e0, e1, n, v.cullBack[s.triangle]);
@@ -110,56 +112,6 @@ class SpanRasterizer final : public EpiRasterizer {
     const float span = knots[k + 1].r - knots[k].r;
     const float t = span > 0.0f ? std::clamp((r - knots[k].r) / span, 0.0f, 1.0f) : 0.0f;
     return glm::mix(knots[k].specular, knots[k + 1].specular, t);
-  }
-
-  // A piece is walked by rows (a span per view) or, when it is narrower
-  // than it is tall, by columns (the views whose span holds the pixel):
-  // a PST of the 143K teacup at 160x140 x 1000 views crosses 1000 rows
-  // and a few dozen columns, and most of its rows hold no pixel. Both
-  // walks test each pixel with the same fill rule, so they fill the same
-  // pixels.
-  void fillPiece(const Pst& pst, const PstPiece& piece, uint32_t material, Colors colors,
-                 Image& epi, std::vector<float>& depth) const {
-    const int w = epi.width, n = epi.height;
-    // Views whose row centre i + 0.5 lies in [rTop, rBottom).
-    const int iFirst = std::max(0, ceilToInt(piece.rTop - 0.5f));
-    const int iLast = std::min(n, ceilToInt(piece.rBottom - 0.5f));
-    if (iFirst >= iLast) return;
-    auto pixel = [&](int x, int i, float xa, float width) {
-      const float u = std::clamp((x + 0.5f - xa) / width, 0.0f, 1.0f);
-      const float z = pstDepth(pst, u);
-      float& dz = depth[size_t(i) * w + x];
-      if (!(z > dz)) return;
-      dz = z;
-      if (colors.vector) {
-        const SliceVector& sv = *colors.vector;
-        const float t = sv.u0 + (sv.u1 - sv.u0) * u, perPixel = sv.length * std::abs((sv.u1 - sv.u0) / width);
-        const glm::vec3 c(colors.texels->sample(sv.base, sv.length, t, perPixel));
-        store(epi, x, i, c + highlight(colors.knots + sv.firstKnot, sv.knotCount, i + 0.5f));
-      } else {
-        store(epi, x, i, shade(pst, piece.front, material, u, 1.0f / width, float(i)));
-      }
-    };
-    // The fill rule: pixel x is in row i's span when its centre lies in
-    // [lo, hi) (ceil(lo - 0.5) <= x < ceil(hi - 0.5)).
-    const Columns columns = columnsOf(pst, iFirst, iLast, w);
-    if (columns.end - columns.begin >= iLast - iFirst) {
-      for (int i = iFirst; i < iLast; ++i) {
-        const RowSpan s = rowSpan(pst, i);
-        if (s.width == 0) continue;
-        const int pxFirst = std::max(0, ceilToInt(s.lo - 0.5f));
-        const int pxLast = std::min(w, ceilToInt(s.hi - 0.5f));
-        for (int x = pxFirst; x < pxLast; ++x) pixel(x, i, s.xa, s.width);
-      }
-      return;
-    }
-    for (int x = columns.begin; x < columns.end; ++x) {
-      const auto [first, last] = rowsHolding(pst, x + 0.5f, iFirst, iLast, columns.slack);
-      for (int i = first; i < last; ++i) {
-        const RowSpan s = rowSpan(pst, i);
-        if (s.width != 0 && s.lo - 0.5f <= float(x) && float(x) < s.hi - 0.5f) pixel(x, i, s.xa, s.width);
-      }
-    }
   }
 
   // Row i's span: the slice's first end xa, the signed width to its
@@ -190,6 +142,15 @@ class SpanRasterizer final : public EpiRasterizer {
     return {std::max(0, int(std::floor(lo)) - 1), std::min(w, int(hi) + 2), slack};
   }
 
+  // The column walk tests about (area + a few rows per column) pixels; the
+  // row walk pays a row's ends for each of its rows and then only fills.
+  // The piece's area is its rows times its mean width (linear in r).
+  static bool byColumns(const Pst& pst, int iFirst, int iLast, const Columns& columns) {
+    const int rows = iLast - iFirst;
+    const float meanWidth = 0.5f * (std::abs(pst.width(iFirst + 0.5f)) + std::abs(pst.width(iLast - 0.5f)));
+    return float(rows) * meanWidth + 3.0f * float(columns.end - columns.begin) < float(rows);
+  }
+
   // The rows of [iFirst, iLast) where centre c may lie between the two
   // edges, a superset of those where it does: for each order of the
   // edges, the rows where one is at most c and the other above it (each a
@@ -214,6 +175,174 @@ class SpanRasterizer final : public EpiRasterizer {
       if (lo < hi) first = std::min(first, lo), last = std::max(last, hi);
     }
     return {first, last};
+  }
+
+  // A piece is walked by rows (a span per view) or, when it is narrower
+  // than a pixel on most rows, by columns (the views whose span holds the
+  // pixel): a PST of the 143K teacup at 160x140 x 1000 views crosses 1000
+  // rows and a few dozen columns, and most of its rows hold no pixel.
+  // Both walks test each pixel with the same fill rule, so they fill the
+  // same pixels. Untextured, diffuse slices (the common case) are filled
+  // four pixels at a time (plainRun) with the same arithmetic in every
+  // lane, so they get the same bytes as the general path.
+  void fillPiece(const Pst& pst, const PstPiece& piece, uint32_t material, Colors colors,
+                 Image& epi, std::vector<float>& depth) const {
+    const shading::ShadingPlan& plan = shading_.plan;
+    const int w = epi.width;
+    if (colors.vector || plan.uv >= 0 || plan.position >= 0 || !paths_.fastDiffuse) {
+      auto run = [&](int i, int x0, int x1, float xa, float width) {
+        float* dz = depth.data() + size_t(i) * w;
+        for (int x = x0; x < x1; ++x) {
+          const float u = std::clamp((x + 0.5f - xa) / width, 0.0f, 1.0f);
+          const float z = pstDepth(pst, u);
+          if (!(z > dz[x])) continue;
+          dz[x] = z;
+          store(epi, x, i, colors.vector ? vectorColor(colors, u, width, i)
+                                         : shade(pst, piece.front, material, u, 1.0f / width, float(i)));
+        }
+      };
+      walkPiece(pst, piece, w, epi.height, paths_.walk, run,
+                [&](int i, int x, float xa, float width) { run(i, x, x + 1, xa, width); });
+      return;
+    }
+    auto plain = [&](auto encode, size_t pixelBytes) {
+      const PlainSlice slice(pst, piece.front);
+      std::array<uint8_t, 4> flat;
+      const uint8_t* flatBytes = pixelBytes == 4 && flatPixel(pst, piece.front, encode, flat) ? flat.data() : nullptr;
+      walkPiece(
+          pst, piece, w, epi.height, paths_.walk,
+          [&](int i, int x0, int x1, float xa, float width) {
+            plainRun(slice, flatBytes, depth.data() + size_t(i) * w, epi.row(i), pixelBytes, x0, x1, xa, width,
+                     encode);
+          },
+          [&](int i, int x, float xa, float width) {  // one lane is cheaper alone
+            const float u = std::clamp((x + 0.5f - xa) / width, 0.0f, 1.0f);
+            const float z = pstDepth(pst, u);
+            float& dz = depth[size_t(i) * w + x];
+            if (!(z > dz)) return;
+            dz = z;
+            uint8_t* p = epi.row(i) + size_t(x) * pixelBytes;
+            if (flatBytes) std::memcpy(p, flatBytes, 4);
+            else encode(p, glm::clamp(pstColor(pst, piece.front, u), 0.0f, 1.0f));
+          });
+    };
+    switch (type_) {
+      case PixelType::U8: return plain([](uint8_t* p, const glm::vec3& c) { storeU8(p, c); }, 4);
+      case PixelType::Srgb8: return plain([this](uint8_t* p, const glm::vec3& c) { storeSrgb8(p, c); }, 4);
+      default: return plain([](uint8_t* p, const glm::vec3& c) { storeF32(p, c); }, 16);
+    }
+  }
+
+  // Calls run(i, x0, x1, xa, width) for pixels x0 <= x < x1 of row i, all
+  // inside the piece's span there (which starts at xa, signed width), and
+  // pixel(i, x, xa, width) for single pixels of the column walk.
+  template <class Run, class Pixel>
+  [[gnu::always_inline]] static void walkPiece(const Pst& pst, const PstPiece& piece, int w, int n,
+                                               SpanPaths::Walk walk, Run&& run,
+                                               Pixel&& pixel) {
+    // Views whose row centre i + 0.5 lies in [rTop, rBottom).
+    const int iFirst = std::max(0, ceilToInt(piece.rTop - 0.5f));
+    const int iLast = std::min(n, ceilToInt(piece.rBottom - 0.5f));
+    if (iFirst >= iLast) return;
+    // The fill rule: pixel x is in row i's span when its centre lies in
+    // [lo, hi) (ceil(lo - 0.5) <= x < ceil(hi - 0.5)).
+    const Columns columns = columnsOf(pst, iFirst, iLast, w);
+    const bool columnwise = walk == SpanPaths::Walk::Auto ? byColumns(pst, iFirst, iLast, columns)
+                                                          : walk == SpanPaths::Walk::Columns;
+    if (!columnwise) {
+      for (int i = iFirst; i < iLast; ++i) {
+        const RowSpan s = rowSpan(pst, i);
+        if (s.width == 0) continue;
+        run(i, std::max(0, ceilToInt(s.lo - 0.5f)), std::min(w, ceilToInt(s.hi - 0.5f)), s.xa, s.width);
+      }
+      return;
+    }
+    for (int x = columns.begin; x < columns.end; ++x) {
+      const auto [first, last] = rowsHolding(pst, x + 0.5f, iFirst, iLast, columns.slack);
+      for (int i = first; i < last; ++i) {
+        const RowSpan s = rowSpan(pst, i);
+        if (s.width != 0 && s.lo - 0.5f <= float(x) && float(x) < s.hi - 0.5f) pixel(i, x, s.xa, s.width);
+      }
+    }
+  }
+
+  // Four floats or ints, one per pixel (GCC and Clang vector extensions:
+  // SSE on x86-64, NEON on ARM; each lane's arithmetic is IEEE single
+  // precision, as the scalar code's).
+  using F4 = float __attribute__((vector_size(16)));
+  using I4 = int32_t __attribute__((vector_size(16)));
+
+  // What plainRun needs of a diffuse slice, as pstColor and pstDepth use it.
+  struct PlainSlice {
+    PlainSlice(const Pst& pst, bool front)
+        : depth0(pst.e0.depth), depthStep(pst.e1.depth - pst.e0.depth), invW0(pst.e0.invW),
+          invWStep(pst.e1.invW - pst.e0.invW), color0(front ? pst.e0.frontOverW : pst.e0.backOverW),
+          colorStep((front ? pst.e1.frontOverW : pst.e1.backOverW) - color0) {}
+    float depth0, depthStep, invW0, invWStep;
+    glm::vec3 color0, colorStep;
+  };
+
+  // The 8-bit pixel every pixel of a diffuse slice gets, if they all get
+  // the same: the colour (a + b u) / (c + d u), c + d u > 0, is monotone
+  // in u, so when its ends, widened by the rounding any u may add, encode
+  // to the same bytes, so does every pixel between. Most slices of a
+  // finely tessellated mesh are such, and encoding is the fill's largest
+  // cost.
+  template <class Encode>
+  static bool flatPixel(const Pst& pst, bool front, Encode& encode, std::array<uint8_t, 4>& pixel) {
+    const glm::vec3 a = pstColor(pst, front, 0.0f), b = pstColor(pst, front, 1.0f);
+    const glm::vec3 c0 = front ? pst.e0.frontOverW : pst.e0.backOverW;
+    const glm::vec3 dc = (front ? pst.e1.frontOverW : pst.e1.backOverW) - c0;
+    const float invW0 = pst.e0.invW, dInvW = pst.e1.invW - pst.e0.invW;
+    const float minInvW = std::min(invW0, pst.e1.invW);
+    if (!(minInvW > 0.0f)) return false;
+    const glm::vec3 top = glm::max(glm::abs(a), glm::abs(b));
+    // A few ulps of numerator and denominator, as absolute errors of the
+    // quotient (they cancel in neither), with room to spare.
+    const glm::vec3 margin =
+        2e-6f * ((glm::abs(c0) + glm::abs(dc) + top * (std::abs(invW0) + std::abs(dInvW))) / minInvW + top);
+    std::array<uint8_t, 4> lo, hi;
+    encode(lo.data(), glm::clamp(glm::min(a, b) - margin, 0.0f, 1.0f));
+    encode(hi.data(), glm::clamp(glm::max(a, b) + margin, 0.0f, 1.0f));
+    pixel = lo;
+    return lo == hi;
+  }
+
+  // Pixels [x0, x1) of one row of a diffuse slice, four at a time: the
+  // general path's u, depth test and pstColor in each lane, or `flat`'s
+  // four bytes when every pixel of the slice gets them. `dz` may be read
+  // and written up to 3 floats past x1 (fillEpi pads the buffer); those
+  // lanes keep their values.
+  template <class Encode>
+  [[gnu::always_inline]] static void plainRun(const PlainSlice& s, const uint8_t* flat, float* dz, uint8_t* row, size_t pixelBytes, int x0,
+                       int x1, float xa, float width, Encode& encode) {
+    const I4 lanes = {0, 1, 2, 3};
+    for (int x = x0; x < x1; x += 4) {
+      F4 u = (__builtin_convertvector(x + lanes, F4) + 0.5f - xa) / width;
+      u = u < 0.0f ? F4{} : u;  // std::clamp(u, 0, 1)
+      u = 1.0f < u ? F4{} + 1.0f : u;
+      const F4 z = s.depth0 + s.depthStep * u;
+      F4 old;
+      std::memcpy(&old, dz + x, sizeof old);
+      const I4 pass = (z > old) & (lanes < x1 - x);
+      if (!(pass[0] | pass[1] | pass[2] | pass[3])) continue;
+      const F4 kept = pass ? z : old;
+      std::memcpy(dz + x, &kept, sizeof kept);
+      if (flat) {
+        for (int k = 0; k < 4; ++k)
+          if (pass[k]) std::memcpy(row + size_t(x + k) * 4, flat, 4);
+        continue;
+      }
+      const F4 invW = s.invW0 + s.invWStep * u;
+      F4 c[3];
+      for (int k = 0; k < 3; ++k) {
+        c[k] = (s.color0[k] + s.colorStep[k] * u) / invW;
+        c[k] = c[k] < 0.0f ? F4{} : c[k];  // glm::clamp(c, 0, 1)
+        c[k] = c[k] > 1.0f ? F4{} + 1.0f : c[k];
+      }
+      for (int k = 0; k < 4; ++k)
+        if (pass[k]) encode(row + size_t(x + k) * pixelBytes, glm::vec3(c[0][k], c[1][k], c[2][k]));
+    }
   }
 
   // Every pass of the plan at once, in the order the GL passes accumulate.
@@ -247,35 +376,49 @@ class SpanRasterizer final : public EpiRasterizer {
     return glm::vec3(shading_.textures->sample(layer, uv, shading_.textures->lodFor(next - uv)));
   }
 
+  // A slice with a texture vector: its texel at u, and the highlight of
+  // view i when its track was split.
+  static glm::vec3 vectorColor(const Colors& colors, float u, float width, int i) {
+    const SliceVector& sv = *colors.vector;
+    const float t = sv.u0 + (sv.u1 - sv.u0) * u, perPixel = sv.length * std::abs((sv.u1 - sv.u0) / width);
+    const glm::vec3 c(colors.texels->sample(sv.base, sv.length, t, perPixel));
+    return c + highlight(colors.knots + sv.firstKnot, sv.knotCount, i + 0.5f);
+  }
+
   void store(Image& img, int x, int y, const glm::vec3& c) const {
     const glm::vec3 v = glm::clamp(c, 0.0f, 1.0f);
-    if (type_ == PixelType::U8) {
-      uint8_t* p = img.row(y) + size_t(x) * 4;
-      // GL's float -> unorm8 conversion: round to nearest.
-      p[0] = uint8_t(std::lrint(v.r * 255.0f));
-      p[1] = uint8_t(std::lrint(v.g * 255.0f));
-      p[2] = uint8_t(std::lrint(v.b * 255.0f));
-      p[3] = 255;
-    } else if (type_ == PixelType::Srgb8) {
-      uint8_t* p = img.row(y) + size_t(x) * 4;
-      p[0] = srgb8_(v.r), p[1] = srgb8_(v.g), p[2] = srgb8_(v.b), p[3] = 255;
-    } else {
-      float* p = reinterpret_cast<float*>(img.row(y)) + size_t(x) * 4;
-      p[0] = v.r, p[1] = v.g, p[2] = v.b, p[3] = 1.0f;
-    }
+    uint8_t* p = img.row(y) + size_t(x) * 4 * (type_ == PixelType::F32 ? 4 : 1);
+    if (type_ == PixelType::U8) storeU8(p, v);
+    else if (type_ == PixelType::Srgb8) storeSrgb8(p, v);
+    else storeF32(p, v);
+  }
+  // v in [0, 1]. GL's float -> unorm8 conversion: round to nearest.
+  static void storeU8(uint8_t* p, const glm::vec3& v) {
+    p[0] = uint8_t(std::lrint(v.r * 255.0f));
+    p[1] = uint8_t(std::lrint(v.g * 255.0f));
+    p[2] = uint8_t(std::lrint(v.b * 255.0f));
+    p[3] = 255;
+  }
+  void storeSrgb8(uint8_t* p, const glm::vec3& v) const {
+    p[0] = srgb8_(v.r), p[1] = srgb8_(v.g), p[2] = srgb8_(v.b), p[3] = 255;
+  }
+  static void storeF32(uint8_t* bytes, const glm::vec3& v) {
+    float* p = reinterpret_cast<float*>(bytes);
+    p[0] = v.r, p[1] = v.g, p[2] = v.b, p[3] = 1.0f;
   }
 
   PixelType type_;
   std::array<std::vector<Image>, 2> halves_;  // EPIs being filled and handed on, reused
   Srgb8Encoder srgb8_;
   EpiShading shading_;
+  SpanPaths paths_;
   glm::vec3 eye0_{0.0f}, eyeStep_{0.0f};
 };
 
 }  // namespace
 
-std::unique_ptr<EpiRasterizer> makeSpanRasterizer(PixelType type, const EpiShading& shading) {
-  return std::make_unique<SpanRasterizer>(type, shading);
+std::unique_ptr<EpiRasterizer> makeSpanRasterizer(PixelType type, const EpiShading& shading, SpanPaths paths) {
+  return std::make_unique<SpanRasterizer>(type, shading, paths);
 }
 
 }  // namespace mvr
