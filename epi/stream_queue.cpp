@@ -46,27 +46,46 @@ void QueuedEpiStream::writerLoop(std::ostream& out, EpiStreamHeader header) {
   changed_.notify_all();
 }
 
+Image QueuedEpiStream::takeSpare() {
+  std::lock_guard lock(mutex_);
+  if (spares_.empty()) return {};
+  Image spare = std::move(spares_.back());
+  spares_.pop_back();
+  return spare;
+}
+
 // The copy is made outside the lock, into an image the writer is done with
 // when there is one: a fresh multi-megabyte image per EPI costs its pages'
 // first-touch faults (and a copy under the lock would stall the writer).
 void QueuedEpiStream::putEpi(int row, int scanline, const Image& epi) {
-  Image copy;
-  {
-    std::lock_guard lock(mutex_);
-    if (!spares_.empty()) {
-      copy = std::move(spares_.back());
-      spares_.pop_back();
-    }
-  }
+  Image copy = takeSpare();
   copy.width = epi.width, copy.height = epi.height, copy.type = epi.type;
   copy.bytes.assign(epi.bytes.begin(), epi.bytes.end());
+  enqueue(row, scanline, std::move(copy));
+}
+
+void QueuedEpiStream::putEpiInPlace(int row, int scanline, Image& epi) {
+  Image spare = takeSpare();
+  if (spare.width != epi.width || spare.height != epi.height || spare.type != epi.type ||
+      spare.bytes.size() != epi.bytes.size()) {
+    if (!spare.bytes.empty()) {
+      std::lock_guard lock(mutex_);
+      spares_.push_back(std::move(spare));
+    }
+    return putEpi(row, scanline, epi);
+  }
+  std::swap(spare, epi);
+  enqueue(row, scanline, std::move(spare));
+}
+
+void QueuedEpiStream::enqueue(int row, int scanline, Image&& epi) {
   std::unique_lock lock(mutex_);
   changed_.wait(lock, [&] { return queue_.size() < capacity_ || writerDone_; });
   if (writerDone_) {
     if (error_) std::rethrow_exception(error_);
     fail("stream", "writer stopped early");
   }
-  queue_.push_back({row, scanline, std::move(copy)});
+  queue_.push_back({row, scanline, std::move(epi)});
   highWater_ = std::max(highWater_, queue_.size());
   lock.unlock();
   changed_.notify_all();

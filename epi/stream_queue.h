@@ -20,6 +20,10 @@ class QueuedEpiStream final : public FrameSink {
   QueuedEpiStream(std::ostream& out, const EpiStreamHeader& header, size_t capacity);
   ~QueuedEpiStream() override;
   void putEpi(int row, int scanline, const Image& epi) override;
+  // Takes the EPI's pixels for the queue and leaves a written EPI's
+  // image of the same size in their place: no copy once the writer has
+  // given images back.
+  void putEpiInPlace(int row, int scanline, Image& epi) override;
   // Sends what is queued and flushes; rethrows the writer's error, if any.
   void finish() override;
   size_t highWater() const { return highWater_; }
@@ -30,6 +34,8 @@ class QueuedEpiStream final : public FrameSink {
     Image epi;
   };
   void writerLoop(std::ostream& out, EpiStreamHeader header);
+  Image takeSpare();
+  void enqueue(int row, int scanline, Image&& epi);
 
   size_t capacity_, highWater_ = 0;
   std::mutex mutex_;

@@ -74,6 +74,15 @@ void ProgressSink::putView(int row, int view, const Image& image) {
 
 void ProgressSink::putEpi(int row, int scanline, const Image& epi) {
   inner_.putEpi(row, scanline, epi);
+  stepEpi();
+}
+
+void ProgressSink::putEpiInPlace(int row, int scanline, Image& epi) {
+  inner_.putEpiInPlace(row, scanline, epi);
+  stepEpi();
+}
+
+void ProgressSink::stepEpi() {
   if (!progress_) progress_.emplace(label_, epiFrames_, views_, since_);
   progress_->step();
 }

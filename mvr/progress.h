@@ -41,9 +41,11 @@ class ProgressSink final : public FrameSink {
   ProgressSink(FrameSink& inner, const std::vector<ShearingCamera>& renders, long views, std::string label);
   void putView(int row, int view, const Image& image) override;
   void putEpi(int row, int scanline, const Image& epi) override;
+  void putEpiInPlace(int row, int scanline, Image& epi) override;
   void finish() override;
 
  private:
+  void stepEpi();
   FrameSink& inner_;
   long viewFrames_, epiFrames_, views_;
   std::string label_;

@@ -21,7 +21,10 @@ class FrameSink {
   virtual void putView(int row, int view, const Image& image);
   virtual void putEpi(int row, int scanline, const Image& epi);
   // An EPI its producer is done with: the sink may change it in place
-  // before handing it on (interp's source rows) instead of copying it.
+  // before handing it on (interp's source rows), or take its pixels and
+  // leave another image of the same size and type in their place (the EPI
+  // stream's queue), instead of copying it. The producer writes every
+  // pixel again before it hands the image on again.
   virtual void putEpiInPlace(int row, int scanline, Image& epi) { putEpi(row, scanline, epi); }
   virtual void finish() {}
 };

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "epi/epi_stream.h"
+#include "epi/stream_queue.h"
 #include "mvr/error.h"
 #include "mvr/io/scene_io.h"
 #include "tests/support/render_helpers.h"
@@ -36,6 +37,42 @@ TEST(EpiStream, ReorderedStreamIsByteIdenticalToViewImages) {
     ++frames;
   }
   EXPECT_EQ(frames, 36);
+}
+
+// The queue takes in-place EPIs' pixels and hands the producer a written
+// EPI's image back: the stream must hold every EPI as it was handed over,
+// and the producer must always get an image of its EPI's size and type.
+TEST(EpiStream, TheQueueSendsInPlaceEpisUnchanged) {
+  const EpiStreamHeader header{8, 24, 5, 1, 4, 1};
+  auto epiOf = [](int scanline) {
+    Image epi(8, 5, PixelType::U8);
+    for (size_t b = 0; b < epi.bytes.size(); ++b) epi.bytes[b] = uint8_t(b * 7 + scanline * 13);
+    return epi;
+  };
+  std::stringstream direct, queued;
+  {
+    EpiStreamWriter writer(direct, header);
+    for (int j = 0; j < 24; ++j) writer.putEpi(0, j, epiOf(j));
+    writer.finish();
+  }
+  {
+    QueuedEpiStream stream(queued, header, 2);
+    Image reused;
+    for (int j = 0; j < 24; ++j) {
+      if (j % 5 == 4) {  // now and then a copy, as a producer without spare images hands over
+        stream.putEpi(0, j, epiOf(j));
+        continue;
+      }
+      reused = epiOf(j);
+      stream.putEpiInPlace(0, j, reused);
+      ASSERT_EQ(reused.width, 8);
+      ASSERT_EQ(reused.height, 5);
+      ASSERT_EQ(reused.type, PixelType::U8);
+      ASSERT_EQ(reused.bytes.size(), size_t(8 * 5 * 4));
+    }
+    stream.finish();
+  }
+  EXPECT_EQ(queued.str(), direct.str());
 }
 
 TEST(EpiStream, BadAndTruncatedStreamsAreErrors) {
