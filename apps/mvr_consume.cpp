@@ -17,6 +17,7 @@
 #include "mvr/io/image_codec.h"
 #include "mvr/io/image_file.h"
 #include "mvr/io/image_set.h"
+#include "mvr/io/png_views.h"
 #include "mvr/parallel.h"
 #include "mvr/timer.h"
 
@@ -56,19 +57,30 @@ int consume(int argc, char** argv) {
                                                 .format = format, .bits = mvr::defaultBits(format),
                                                 .srgb = type != mvr::PixelType::U8});
   if (reorder.spills(rowBytes)) mvr::app::checkScratchFits(rowBytes, reorder.scratchDir);
-  mvr::EpisToViews views(writer, int(h.width), int(h.height), int(h.views), type, reorder);
+  // 8-bit PNG views take their rows as the EPIs come (no volume), when
+  // the volume would fit the budget anyway; the rest is reassembled.
+  const bool pngRows = !reorder.spills(rowBytes) && mvr::EpisToPngViews::handles(writer.manifest(), type);
+  std::optional<mvr::EpisToPngViews> rows;
+  std::optional<mvr::EpisToViews> volume;
+  mvr::FrameSink& views = pngRows ? static_cast<mvr::FrameSink&>(rows.emplace(writer, type))
+                                  : volume.emplace(writer, int(h.width), int(h.height), int(h.views), type, reorder);
   size_t frames = 0;
   while (auto f = reader.next()) {  // in order, all of them, nothing after (or it throws)
-    views.putEpi(f->row, f->scanline, f->epi);
+    views.putEpiInPlace(f->row, f->scanline, f->epi);
     ++frames;
   }
+  views.finish();
+  const std::string method = pngRows ? "EPI rows into the views' PNG encoders"
+                             : volume->transpose().usesScratch() ? "scratch file"
+                                                                 : "volume in memory";
   writer.manifest().info = {{"source", "stream " + from},
+                            {"reorder", {{"method", method}, {"budget_bytes", reorder.budget}}},
                             {"timings_s", {{"total", watch.seconds()}}}};
   // The producer's camera: the same per-view cameras as its own manifest.
   if (camera) writer.manifest().setCamera(*camera, h.camera->imagePlaneZ);
   writer.commit();
   std::fprintf(stderr, "mvr-consume: %zu EPIs -> %u views in %s%s\n", frames, h.views * h.rows,
-               out.c_str(), views.transpose().scratchNote().c_str());
+               out.c_str(), volume ? volume->transpose().scratchNote().c_str() : "");
   return 0;
 }
 

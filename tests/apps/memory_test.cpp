@@ -96,6 +96,9 @@ TEST(MemoryBudget, StreamAndConsumerThroughScratchAreByteIdentical) {
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.err.find("through a scratch file, 3 frames per pass") != std::string::npos, !budget.empty())
         << r.err;
+    // Within the budget the rows go straight into the views' encoders.
+    EXPECT_EQ(reorderOf(out)["method"],
+              budget.empty() ? "EPI rows into the views' PNG encoders" : "scratch file");
   }
   expectSameFiles(dir / "views_memory", dir / "views_scratch");
 }
