@@ -56,13 +56,15 @@ int consume(int argc, char** argv) {
                                                 .width = int(h.width), .height = int(h.height),
                                                 .format = format, .bits = mvr::defaultBits(format),
                                                 .srgb = type != mvr::PixelType::U8});
-  if (reorder.spills(rowBytes)) mvr::app::checkScratchFits(rowBytes, reorder.scratchDir);
-  // 8-bit PNG views take their rows as the EPIs come (no volume), when
-  // the volume would fit the budget anyway; the rest is reassembled.
-  const bool pngRows = !reorder.spills(rowBytes) && mvr::EpisToPngViews::handles(writer.manifest(), type);
+  // 8-bit PNG views take their rows as the EPIs come (no volume; the
+  // files' bytes within the budget, beyond it on their way to disk); the
+  // rest is reassembled.
+  const size_t filesBudget = mvr::EpisToPngViews::filesBudget(writer.manifest(), reorder.budget);
+  const bool pngRows = mvr::EpisToPngViews::handles(writer.manifest(), type) && filesBudget > 0;
+  if (!pngRows && reorder.spills(rowBytes)) mvr::app::checkScratchFits(rowBytes, reorder.scratchDir);
   std::optional<mvr::EpisToPngViews> rows;
   std::optional<mvr::EpisToViews> volume;
-  mvr::FrameSink& views = pngRows ? static_cast<mvr::FrameSink&>(rows.emplace(writer, type))
+  mvr::FrameSink& views = pngRows ? static_cast<mvr::FrameSink&>(rows.emplace(writer, type, filesBudget))
                                   : volume.emplace(writer, int(h.width), int(h.height), int(h.views), type, reorder);
   size_t frames = 0;
   while (auto f = reader.next()) {  // in order, all of them, nothing after (or it throws)
@@ -74,7 +76,8 @@ int consume(int argc, char** argv) {
                              : volume->transpose().usesScratch() ? "scratch file"
                                                                  : "volume in memory";
   writer.manifest().info = {{"source", "stream " + from},
-                            {"reorder", {{"method", method}, {"budget_bytes", reorder.budget}}},
+                            {"reorder", {{"method", method}, {"budget_bytes", reorder.budget},
+                                         {"files_to_disk_before_done", rows ? rows->spills() : 0}}},
                             {"timings_s", {{"total", watch.seconds()}}}};
   // The producer's camera: the same per-view cameras as its own manifest.
   if (camera) writer.manifest().setCamera(*camera, h.camera->imagePlaneZ);

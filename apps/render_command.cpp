@@ -535,7 +535,17 @@ int runRender(int argc, char** argv, RenderCommand command) {
                                streaming ? f.queue : BoundedTasks::defaultLimit(),
                                streaming ? "." : out);
   }
-  const bool scratch = reorders && reorder.spills(rowBytes);
+  // 8-bit PNG views from EPIs take each EPI's rows into their encoders and
+  // hold the files' bytes (within the budget, beyond it on their way to
+  // disk), no volume: what is left to reorder through a scratch file is
+  // the rest.
+  const Manifest setManifest{.views = views, .rows = rows, .width = width, .height = height, .format = format,
+                          .order = order, .bits = bits, .compression = f.compression, .codec = f.codec,
+                          .srgb = !f.linear};
+  const size_t pngFilesBudget = EpisToPngViews::filesBudget(setManifest, reorder.budget);
+  const bool pngRows = reorders && !streaming && !mpi && order == "view" && !quiltLayout &&
+                       EpisToPngViews::handles(setManifest, type) && pngFilesBudget > 0;
+  const bool scratch = reorders && !pngRows && reorder.spills(rowBytes);
   // The depth pass reorders float frames where the back end renders EPIs.
   const size_t depthRowBytes = size_t(width) * height * 16 * views;
   ReorderMemory depthReorder;
@@ -569,10 +579,7 @@ int runRender(int argc, char** argv, RenderCommand command) {
   }
   if (streaming) return streamTo(*renderer, camera, imagePlaneZ, f.aa, f.stream, type, f.queue, reorder, background);
 
-  ImageSetWriter writer(out, Manifest{.views = views, .rows = rows, .width = width, .height = height,
-                                     .format = format, .order = order, .bits = bits,
-                                     .compression = f.compression, .codec = f.codec,
-                                     .srgb = !f.linear});
+  ImageSetWriter writer(out, setManifest);
   // Sink chain: [predistort] -> [reorder] -> writer (+ quilt).
   if (scratch) checkScratchFits(rowBytes, reorder.scratchDir);  // the output folder exists now
   if (depthReorders && depthReorder.spills(depthRowBytes)) checkScratchFits(depthRowBytes, depthReorder.scratchDir);
@@ -589,7 +596,7 @@ int runRender(int argc, char** argv, RenderCommand command) {
   std::vector<std::unique_ptr<FrameSink>> chain;
   FrameSink* sink = &writer;
   const FrameTranspose* transpose = nullptr;
-  bool pngRows = false;  // EPIs straight into the views' PNG encoders
+  const EpisToPngViews* pngViews = nullptr;
   std::optional<SplitOutput> split;
   if (mpi) {
     // Set-up is done on every rank once they agree; then each renders its share.
@@ -611,10 +618,10 @@ int runRender(int argc, char** argv, RenderCommand command) {
     else if (quilt) sink = chain.emplace_back(std::make_unique<TeeSink>(std::vector<FrameSink*>{&writer, quilt.get()})).get();
     // Reorder only when the renderer's natural order is not the one asked for.
     if (renderer->order() == FrameOrder::Epi && order == "view") {
-      if (!quilt && !scratch && EpisToPngViews::handles(writer.manifest(), type)) {
-        // The views encoded as their rows come; no volume.
-        sink = chain.emplace_back(std::make_unique<EpisToPngViews>(writer, type)).get();
-        pngRows = true;
+      if (pngRows) {
+        auto views = std::make_unique<EpisToPngViews>(writer, type, pngFilesBudget);
+        pngViews = views.get();
+        sink = chain.emplace_back(std::move(views)).get();
       } else {
         auto reorderer = std::make_unique<EpisToViews>(*sink, width, height, views, type, reorder);
         transpose = &reorderer->transpose();
@@ -695,10 +702,11 @@ int runRender(int argc, char** argv, RenderCommand command) {
                     {"budget_bytes", reorder.budget},
                     {"scratch_file", transpose->usesScratch()},
                     {"frames_per_pass", transpose->outputsPerPass()}};
-  if (pngRows)
+  if (pngViews)
     m["reorder"] = {{"method", "EPI rows into the views' PNG encoders"},
                     {"budget_bytes", reorder.budget},
-                    {"scratch_file", false}};
+                    {"scratch_file", false},
+                    {"files_to_disk_before_done", pngViews->spills()}};
   if (!lut.empty()) m["predistortion"] = f.predistort;
   if (f.depth) {
     m["timings_s"]["color"] = colorSeconds;

@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <string>
 #include <system_error>
 
 #include "mvr/error.h"
@@ -27,23 +28,46 @@ bool writeAll(int fd, std::span<const std::byte> bytes) {
   return true;
 }
 
-}  // namespace
+std::string partOf(const std::string& path) { return path + ".part"; }
 
-void writeFileAtomically(const std::string& path, std::span<const std::byte> bytes) {
+[[noreturn]] void failWriting(const std::string& path, int error) {
+  ::unlink(partOf(path).c_str());
+  fail(path, "cannot write: " + std::generic_category().message(error));  // thread-safe, unlike strerror
+}
+
+// bytes into PATH.part, created or appended to.
+void writePart(const std::string& path, std::span<const std::byte> bytes, bool append) {
   // Past a file-size limit the kernel would kill the process (SIGXFSZ)
   // before write() could report EFBIG; as an error it is one line.
   static const bool ignoreSizeSignal = [] { return std::signal(SIGXFSZ, SIG_IGN) != SIG_ERR; }();
   (void)ignoreSizeSignal;
-  const std::string tmp = path + ".part";
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  if (fd < 0) fail(path, "cannot write: " + std::generic_category().message(errno));
+  const int fd = ::open(partOf(path).c_str(), O_WRONLY | O_CREAT | O_CLOEXEC | (append ? O_APPEND : O_TRUNC), 0666);
+  if (fd < 0) failWriting(path, errno);
   int error = writeAll(fd, bytes) ? 0 : errno;
   if (::close(fd) != 0 && error == 0) error = errno;  // NFS and quotas report at close
-  if (error == 0 && std::rename(tmp.c_str(), path.c_str()) != 0) error = errno;
-  if (error != 0) {
-    ::unlink(tmp.c_str());
-    fail(path, "cannot write: " + std::generic_category().message(error));  // thread-safe, unlike strerror
-  }
+  if (error != 0) failWriting(path, error);
 }
+
+void renamePart(const std::string& path) {
+  if (std::rename(partOf(path).c_str(), path.c_str()) != 0) failWriting(path, errno);
+}
+
+}  // namespace
+
+void writeFileAtomically(const std::string& path, std::span<const std::byte> bytes) {
+  writePart(path, bytes, false);
+  renamePart(path);
+}
+
+void appendToPart(const std::string& path, std::span<const std::byte> bytes, bool first) {
+  writePart(path, bytes, !first);
+}
+
+void finishPart(const std::string& path, std::span<const std::byte> last) {
+  writePart(path, last, true);
+  renamePart(path);
+}
+
+void removePart(const std::string& path) { ::unlink(partOf(path).c_str()); }
 
 }  // namespace mvr

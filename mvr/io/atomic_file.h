@@ -14,4 +14,14 @@ namespace mvr {
 // removed on failure.
 void writeFileAtomically(const std::string& path, std::span<const std::byte> bytes);
 
+// The same file written in pieces over time (a view's PNG bytes as its
+// rows are encoded, when they may not all be held): the first piece
+// creates the temporary file, each piece opens, appends and closes it (no
+// descriptor held between pieces, whatever the number of files), and the
+// last renames it into place. Errors as writeFileAtomically's, the
+// temporary file removed. removePart drops an unfinished file.
+void appendToPart(const std::string& path, std::span<const std::byte> bytes, bool first);
+void finishPart(const std::string& path, std::span<const std::byte> last);
+void removePart(const std::string& path);
+
 }  // namespace mvr

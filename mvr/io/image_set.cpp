@@ -65,7 +65,7 @@ void ImageSetWriter::recycle(std::shared_ptr<Image> copy) {
 }
 
 void ImageSetWriter::submit(const std::string& name, std::function<void(const std::string& path)> write) {
-  encoder_.submit([this, path = (fs::path(dir_) / name).string(), write = std::move(write)] {
+  encoder_.submit([this, path = pathOf(name), write = std::move(write)] {
     write(path);
     std::lock_guard lock(writtenMutex_);
     written_.push_back(path);
@@ -98,11 +98,14 @@ void ImageSetWriter::putExtra(const std::string& name, const Image& image,
   put(name, image, std::move(attributes));
 }
 
-void ImageSetWriter::putEncoded(const std::string& name, std::vector<unsigned char> bytes) {
-  submit(name, [bytes = std::move(bytes)](const std::string& path) {
-    writeFileAtomically(path, std::as_bytes(std::span(bytes)));
+void ImageSetWriter::putEncoded(const std::string& name, std::vector<unsigned char> bytes, bool afterPart) {
+  submit(name, [bytes = std::move(bytes), afterPart](const std::string& path) {
+    if (afterPart) finishPart(path, std::as_bytes(std::span(bytes)));
+    else writeFileAtomically(path, std::as_bytes(std::span(bytes)));
   });
 }
+
+std::string ImageSetWriter::pathOf(const std::string& name) const { return (fs::path(dir_) / name).string(); }
 
 void ImageSetWriter::putEpi(int row, int scanline, const Image& epi) {
   put(manifest_.epiName(row, scanline), epi);

@@ -35,8 +35,11 @@ class ImageSetWriter final : public FrameSink {
   void putExtra(const std::string& name, const Image& image,
                 std::vector<std::pair<std::string, std::string>> attributes = {});
   // A file of the set encoded elsewhere (mvr/io/png_views.h): written on
-  // the pool like the rest, removed like the rest on failure.
-  void putEncoded(const std::string& name, std::vector<unsigned char> bytes);
+  // the pool like the rest, removed like the rest on failure. afterPart:
+  // its first bytes are in its temporary file already (appendToPart on
+  // pathOf(name), mvr/io/atomic_file.h) and these are the rest.
+  void putEncoded(const std::string& name, std::vector<unsigned char> bytes, bool afterPart = false);
+  std::string pathOf(const std::string& name) const;
   // What commit() writes; fill its info before.
   Manifest& manifest() { return manifest_; }
   // Waits until every image put so far is on disk; rethrows an encoding

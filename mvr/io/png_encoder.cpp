@@ -134,15 +134,26 @@ std::array<unsigned char, 2> zlibHeader(int level) {
   return {uint8_t(cmf), uint8_t(flg + (31 - (cmf * 256 + flg) % 31) % 31)};
 }
 
+size_t rowBytesOf(const PngFormat& format) { return size_t(format.width) * 4 * (format.bits / 8); }
+int segmentRowsOf(const PngFormat& format) {
+  return int(std::clamp<size_t>(PngEncoder::kSegmentBytes / (rowBytesOf(format) + 1), 1, size_t(format.height)));
+}
+
 }  // namespace
+
+size_t PngEncoder::heldBytes(const PngFormat& format) {
+  const size_t row = rowBytesOf(format) + 1;
+  const size_t filters = pngFilters(format.level) ? 2 * row : 0;  // previous_ and trial_
+  return (kDictionaryRows + size_t(segmentRowsOf(format))) * row + filters + sizeof(PngEncoder);
+}
 
 PngEncoder::PngEncoder(const PngFormat& format, std::vector<unsigned char>& out) : format_(format), out_(out) {
   if (format.width <= 0 || format.height <= 0) throw Error("an image has no pixels");
   if (format.bits != 8 && format.bits != 16) throw Error("stores 8 or 16 bits per sample here");
   if (format.level < 0 || format.level > 9) throw Error("zlib level must be 0..9");
-  rowBytes_ = size_t(format.width) * 4 * (format.bits / 8);
+  rowBytes_ = rowBytesOf(format);
   rowsLeft_ = format.height;
-  segmentRows_ = int(std::clamp<size_t>(kSegmentBytes / (rowBytes_ + 1), 1, size_t(format.height)));
+  segmentRows_ = segmentRowsOf(format);
   putHeader(out_, format_);
   if (pngFilters(format.level)) {
     previous_.assign(rowBytes_, 0);

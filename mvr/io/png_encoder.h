@@ -38,6 +38,8 @@ class PngEncoder {
   void addRow(std::span<const uint8_t> samples);
   // Bytes of one row as addRow takes it.
   size_t rowBytes() const { return rowBytes_; }
+  // The memory an encoder of this format holds besides its output.
+  static size_t heldBytes(const PngFormat& format);
   bool finished() const { return rowsLeft_ == 0; }
 
   // Rows are deflated in segments of about this many bytes, each by a

@@ -11,6 +11,7 @@
 // The files are byte for byte those ImageSetWriter::putView writes for
 // the same views. For byte images into 8-bit PNG files (handles()); other
 // encodings go through EpisToViews.
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <vector>
@@ -24,26 +25,39 @@ class EpisToPngViews final : public FrameSink {
  public:
   // The set's files are 8-bit PNGs of images of this type as stored.
   static bool handles(const Manifest& manifest, PixelType type);
+  // The bytes of files a sink may hold within `budget` bytes of memory, 0
+  // when its encoders alone would not leave room for 16 KiB per view.
+  static size_t filesBudget(const Manifest& manifest, size_t budget);
 
   // The writer names, writes and records the files (putEncoded); its
-  // manifest gives the size, the views per row and the zlib level.
-  EpisToPngViews(ImageSetWriter& writer, PixelType type);
+  // manifest gives the size, the views per row and the zlib level. When
+  // the files' bytes held exceed filesBudget, they go to the files'
+  // temporary names (appendToPart) and the sink holds none again.
+  EpisToPngViews(ImageSetWriter& writer, PixelType type, size_t filesBudget = SIZE_MAX);
+  // Removes the temporary files of an unfinished row.
+  ~EpisToPngViews() override;
   // EPIs of a row in any order (early ones are held until their turn),
   // rows one after another.
   void putEpi(int row, int scanline, const Image& epi) override;
   // Throws if a row was left with scanlines missing.
   void finish() override;
+  // How often the files' bytes went to disk before their last row.
+  int spills() const { return spills_; }
 
  private:
   void startRow(int row);
   void feed(const Image& epi);
+  void spill();
 
   ImageSetWriter& writer_;
   PngFormat format_;
   PixelType type_;
   int views_;
+  size_t filesBudget_;
   int row_ = -1, next_ = 0;  // the row being encoded, its next scanline
-  std::vector<std::vector<unsigned char>> files_;  // view i's encoded bytes so far
+  int spills_ = 0;
+  std::vector<std::vector<unsigned char>> files_;  // view i's encoded bytes not yet on disk
+  std::vector<char> spilled_;                     // view i's file has bytes on disk
   std::vector<std::unique_ptr<PngEncoder>> encoders_;
   std::map<int, Image> early_;  // scanlines that came before their turn
 };

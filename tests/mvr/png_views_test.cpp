@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <utility>
 #include <random>
 
 #include "mvr/error.h"
@@ -58,10 +60,14 @@ TEST(EpisToPngViews, FilesAreThoseOfTheViews) {
         }
       writer.commit();
     }
-    for (bool shuffled : {false, true}) {
+    // Unbounded, in order and shuffled; with a budget for the files'
+    // bytes that sends them to disk after every EPI, and one that does so
+    // now and then.
+    for (const auto& [shuffled, budget] : {std::pair{false, SIZE_MAX}, std::pair{true, SIZE_MAX},
+                                           std::pair{true, size_t(1)}, std::pair{false, size_t(60000)}}) {
       const fs::path got = test::freshDir("pngviews_got");
       ImageSetWriter writer(got.string(), manifestFor(width, height, views, rows, 1));
-      EpisToPngViews sink(writer, type);
+      EpisToPngViews sink(writer, type, budget);
       std::mt19937 rng(5);
       for (int r = 0; r < rows; ++r) {
         std::vector<int> order(static_cast<size_t>(height));
@@ -72,15 +78,35 @@ TEST(EpisToPngViews, FilesAreThoseOfTheViews) {
       sink.finish();
       writer.commit();
       EXPECT_EQ(writer.filesWritten(), size_t(views * rows));
+      // The files grow by a deflated segment (a few a view) at a time.
+      if (budget != SIZE_MAX) EXPECT_GE(sink.spills(), budget == 1 ? 2 * rows : 2);
+      else EXPECT_EQ(sink.spills(), 0);
+      EXPECT_EQ(std::distance(fs::directory_iterator(got), {}), views * rows + 1) << "the views and the manifest";
       for (int r = 0; r < rows; ++r)
         for (int i = 0; i < views; ++i) {
           const std::string name = writer.manifest().viewName(r, i);
           ASSERT_TRUE(fs::exists(got / name)) << name;
           EXPECT_EQ(fileBytes(got / name), fileBytes(expected / name))
-              << name << (shuffled ? ", shuffled" : "") << (type == PixelType::U8 ? ", linear" : ", sRGB");
+              << name << (shuffled ? ", shuffled" : "") << (type == PixelType::U8 ? ", linear" : ", sRGB")
+              << ", budget " << budget;
         }
     }
   }
+}
+
+// A render that stops within a row leaves none of the row's bytes already
+// on disk behind: no temporary file, no view.
+TEST(EpisToPngViews, AnUnfinishedRowLeavesNoFiles) {
+  const fs::path dir = test::freshDir("pngviews_unfinished");
+  const auto epis = makeEpis(64, 20, 6, 1, PixelType::Srgb8);
+  {
+    ImageSetWriter writer(dir.string(), manifestFor(64, 20, 6, 1, 1));
+    EpisToPngViews sink(writer, PixelType::Srgb8, 1);
+    for (int j = 0; j < 12; ++j) sink.putEpi(0, j, epis[0][size_t(j)]);
+    ASSERT_GE(sink.spills(), 1);
+    EXPECT_TRUE(fs::exists(dir / (writer.manifest().viewName(0, 3) + ".part")));
+  }
+  for (const auto& entry : fs::directory_iterator(dir)) ADD_FAILURE() << entry.path() << " is left";
 }
 
 TEST(EpisToPngViews, MisuseIsAnError) {
