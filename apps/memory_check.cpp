@@ -73,7 +73,8 @@ size_t parseByteSize(const std::string& flag, const std::string& text) {
 void MemoryFlags::add(CLI::App& app, const std::string& scratchDefault) {
   app.add_option("--memory", budget,
                  "memory the frames held for reordering may take (512M, 2G ...; default: half "
-                 "the available memory); beyond it a row of frames goes through a scratch file")
+                 "the available memory); beyond it 8-bit PNG views' bytes go to their files early, "
+                 "other frames through a scratch file")
       ->type_name("BUDGET");
   app.add_option("--scratch", scratch, "folder for the scratch file (default: " + scratchDefault + ")")
       ->type_name("DIR");
