@@ -72,9 +72,7 @@ int consume(int argc, char** argv) {
     ++frames;
   }
   views.finish();
-  const std::string method = pngRows ? "EPI rows into the views' PNG encoders"
-                             : volume->transpose().usesScratch() ? "scratch file"
-                                                                 : "volume in memory";
+  const std::string method = pngRows ? mvr::EpisToPngViews::kMethod : volume->transpose().method();
   writer.manifest().info = {{"source", "stream " + from},
                             {"reorder", {{"method", method}, {"budget_bytes", reorder.budget},
                                          {"files_to_disk_before_done", rows ? rows->spills() : 0}}},

@@ -698,12 +698,12 @@ int runRender(int argc, char** argv, RenderCommand command) {
     if (!quiltLayout->preset.empty()) m["quilt_layout"]["preset"] = quiltLayout->preset;
   }
   if (transpose)
-    m["reorder"] = {{"method", transpose->usesScratch() ? "scratch file" : "volume in memory"},
+    m["reorder"] = {{"method", transpose->method()},
                     {"budget_bytes", reorder.budget},
                     {"scratch_file", transpose->usesScratch()},
                     {"frames_per_pass", transpose->outputsPerPass()}};
   if (pngViews)
-    m["reorder"] = {{"method", "EPI rows into the views' PNG encoders"},
+    m["reorder"] = {{"method", EpisToPngViews::kMethod},
                     {"budget_bytes", reorder.budget},
                     {"scratch_file", false},
                     {"files_to_disk_before_done", pngViews->spills()}};

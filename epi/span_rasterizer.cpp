@@ -4,10 +4,8 @@
 // the pool's workers take whole scanlines; frames leave in scanline order.
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <cstring>
-#include <functional>
 
 #include "epi/epi_rasterizer.h"
 #include "epi/diffuse_spans.h"

@@ -59,22 +59,18 @@ Image QueuedEpiStream::takeSpare() {
 // first-touch faults (and a copy under the lock would stall the writer).
 void QueuedEpiStream::putEpi(int row, int scanline, const Image& epi) {
   Image copy = takeSpare();
-  copy.width = epi.width, copy.height = epi.height, copy.type = epi.type;
-  copy.bytes.assign(epi.bytes.begin(), epi.bytes.end());
+  copy = epi;  // into the spare's pixels, no fresh allocation
   enqueue(row, scanline, std::move(copy));
 }
 
+// A spare of the EPI's shape takes its pixels; without one, a copy.
 void QueuedEpiStream::putEpiInPlace(int row, int scanline, Image& epi) {
   Image spare = takeSpare();
-  if (spare.width != epi.width || spare.height != epi.height || spare.type != epi.type ||
-      spare.bytes.size() != epi.bytes.size()) {
-    if (!spare.bytes.empty()) {
-      std::lock_guard lock(mutex_);
-      spares_.push_back(std::move(spare));
-    }
-    return putEpi(row, scanline, epi);
-  }
-  std::swap(spare, epi);
+  if (spare.width == epi.width && spare.height == epi.height && spare.type == epi.type &&
+      spare.bytes.size() == epi.bytes.size())
+    std::swap(spare, epi);
+  else
+    spare = epi;
   enqueue(row, scanline, std::move(spare));
 }
 

@@ -38,6 +38,8 @@ class FrameTranspose {
   // Output frames held at once: all of them in memory, fewer from scratch.
   int outputsPerPass() const { return int(outputs_.size()); }
   bool usesScratch() const { return scratch_ != nullptr; }
+  // How the frames met, as manifests say: "scratch file" or "volume in memory".
+  const char* method() const { return usesScratch() ? "scratch file" : "volume in memory"; }
   // For a command's summary line: "" in memory, else the passes' size.
   std::string scratchNote() const;
 

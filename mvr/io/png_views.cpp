@@ -24,7 +24,7 @@ PngFormat formatOf(const Manifest& m, PixelType type) {
 
 size_t EpisToPngViews::filesBudget(const Manifest& manifest, size_t budget) {
   const size_t views = size_t(manifest.views);
-  const size_t encoders = views * (PngEncoder::heldBytes(formatOf(manifest, PixelType::U8)) + sizeof(PngEncoder));
+  const size_t encoders = views * PngEncoder::heldBytes(formatOf(manifest, PixelType::U8));
   // Less room than this makes for many small appends to every file.
   const size_t least = views * (size_t(16) << 10);
   return budget > encoders + least ? budget - encoders : 0;

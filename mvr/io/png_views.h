@@ -25,6 +25,8 @@ class EpisToPngViews final : public FrameSink {
  public:
   // The set's files are 8-bit PNGs of images of this type as stored.
   static bool handles(const Manifest& manifest, PixelType type);
+  // How the views were made, as manifests say (FrameTranspose::method's kin).
+  static constexpr const char* kMethod = "EPI rows into the views' PNG encoders";
   // The bytes of files a sink may hold within `budget` bytes of memory, 0
   // when its encoders alone would not leave room for 16 KiB per view.
   static size_t filesBudget(const Manifest& manifest, size_t budget);
