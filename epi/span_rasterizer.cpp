@@ -40,39 +40,26 @@ class SpanRasterizer final : public EpiRasterizer {
     const IndexRange lines = cam.share().scanlines;
     eye0_ = glm::vec3(cam.eye(0, row));
     eyeStep_ = glm::vec3(cam.eye(1, row) - cam.eye(0, row));
-    // Two halves of 2 EPIs per worker: the workers fill one while the
-    // caller hands the other to the sink (whose copies would otherwise
-    // leave the workers idle). The EPIs are allocated once and reused:
-    // fresh multi-megabyte images per scanline cost page faults that
-    // serialise on the kernel's memory lock; so they are kept for the next
-    // row and the next render (a full-parallax grid's rows, a split job's
-    // shares): at 1920x1080 x 1000 views a fresh set cost 0.27 s a call.
-    const int batch = std::max(1, std::min(lines.size(), 2 * threadCount()));
-    std::array<std::vector<Image>, 2>& halves = halves_;
-    for (std::vector<Image>& half : halves) {
-      const bool fits = !half.empty() && half[0].width == cam.width() && half[0].height == cam.views();
-      if (!fits) half.clear();
-      half.resize(std::max(half.size(), size_t(batch)), Image(cam.width(), cam.views(), type_));
-    }
-    struct Filled {
-      int half = 0, first = 0, count = 0;
-    } pending;
-    auto handOn = [&](const Filled& f) {
-      for (int k = 0; k < f.count; ++k) sink.putEpiInPlace(row, f.first + k, halves[f.half][k]);
-    };
-    for (int first = lines.begin, b = 0; first < lines.end; first += batch, ++b) {
-      const Filled now{b % 2, first, std::min(batch, lines.end - first)};
-      ScopedStage s(stats.times, "raster");  // with the previous batch's hand-over beside it
-      parallelForBeside(
-          0, now.count,
-          [&](int k) {
-            thread_local std::vector<float> depth;  // a worker's scratch, reused across EPIs
-            fillEpi(v, table, cam, now.first + k, halves[now.half][k], depth);
-          },
-          [&] { handOn(pending); });
-      pending = now;
-    }
-    handOn(pending);
+    // Workers fill EPIs up to a window ahead while the caller hands them
+    // on in order (a sink's copies would otherwise leave the workers
+    // idle); no batch barrier, so a dense scanline holds up nobody. The
+    // window's EPIs are allocated once and reused: fresh multi-megabyte
+    // images per scanline cost page faults that serialise on the kernel's
+    // memory lock; so they are kept for the next row and the next render
+    // (a full-parallax grid's rows, a split job's shares): at 1920x1080 x
+    // 1000 views a fresh set cost 0.27 s a call.
+    const int window = std::max(1, std::min(lines.size(), 2 * threadCount()));
+    const bool fits = !ring_.empty() && ring_[0].width == cam.width() && ring_[0].height == cam.views();
+    if (!fits) ring_.clear();
+    ring_.resize(std::max(ring_.size(), size_t(window)), Image(cam.width(), cam.views(), type_));
+    ScopedStage s(stats.times, "raster");  // with the hand-over beside it
+    parallelOrdered(
+        lines.begin, lines.end, window,
+        [&](int j) {
+          thread_local std::vector<float> depth;  // a worker's scratch, reused across EPIs
+          fillEpi(v, table, cam, j, ring_[size_t(j - lines.begin) % window], depth);
+        },
+        [&](int j) { sink.putEpiInPlace(row, j, ring_[size_t(j - lines.begin) % window]); });
   }
 
  private:
@@ -328,7 +315,7 @@ class SpanRasterizer final : public EpiRasterizer {
   }
 
   PixelType type_;
-  std::array<std::vector<Image>, 2> halves_;  // EPIs being filled and handed on, reused
+  std::vector<Image> ring_;  // EPIs being filled and handed on, reused
   Srgb8Encoder srgb8_;
   EpiShading shading_;
   SpanPaths paths_;

@@ -3,10 +3,12 @@
 #include <sched.h>
 
 #include <algorithm>
+#include <atomic>
 #include <exception>
 #include <memory>
 #include <mutex>
 #include <thread>
+#include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
@@ -53,18 +55,95 @@ void parallelFor(int begin, int end, const std::function<void(int)>& body) {
   });
 }
 
-void parallelForBeside(int begin, int end, const std::function<void(int)>& body,
-                       const std::function<void()>& beside) {
-  tbb::task_group group;
-  group.run([&] { parallelFor(begin, end, body); });
-  std::exception_ptr besideError;
-  try {
-    beside();
-  } catch (...) {
-    besideError = std::current_exception();
+namespace {
+
+// parallelOrdered's shared state. Items are claimed in order from one
+// counter, up to a limit the caller raises as it takes; each slot records
+// the last index made in it, which the caller waits on.
+class OrderedItems {
+ public:
+  OrderedItems(int begin, int end, int window, const std::function<void(int)>& make)
+      : make_(make), next_(begin), limit_(std::min(end, begin + window)), end_(end), made_(size_t(window)) {
+    for (std::atomic<int>& m : made_) m.store(begin - 1, std::memory_order_relaxed);
   }
-  group.wait();  // the caller helps; rethrows body's exception
-  if (besideError) std::rethrow_exception(besideError);
+
+  // Makes the next claimable item; false when none may be claimed now.
+  bool makeOne() {
+    int i = next_.load(std::memory_order_relaxed);
+    do {
+      if (stopped_.load(std::memory_order_relaxed) || i >= limit_.load(std::memory_order_acquire)) return false;
+    } while (!next_.compare_exchange_weak(i, i + 1, std::memory_order_relaxed));
+    try {
+      make_(i);
+    } catch (...) {
+      fail(std::current_exception());
+    }
+    std::atomic<int>& slot = made_[size_t(i) % made_.size()];
+    slot.store(i, std::memory_order_release);
+    slot.notify_one();
+    return true;
+  }
+
+  // Returns once item i is made, making others meanwhile.
+  void awaitMade(int i) {
+    std::atomic<int>& slot = made_[size_t(i) % made_.size()];
+    for (int seen = slot.load(std::memory_order_acquire); seen != i; seen = slot.load(std::memory_order_acquire))
+      if (!makeOne()) slot.wait(seen, std::memory_order_acquire);  // i is being made elsewhere
+  }
+
+  // Item i is taken: i + window may be claimed. False when nothing more can be.
+  bool release(int i) {
+    const int limit = std::min(end_, i + 1 + int(made_.size()));
+    limit_.store(limit, std::memory_order_release);
+    return limit > i + int(made_.size());
+  }
+
+  void fail(std::exception_ptr e) {
+    std::lock_guard lock(mutex_);
+    if (!error_) error_ = e;
+    stopped_.store(true, std::memory_order_relaxed);
+  }
+  bool failed() const { return stopped_.load(std::memory_order_relaxed); }
+  void rethrow() {
+    if (error_) std::rethrow_exception(error_);
+  }
+
+ private:
+  const std::function<void(int)>& make_;
+  std::atomic<int> next_, limit_;
+  const int end_;
+  std::vector<std::atomic<int>> made_;
+  std::atomic<bool> stopped_{false};
+  std::mutex mutex_;
+  std::exception_ptr error_;
+};
+
+}  // namespace
+
+void parallelOrdered(int begin, int end, int window, const std::function<void(int)>& make,
+                     const std::function<void(int)>& take) {
+  if (end <= begin) return;
+  window = std::max(1, std::min(window, end - begin));
+  OrderedItems items(begin, end, window, make);
+  tbb::task_group group;
+  // One task per claimable item; a task finding its item taken by the
+  // caller returns at once. Tasks never wait, so a worker is never held
+  // by a caller busy in take() (whose own parallel loops need workers).
+  auto spawn = [&] { group.run([&items] { items.makeOne(); }); };
+  for (int k = 0; k < window; ++k) spawn();
+  for (int i = begin; i < end && !items.failed(); ++i) {
+    items.awaitMade(i);
+    if (items.failed()) break;
+    try {
+      take(i);
+    } catch (...) {
+      items.fail(std::current_exception());
+      break;
+    }
+    if (items.release(i)) spawn();
+  }
+  group.wait();
+  items.rethrow();
 }
 
 struct BoundedTasks::State {

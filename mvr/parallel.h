@@ -22,12 +22,16 @@ void startPool();
 // and on any worker; returns when all are done. Exceptions propagate.
 void parallelFor(int begin, int end, const std::function<void(int)>& body);
 
-// parallelFor(begin, end, body) on the pool while the caller runs `beside`
-// (a pipeline's serial stage: handing the previous batch on while the next
-// is computed); returns when both are done. An exception of either
-// propagates, body's first.
-void parallelForBeside(int begin, int end, const std::function<void(int)>& body,
-                       const std::function<void()>& beside);
+// An ordered pipeline without barriers: make(i) for every i in [begin,
+// end) on the pool, at most `window` indices ahead of the caller, which
+// runs take(i) on its own thread in increasing order of i as each is made
+// (sinks that must stay on the main thread: MPI, GL). make(i) may reuse
+// the storage of i - window: take(i - window) has returned by then. The
+// caller makes items too while it waits, so one thread is enough. Returns
+// when every item is taken; the first exception of make or take stops the
+// rest and propagates.
+void parallelOrdered(int begin, int end, int window, const std::function<void(int)>& make,
+                     const std::function<void(int)>& take);
 
 // Tasks run on the pool's workers while the caller goes on (image encoding
 // beside rendering), at most `limit` queued or running at once: beyond
