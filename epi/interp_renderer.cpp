@@ -271,17 +271,17 @@ class InterpRenderer final : public Renderer {
   void renderOnGpu(const ShearingCamera& cam, int row, FrameSink& sink, RenderStats& stats) {
     const std::vector<double> xs = fixedSources(cam);
     store_.reset(cam.width(), cam.height(), int(xs.size()) * options_.maxLayers);
-    std::vector<SourceView> views;
+    struct PassThrough {
+      int view, layer;  // layer -1: the source saw nothing
+    };
+    std::vector<PassThrough> passing;
     for (double x : xs) {
       stats.counters["source_views"] += 1;
       const int first = store_.count();
       gl::GpuClock::mark("acquire");
       const int added =
           sources_->render(sourceCamera(cam), {x, cam.rowY(row)}, options_.maxLayers, trackWidth(cam), stats, store_);
-      if (const int v = passesThrough() ? viewAt(cam, x) : -1; v >= 0) {
-        ScopedStage s(stats.times, "source_readback");
-        views.push_back({v, added > 0 ? store_.readColor(first) : Image(cam.width(), cam.height(), PixelType::F32)});
-      }
+      if (const int v = passesThrough() ? viewAt(cam, x) : -1; v >= 0) passing.push_back({v, added > 0 ? first : -1});
     }
     stats.counters["layers"] += double(store_.count());
     std::optional<GpuImageSlices> slices;
@@ -289,6 +289,15 @@ class InterpRenderer final : public Renderer {
       ScopedStage s(stats.times, "slicing");
       gl::GpuClock::mark("image_slicing");
       slices.emplace(gpuSlicer_->build(store_, cam, {options_.overlap, options_.coalesce}));
+    }
+    // Read once the slicer has waited on the GPU anyway: read between
+    // sources, they stalled it.
+    std::vector<SourceView> views;
+    {
+      ScopedStage s(stats.times, "source_readback");
+      for (const PassThrough& p : passing)
+        views.push_back({p.view, p.layer >= 0 ? store_.readColor(p.layer)
+                                              : Image(cam.width(), cam.height(), PixelType::F32)});
     }
     countSlices(slices->table.sliceCount(), slices->pixels, stats);
     SourceViewSink out(sink, views);

@@ -147,7 +147,9 @@ template <class Draw>
 void DeferredPipeline::inRows(Draw&& draw) {
   gl::Enable(GL_SCISSOR_TEST);
   gl::Scissor(0, rows_.begin, width_, rows_.size());
+  if (condition_) gl::BeginConditionalRender(condition_, GL_QUERY_WAIT);
   draw();
+  if (condition_) gl::EndConditionalRender();
   gl::Disable(GL_SCISSOR_TEST);
 }
 

@@ -54,6 +54,11 @@ class DeferredPipeline {
                 const glm::vec4& peel = glm::vec4(0.0f));
   void lighting(const glm::dmat4& viewProj, const glm::dvec3& eye, const GBuffer& gbuffer,
                 const RenderTarget& target);
+  // The passes that follow draw only if this samples-passed query counted
+  // any (conditional rendering: the GPU decides, the CPU does not wait);
+  // their clears still happen, so a skipped pass leaves an empty target.
+  // 0: always draw.
+  void drawOnlyIf(GLuint samplesQuery) { condition_ = samplesQuery; }
 
  private:
   // The plan's passes as defines: the geometry pass textures, the lighting
@@ -68,6 +73,7 @@ class DeferredPipeline {
   shading::GpuMaterials materials_;
   bool exactAlbedo_;
   IndexRange rows_{0, -1};  // -1: every row
+  GLuint condition_ = 0;    // drawOnlyIf
   int width_ = 0;
   // Runs a draw restricted to rows_.
   template <class Draw>

@@ -19,72 +19,101 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
                                   double trackWidth, RenderStats& stats,
                                   const LayerFilter& filter) override {
     const int w = cam.width(), h = cam.height();
+    const Peel peel = start(cam, eye, trackWidth);
+    Queries queries(1);
     std::vector<SourceLayer> layers;
-    peel(cam, eye, maxLayers, trackWidth, stats, [&](int k, long samples, const GBuffer& gbuffer) {
-      SourceLayer layer{eye, k, Image(), std::vector<float>(size_t(w) * h), samples};
+    for (int k = 0; k < maxLayers; ++k) {
+      GLuint samples = 0;
+      const GBuffer* gbuffer = nullptr;
+      {
+        ScopedStage s(stats.times, "acquire");
+        gbuffer = &drawLayer(peel, k, queries[0], 0);
+        // Each layer is read back and judged before the next: waiting is
+        // no loss here.
+        gl::GetQueryObjectuiv(queries[0], GL_QUERY_RESULT, &samples);
+        if (samples == 0) break;  // an empty layer: nothing lies further back
+      }
+      SourceLayer layer{eye, k, Image(), std::vector<float>(size_t(w) * h), long(samples)};
       {
         ScopedStage s(stats.times, "acquire");
         layer.color = targets_->color.read();
-        gl::GetTextureSubImage(gbuffer.depthTexture(), 0, 0, 0, 0, w, h, 1, GL_DEPTH_COMPONENT, GL_FLOAT,
+        gl::GetTextureSubImage(gbuffer->depthTexture(), 0, 0, 0, 0, w, h, 1, GL_DEPTH_COMPONENT, GL_FLOAT,
                                GLsizei(layer.depth.size() * sizeof(float)), layer.depth.data());
         if (normals_) {
           layer.normals.resize(size_t(w) * h);
-          gl::GetTextureSubImage(gbuffer.normalTexture(), 0, 0, 0, 0, w, h, 1, GL_RGBA, GL_FLOAT,
+          gl::GetTextureSubImage(gbuffer->normalTexture(), 0, 0, 0, 0, w, h, 1, GL_RGBA, GL_FLOAT,
                                  GLsizei(layer.normals.size() * sizeof(glm::vec4)), layer.normals.data());
         }
       }
-      if (filter && !filter(layers, layer)) return false;
+      if (filter && !filter(layers, layer)) break;
       layers.push_back(std::move(layer));
-      return true;
-    });
+    }
+    gl::checkError("source layers");
     return layers;
   }
 
   int render(const ShearingCamera& cam, const glm::dvec2& eye, int maxLayers, double trackWidth,
              RenderStats& stats, DeviceLayers& store) override {
     if (normals_) fail("source layers", "highlights kept apart need layers read back");
-    int added = 0;
-    peel(cam, eye, maxLayers, trackWidth, stats, [&](int, long, const GBuffer& gbuffer) {
-      ScopedStage s(stats.times, "acquire");
+    ScopedStage s(stats.times, "acquire");
+    const Peel peel = start(cam, eye, trackWidth);
+    // Every layer is issued at once, each drawn only if the one in front
+    // had samples (the GPU's test): asking the CPU after each layer would
+    // stall the GPU between layers. A layer behind an empty one is empty
+    // (the peel discards where nothing lies in front), so the empty tail
+    // is cut once the counts are in.
+    Queries queries(maxLayers);
+    const int first = store.count();
+    for (int k = 0; k < maxLayers; ++k) {
+      const GBuffer& gbuffer = drawLayer(peel, k, queries[k], k ? queries[k - 1] : 0);
       store.append(eye, targets_->color.colorTexture(), gbuffer.depthTexture());
-      ++added;
-      return true;
-    });
+    }
+    int added = 0;
+    for (GLuint samples = 1; added < maxLayers && samples; added += samples ? 1 : 0)
+      gl::GetQueryObjectuiv(queries[added], GL_QUERY_RESULT, &samples);
+    store.truncate(first + added);
+    gl::checkError("source layers");
     return added;
   }
 
  private:
-  // Renders and lights up to maxLayers depth-peeled layers and hands each
-  // (index, samples, its G-buffer; the lit colour in targets_->color) to
-  // `take`, which returns false to stop.
-  template <class Take>
-  void peel(const ShearingCamera& cam, const glm::dvec2& eye, int maxLayers, double trackWidth,
-            RenderStats& stats, Take&& take) {
+  // Samples-passed queries, one a layer.
+  struct Queries {
+    explicit Queries(int n) : ids(size_t(n)) { gl::CreateQueries(GL_SAMPLES_PASSED, n, ids.data()); }
+    ~Queries() { gl::DeleteQueries(GLsizei(ids.size()), ids.data()); }
+    GLuint operator[](int k) const { return ids[size_t(k)]; }
+    std::vector<GLuint> ids;
+  };
+
+  // What every layer of one eye's peel shares.
+  struct Peel {
+    glm::dmat4 viewProj;
+    glm::dvec3 eye;
+    glm::vec4 offset;  // the peeling shader's uPeel
+  };
+  Peel start(const ShearingCamera& cam, const glm::dvec2& eye, double trackWidth) {
     const int w = cam.width(), h = cam.height();
-    Targets& t = targets(w, h);
+    targets(w, h);
     pipeline_.begin(w, h, cam.share().scanlines);  // a share's scanlines need only those rows
-    const glm::dmat4 viewProj = cam.viewProjectionAt(eye.x, eye.y);
     const CameraSpec& spec = cam.spec();
-    const glm::vec4 peel(spec.nearDistance, spec.farDistance,
-                         cam.planeWidth() / (w * spec.distance), trackWidth);
-    GLuint query = 0;
-    gl::CreateQueries(GL_SAMPLES_PASSED, 1, &query);
-    for (int k = 0; k < maxLayers; ++k) {
-      const GBuffer& gbuffer = t.gbuffers[k % 2];
-      GLuint samples = 0;
-      {
-        ScopedStage s(stats.times, "acquire");
-        gl::BeginQuery(GL_SAMPLES_PASSED, query);
-        pipeline_.geometry(viewProj, gbuffer, k ? &t.gbuffers[(k + 1) % 2] : nullptr, peel);
-        gl::EndQuery(GL_SAMPLES_PASSED);
-        gl::GetQueryObjectuiv(query, GL_QUERY_RESULT, &samples);
-        if (samples == 0) break;  // an empty layer: nothing lies further back
-        pipeline_.lighting(viewProj, glm::dvec3(eye, spec.distance), gbuffer, t.color);
-      }
-      if (!take(k, long(samples), gbuffer)) break;
-    }
-    gl::DeleteQueries(1, &query);
-    gl::checkError("source layers");
+    return {cam.viewProjectionAt(eye.x, eye.y), glm::dvec3(eye, spec.distance),
+            glm::vec4(spec.nearDistance, spec.farDistance, cam.planeWidth() / (w * spec.distance), trackWidth)};
+  }
+
+  // Depth-peeled layer k, its samples counted by `query`, drawn only if
+  // `onlyIf` (a query; 0: always) counted any: its depth in the returned
+  // G-buffer, its lit colour in targets_->color.
+  const GBuffer& drawLayer(const Peel& p, int k, GLuint query, GLuint onlyIf) {
+    Targets& t = *targets_;
+    const GBuffer& gbuffer = t.gbuffers[k % 2];
+    pipeline_.drawOnlyIf(onlyIf);
+    gl::BeginQuery(GL_SAMPLES_PASSED, query);
+    pipeline_.geometry(p.viewProj, gbuffer, k ? &t.gbuffers[(k + 1) % 2] : nullptr, p.offset);
+    gl::EndQuery(GL_SAMPLES_PASSED);
+    pipeline_.drawOnlyIf(onlyIf ? query : 0);
+    pipeline_.lighting(p.viewProj, p.eye, gbuffer, t.color);
+    pipeline_.drawOnlyIf(0);
+    return gbuffer;
   }
 
   // Kept across calls (every source eye of every row has the same size).
@@ -146,6 +175,11 @@ void DeviceLayers::append(const glm::dvec2& eye, GLuint colorTexture, GLuint dep
                          GLsizei(pixels * sizeof(float)), reinterpret_cast<void*>(at * sizeof(float)));
   gl::BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   eyes_.push_back(eye);
+}
+
+void DeviceLayers::truncate(int count) {
+  if (count < 0 || count > this->count()) fail("layer store", "cannot keep " + std::to_string(count) + " layers");
+  eyes_.resize(size_t(count));
 }
 
 Image DeviceLayers::readColor(int layer) const {

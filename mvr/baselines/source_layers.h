@@ -50,6 +50,8 @@ class DeviceLayers {
   // Copies one layer in on the GPU: a colour and a depth texture of the
   // store's size. Throws mvr::Error when the store is full.
   void append(const glm::dvec2& eye, GLuint colorTexture, GLuint depthTexture);
+  // Drops the layers from `count` on (their memory is kept).
+  void truncate(int count);
   // One layer's colour read back (F32, rows top first).
   Image readColor(int layer) const;
 
@@ -73,7 +75,8 @@ class SourceLayerRenderer {
                                           int maxLayers, double trackWidth, RenderStats& stats,
                                           const LayerFilter& filter = {}) = 0;
   // The same layers (no filter), appended to a store in GPU memory instead
-  // of read back; returns how many were added.
+  // of read back, the CPU waiting once for their sample counts instead of
+  // after each; returns how many were added.
   virtual int render(const ShearingCamera& cam, const glm::dvec2& eye, int maxLayers,
                      double trackWidth, RenderStats& stats, DeviceLayers& store) = 0;
 };

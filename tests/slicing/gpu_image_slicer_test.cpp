@@ -76,6 +76,34 @@ TEST_F(GpuImageSlicerTest, RenderedLayersSliceAsOnTheCpu) {
                        "coalesce " + std::to_string(coalesce) + " overlap " + std::to_string(overlap));
 }
 
+// The store's peel issues every layer at once and cuts the empty tail from
+// the sample counts afterwards: it keeps the layers the read-back peel
+// keeps, whether the limit stops the peel or the scene's depth does.
+TEST_F(GpuImageSlicerTest, TheStoreKeepsTheLayersTheReadBackPeelKeeps) {
+  const Scene scene = loadScene(test::assetPath("default.json"));
+  const ShearingCamera cam(*scene.camera, 64, 48, 5);
+  auto sources = makeSourceLayerRenderer(scene);
+  const double track = cam.spec().trackRight - cam.spec().trackLeft;
+  RenderStats stats;
+  bool cutByDepth = false;
+  for (int maxLayers : {1, 2, 16}) {
+    const std::vector<SourceLayer> host = sources->render(cam, {cam.viewX(0), 0.0}, maxLayers, track, stats);
+    DeviceLayers device;
+    device.reset(cam.width(), cam.height(), 2 * maxLayers);
+    const int added = sources->render(cam, {cam.viewX(0), 0.0}, maxLayers, track, stats, device);
+    sources->render(cam, {cam.viewX(4), 0.0}, maxLayers, track, stats, device);  // appended after the cut
+    ASSERT_EQ(added, int(host.size())) << maxLayers << " layers at most";
+    cutByDepth |= added < maxLayers;
+    for (int k = 0; k < added; ++k) {
+      const Image color = device.readColor(k);
+      EXPECT_EQ(color.bytes, host[size_t(k)].color.bytes) << "layer " << k << " of " << maxLayers;
+    }
+    EXPECT_GE(device.count(), added + 1);
+    EXPECT_EQ(device.eye(added).x, cam.viewX(4));
+  }
+  EXPECT_TRUE(cutByDepth) << "the scene never ran out of layers";
+}
+
 // Hand-made layers: textures uploaded, then appended as a renderer would.
 class HandLayers {
  public:
