@@ -74,7 +74,9 @@ TEST_P(MpiRender, OneTwoAndThreeRanksWriteTheSingleProcessSet) {
     EXPECT_EQ(depthMaps, args.find("--depth") != std::string::npos ? expected.size() : 0u);
     const nlohmann::json m = manifestOf(dir);
     EXPECT_EQ(m["files"], manifestOf(single)["files"]);
-    if (ranks > 1) EXPECT_EQ(m["mpi"]["ranks"], ranks);
+    if (ranks > 1) {
+      EXPECT_EQ(m["mpi"]["ranks"], ranks);
+    }
     else EXPECT_FALSE(m.contains("mpi"));  // one rank is the single-process program
     fs::remove_all(dir);
   }

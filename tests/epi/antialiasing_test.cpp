@@ -62,7 +62,9 @@ TEST_F(Antialiasing, EdgePixelsCoverTheirFractionInEveryBackEnd) {
           const glm::vec4 c = img.pixel(x, y);
           const float want = coverage[x] * coverage[y];
           EXPECT_NEAR(c.a, want, 1.0f / 255) << spec << " view " << key.second << " pixel " << x << "," << y;
-          if (want > 0) EXPECT_NEAR(c.r, 0.8f, 1.5f / 255) << spec << " pixel " << x << "," << y;
+          if (want > 0) {
+            EXPECT_NEAR(c.r, 0.8f, 1.5f / 255) << spec << " pixel " << x << "," << y;
+          }
         }
     }
   }

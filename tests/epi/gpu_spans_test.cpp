@@ -23,7 +23,9 @@ namespace {
 
 void expectSpansMatchCpu(const test::SetDifference& d, const std::string& label) {
   EXPECT_GE(d.minClose, 0.999) << label << ", identical " << d.minIdentical;
-  if (gl::rendersOnCpu()) EXPECT_EQ(d.minClose, 1.0) << label << ", identical " << d.minIdentical;
+  if (gl::rendersOnCpu()) {
+    EXPECT_EQ(d.minClose, 1.0) << label << ", identical " << d.minIdentical;
+  }
 }
 
 class GpuSpans : public test::GlTest {

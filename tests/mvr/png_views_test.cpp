@@ -79,7 +79,9 @@ TEST(EpisToPngViews, FilesAreThoseOfTheViews) {
       writer.commit();
       EXPECT_EQ(writer.filesWritten(), size_t(views * rows));
       // The files grow by a deflated segment (a few a view) at a time.
-      if (budget != SIZE_MAX) EXPECT_GE(sink.spills(), budget == 1 ? 2 * rows : 2);
+      if (budget != SIZE_MAX) {
+        EXPECT_GE(sink.spills(), budget == 1 ? 2 * rows : 2);
+      }
       else EXPECT_EQ(sink.spills(), 0);
       EXPECT_EQ(std::distance(fs::directory_iterator(got), {}), views * rows + 1) << "the views and the manifest";
       for (int r = 0; r < rows; ++r)

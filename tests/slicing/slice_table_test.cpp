@@ -125,7 +125,9 @@ TEST(SliceTable, EndpointOrderFollowsFacing) {
   SliceTable table = SliceTable::build(v, 100, 1);
   for (const Slice& sl : table.scanline(50)) {
     auto [e0, e1] = sliceEnds(v, sl);
-    if (sl.triangle == 0) EXPECT_GT(e1.x0 - e0.x0, 0.0f);
+    if (sl.triangle == 0) {
+      EXPECT_GT(e1.x0 - e0.x0, 0.0f);
+    }
     else EXPECT_LT(e1.x0 - e0.x0, 0.0f);
   }
   EXPECT_EQ(table.scanline(50).size(), 2u);
