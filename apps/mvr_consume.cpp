@@ -64,7 +64,8 @@ int consume(int argc, char** argv) {
   if (!pngRows && reorder.spills(rowBytes)) mvr::app::checkScratchFits(rowBytes, reorder.scratchDir);
   std::optional<mvr::EpisToPngViews> rows;
   std::optional<mvr::EpisToViews> volume;
-  mvr::FrameSink& views = pngRows ? static_cast<mvr::FrameSink&>(rows.emplace(writer, type, filesBudget))
+  mvr::FrameSink& views = pngRows ? static_cast<mvr::FrameSink&>(rows.emplace(writer, type, filesBudget,
+                                                       mvr::EpisToPngViews::queueLength(writer.manifest(), reorder.budget)))
                                   : volume.emplace(writer, int(h.width), int(h.height), int(h.views), type, reorder);
   size_t frames = 0;
   while (auto f = reader.next()) {  // in order, all of them, nothing after (or it throws)

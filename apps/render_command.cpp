@@ -619,7 +619,8 @@ int runRender(int argc, char** argv, RenderCommand command) {
     // Reorder only when the renderer's natural order is not the one asked for.
     if (renderer->order() == FrameOrder::Epi && order == "view") {
       if (pngRows) {
-        auto views = std::make_unique<EpisToPngViews>(writer, type, pngFilesBudget);
+        auto views = std::make_unique<EpisToPngViews>(writer, type, pngFilesBudget,
+                                                      EpisToPngViews::queueLength(setManifest, reorder.budget));
         pngViews = views.get();
         sink = chain.emplace_back(std::move(views)).get();
       } else {

@@ -22,16 +22,26 @@ PngFormat formatOf(const Manifest& m, PixelType type) {
 
 }  // namespace
 
+int EpisToPngViews::queueLength(const Manifest& manifest, size_t budget) {
+  const size_t epi = size_t(manifest.width) * size_t(manifest.views) * 4;  // 8-bit RGBA
+  const size_t bytes = std::min(size_t(128) << 20, budget / 8);
+  return int(std::clamp<size_t>(bytes / std::max<size_t>(epi, 1), 4, 64));
+}
+
 size_t EpisToPngViews::filesBudget(const Manifest& manifest, size_t budget) {
   const size_t views = size_t(manifest.views);
-  const size_t encoders = views * PngEncoder::heldBytes(formatOf(manifest, PixelType::U8));
+  const size_t epi = size_t(manifest.width) * views * 4;  // 8-bit RGBA
+  // The queue, an EPI being fed and one held back early.
+  const size_t queue = size_t(queueLength(manifest, budget) + 2) * epi;
+  const size_t encoders = views * PngEncoder::heldBytes(formatOf(manifest, PixelType::U8)) + queue;
   // Less room than this makes for many small appends to every file.
   const size_t least = views * (size_t(16) << 10);
   return budget > encoders + least ? budget - encoders : 0;
 }
 
-EpisToPngViews::EpisToPngViews(ImageSetWriter& writer, PixelType type, size_t filesBudget)
-    : writer_(writer), type_(type), views_(writer.manifest().views), filesBudget_(filesBudget) {
+EpisToPngViews::EpisToPngViews(ImageSetWriter& writer, PixelType type, size_t filesBudget, int queueLength)
+    : writer_(writer), type_(type), views_(writer.manifest().views), filesBudget_(filesBudget),
+      queueLength_(std::max(1, queueLength)) {
   const Manifest& m = writer.manifest();
   if (!handles(m, type)) fail("PNG view sink", "needs byte images and 8-bit PNG files");
   format_ = formatOf(m, type);
@@ -41,17 +51,24 @@ EpisToPngViews::EpisToPngViews(ImageSetWriter& writer, PixelType type, size_t fi
 }
 
 EpisToPngViews::~EpisToPngViews() {
+  {
+    std::lock_guard lock(mutex_);
+    queued_.clear();  // an unfinished job: what is left need not be encoded
+  }
+  lane_->wait();
   for (int i = 0; i < views_; ++i)
     if (spilled_[size_t(i)]) removePart(writer_.pathOf(writer_.manifest().viewName(row_, i)));
 }
 
 void EpisToPngViews::startRow(int row) {
+  settle();  // the encoders of the row before are done
   row_ = row;
   next_ = 0;
+  fed_ = 0;
   for (int i = 0; i < views_; ++i) encoders_[size_t(i)] = std::make_unique<PngEncoder>(format_, files_[size_t(i)]);
 }
 
-// Row `next_` of every view, on the pool in runs of views; the files
+// Row `fed_` of every view, on the pool in runs of views; the files
 // finished by it go to the writer, which writes them on its pool.
 void EpisToPngViews::feed(const Image& epi) {
   const int run = std::max(1, views_ / (8 * threadCount()));
@@ -59,7 +76,7 @@ void EpisToPngViews::feed(const Image& epi) {
     for (int i = k * run; i < std::min(views_, (k + 1) * run); ++i)
       encoders_[size_t(i)]->addRow({epi.row(i), epi.rowBytes()});
   });
-  if (++next_ < format_.height) {
+  if (++fed_ < format_.height) {
     size_t held = 0;
     for (const auto& file : files_) held += file.size();
     if (held > filesBudget_) spill();
@@ -87,6 +104,12 @@ void EpisToPngViews::spill() {
 }
 
 void EpisToPngViews::putEpi(int row, int scanline, const Image& epi) {
+  put(row, scanline, const_cast<Image&>(epi), false);  // not taken: copied
+}
+
+void EpisToPngViews::putEpiInPlace(int row, int scanline, Image& epi) { put(row, scanline, epi, true); }
+
+void EpisToPngViews::put(int row, int scanline, Image& epi, bool take) {
   if (epi.width != format_.width || epi.height != views_ || epi.type != type_ || scanline < 0 ||
       scanline >= format_.height)
     fail("PNG view sink", "EPI of the wrong shape");
@@ -100,14 +123,75 @@ void EpisToPngViews::putEpi(int row, int scanline, const Image& epi) {
     early_.emplace(scanline, epi);
     return;
   }
-  feed(epi);
+  enqueue(epi, take);
   for (auto it = early_.find(next_); it != early_.end(); it = early_.find(next_)) {
-    feed(it->second);
+    enqueue(it->second, true);
     early_.erase(it);
   }
 }
 
+// Scanline next_ into the queue (its pixels taken, or copied into a
+// spare), and a draining task started if none runs. A full queue is
+// emptied first, the caller helping.
+void EpisToPngViews::enqueue(Image& epi, bool take) {
+  bool full = false;
+  {
+    std::lock_guard lock(mutex_);
+    if (error_) std::rethrow_exception(error_);
+    full = int(queued_.size()) >= queueLength_;
+  }
+  if (full) settle();
+  Image held;
+  {
+    std::lock_guard lock(mutex_);
+    if (!spares_.empty()) held = std::move(spares_.back()), spares_.pop_back();
+  }
+  if (take && held.bytes.size() == epi.bytes.size()) std::swap(held, epi);
+  else held = epi;  // into the spare's memory
+  ++next_;
+  std::lock_guard lock(mutex_);
+  queued_.push_back(std::move(held));
+  if (!draining_) {
+    draining_ = true;
+    lane_->run([this] { drain(); });
+  }
+}
+
+// Feeds the queued EPIs in order until none is left; the first error
+// empties the queue and is kept for the producer.
+void EpisToPngViews::drain() {
+  for (;;) {
+    Image epi;
+    {
+      std::lock_guard lock(mutex_);
+      if (queued_.empty() || error_) {
+        queued_.clear();
+        draining_ = false;
+        return;
+      }
+      epi = std::move(queued_.front());
+      queued_.pop_front();
+    }
+    try {
+      feed(epi);
+    } catch (...) {
+      std::lock_guard lock(mutex_);
+      error_ = std::current_exception();
+    }
+    std::lock_guard lock(mutex_);
+    spares_.push_back(std::move(epi));
+  }
+}
+
+// Returns once every queued EPI is fed, helping; rethrows an encoding error.
+void EpisToPngViews::settle() {
+  lane_->wait();
+  std::lock_guard lock(mutex_);
+  if (error_) std::rethrow_exception(error_);
+}
+
 void EpisToPngViews::finish() {
+  settle();
   if (row_ >= 0 && next_ < format_.height)
     fail("PNG view sink", "row " + std::to_string(row_) + " ended with " + std::to_string(format_.height - next_) +
                               " scanlines missing");

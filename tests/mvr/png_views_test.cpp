@@ -44,7 +44,8 @@ std::vector<std::vector<Image>> makeEpis(int width, int height, int views, int r
 
 // 2 rows of 40 views of 301 x 90: 3 PNG segments a view. The views
 // through ImageSetWriter::putView (transposed here by hand) and straight
-// from the EPIs, in order and shuffled within each row: the same files.
+// from the EPIs, in order (copied) and shuffled within each row (handed
+// over in place): the same files.
 TEST(EpisToPngViews, FilesAreThoseOfTheViews) {
   const int width = 301, height = 90, views = 40, rows = 2;
   for (PixelType type : {PixelType::Srgb8, PixelType::U8}) {
@@ -73,7 +74,17 @@ TEST(EpisToPngViews, FilesAreThoseOfTheViews) {
         std::vector<int> order(static_cast<size_t>(height));
         for (int j = 0; j < height; ++j) order[size_t(j)] = j;
         if (shuffled) std::shuffle(order.begin(), order.end(), rng);
-        for (int j : order) sink.putEpi(r, j, epis[size_t(r)][size_t(j)]);
+        for (int j : order) {
+          if (!shuffled) {
+            sink.putEpi(r, j, epis[size_t(r)][size_t(j)]);
+            continue;
+          }
+          // Handed over in place: the sink takes the pixels and leaves an
+          // image of the same shape.
+          Image epi = epis[size_t(r)][size_t(j)];
+          sink.putEpiInPlace(r, j, epi);
+          EXPECT_TRUE(epi.width == width && epi.height == views && epi.type == type);
+        }
       }
       sink.finish();
       writer.commit();
@@ -81,8 +92,9 @@ TEST(EpisToPngViews, FilesAreThoseOfTheViews) {
       // The files grow by a deflated segment (a few a view) at a time.
       if (budget != SIZE_MAX) {
         EXPECT_GE(sink.spills(), budget == 1 ? 2 * rows : 2);
+      } else {
+        EXPECT_EQ(sink.spills(), 0);
       }
-      else EXPECT_EQ(sink.spills(), 0);
       EXPECT_EQ(std::distance(fs::directory_iterator(got), {}), views * rows + 1) << "the views and the manifest";
       for (int r = 0; r < rows; ++r)
         for (int i = 0; i < views; ++i) {
@@ -111,6 +123,23 @@ TEST(EpisToPngViews, AnUnfinishedRowLeavesNoFiles) {
   for (const auto& entry : fs::directory_iterator(dir)) ADD_FAILURE() << entry.path() << " is left";
 }
 
+// Rows are encoded on the pool: a failure there (here the folder gone
+// when the files' bytes go to disk) surfaces at a later put or at finish.
+TEST(EpisToPngViews, AnEncodingErrorSurfaces) {
+  const fs::path dir = test::freshDir("pngviews_failing");
+  const auto epis = makeEpis(64, 20, 6, 1, PixelType::Srgb8);
+  ImageSetWriter writer(dir.string(), manifestFor(64, 20, 6, 1, 1));
+  EpisToPngViews sink(writer, PixelType::Srgb8, 1);
+  fs::remove_all(dir);
+  try {
+    for (int j = 0; j < 20; ++j) sink.putEpi(0, j, epis[0][size_t(j)]);
+    sink.finish();
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("pngviews_failing"), std::string::npos) << e.what();
+  }
+}
+
 TEST(EpisToPngViews, MisuseIsAnError) {
   const fs::path dir = test::freshDir("pngviews_errors");
   ImageSetWriter writer(dir.string(), manifestFor(8, 4, 3, 2, 1));
@@ -129,6 +158,7 @@ TEST(EpisToPngViews, MisuseIsAnError) {
   EXPECT_THROW(sink.finish(), Error) << "a row with scanlines missing";
   sink.putEpi(0, 1, epi);  // brings 2 in
   sink.putEpi(0, 3, epi);
+  sink.finish();  // the rows are encoded on the pool: handed to the writer once finish returns
   writer.flush();
   EXPECT_EQ(writer.filesWritten(), 3u);
 }
