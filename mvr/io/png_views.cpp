@@ -104,12 +104,13 @@ void EpisToPngViews::spill() {
 }
 
 void EpisToPngViews::putEpi(int row, int scanline, const Image& epi) {
-  put(row, scanline, const_cast<Image&>(epi), false);  // not taken: copied
+  put(row, scanline, epi, nullptr);  // copied
 }
 
-void EpisToPngViews::putEpiInPlace(int row, int scanline, Image& epi) { put(row, scanline, epi, true); }
+void EpisToPngViews::putEpiInPlace(int row, int scanline, Image& epi) { put(row, scanline, epi, &epi); }
 
-void EpisToPngViews::put(int row, int scanline, Image& epi, bool take) {
+// taken: the EPI itself where its pixels may be taken, else null.
+void EpisToPngViews::put(int row, int scanline, const Image& epi, Image* taken) {
   if (epi.width != format_.width || epi.height != views_ || epi.type != type_ || scanline < 0 ||
       scanline >= format_.height)
     fail("PNG view sink", "EPI of the wrong shape");
@@ -123,9 +124,9 @@ void EpisToPngViews::put(int row, int scanline, Image& epi, bool take) {
     early_.emplace(scanline, epi);
     return;
   }
-  enqueue(epi, take);
+  enqueue(epi, taken);
   for (auto it = early_.find(next_); it != early_.end(); it = early_.find(next_)) {
-    enqueue(it->second, true);
+    enqueue(it->second, &it->second);
     early_.erase(it);
   }
 }
@@ -133,7 +134,7 @@ void EpisToPngViews::put(int row, int scanline, Image& epi, bool take) {
 // Scanline next_ into the queue (its pixels taken, or copied into a
 // spare), and a draining task started if none runs. A full queue is
 // emptied first, the caller helping.
-void EpisToPngViews::enqueue(Image& epi, bool take) {
+void EpisToPngViews::enqueue(const Image& epi, Image* taken) {
   bool full = false;
   {
     std::lock_guard lock(mutex_);
@@ -146,7 +147,7 @@ void EpisToPngViews::enqueue(Image& epi, bool take) {
     std::lock_guard lock(mutex_);
     if (!spares_.empty()) held = std::move(spares_.back()), spares_.pop_back();
   }
-  if (take && held.bytes.size() == epi.bytes.size()) std::swap(held, epi);
+  if (taken && held.bytes.size() == taken->bytes.size()) std::swap(held, *taken);
   else held = epi;  // into the spare's memory
   ++next_;
   std::lock_guard lock(mutex_);

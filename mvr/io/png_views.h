@@ -69,9 +69,9 @@ class EpisToPngViews final : public FrameSink {
   int spills() const { return spills_; }
 
  private:
-  void put(int row, int scanline, Image& epi, bool take);
+  void put(int row, int scanline, const Image& epi, Image* taken);
   void startRow(int row);
-  void enqueue(Image& epi, bool take);
+  void enqueue(const Image& epi, Image* taken);
   void drain();
   void settle();
   void feed(const Image& epi);
