@@ -619,8 +619,11 @@ int runRender(int argc, char** argv, RenderCommand command) {
     // Reorder only when the renderer's natural order is not the one asked for.
     if (renderer->order() == FrameOrder::Epi && order == "view") {
       if (pngRows) {
-        auto views = std::make_unique<EpisToPngViews>(writer, type, pngFilesBudget,
-                                                      EpisToPngViews::queueLength(setManifest, reorder.budget));
+        // A queue lets a GL renderer draw while the pool encodes; the CPU
+        // span back end renders on that pool, so a long queue only holds memory.
+        const bool onPool = choice.hasPst() && choice.pst() == PstMode::Cpu;
+        auto views = std::make_unique<EpisToPngViews>(
+            writer, type, pngFilesBudget, onPool ? 4 : EpisToPngViews::queueLength(setManifest, reorder.budget));
         pngViews = views.get();
         sink = chain.emplace_back(std::move(views)).get();
       } else {
