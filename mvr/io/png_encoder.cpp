@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "mvr/error.h"
+#include "mvr/io/adler32.h"
 
 namespace mvr {
 namespace {
@@ -212,7 +213,7 @@ void PngEncoder::deflateSegment(bool last) {
     if (last ? result == Z_STREAM_END : z.avail_in == 0 && z.avail_out > 0) break;
     chunk.resize(chunk.size() * 2);
   }
-  adler_ = adler32(first ? adler32(0, nullptr, 0) : adler_, rows.data(), uInt(rows.size()));
+  adler_ = adler32Update(first ? 1u : uint32_t(adler_), rows);
   // The segment's last rows are the next one's history.
   history_ = std::min(stagedEnd_, kDictionaryRows * (rowBytes_ + 1));
   std::memmove(staged_.get(), staged_.get() + stagedEnd_ - history_, history_);

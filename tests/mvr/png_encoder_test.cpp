@@ -11,6 +11,7 @@
 
 #include "mvr/color.h"
 #include "mvr/error.h"
+#include "mvr/io/adler32.h"
 #include "mvr/io/image_codec.h"
 #include "mvr/io/image_file.h"
 #include "mvr/io/png_encoder.h"
@@ -20,6 +21,32 @@ namespace mvr {
 namespace {
 
 namespace fs = std::filesystem;
+
+// Adler-32 by its definition, a byte at a time, reduced every byte.
+uint32_t adlerByDefinition(uint32_t adler, const std::vector<uint8_t>& bytes) {
+  uint32_t a = adler & 0xffff, b = adler >> 16;
+  for (uint8_t v : bytes) a = (a + v) % 65521, b = (b + a) % 65521;
+  return b << 16 | a;
+}
+
+// The vector path against the definition: every length around its 32-byte
+// steps and its reduction blocks, bytes at their largest (the overflow
+// case) and random, carried on from a running checksum; RFC 1950's value
+// for "Wikipedia".
+TEST(Adler32, MatchesTheDefinition) {
+  const std::string wiki = "Wikipedia";
+  EXPECT_EQ(adler32Update(1, std::span(reinterpret_cast<const uint8_t*>(wiki.data()), wiki.size())), 0x11E60398u);
+  uint32_t seed = 7;
+  for (size_t n : {0, 1, 31, 32, 33, 63, 64, 100, 16383, 16384, 16385, 50000, 200003}) {
+    std::vector<uint8_t> ones(n, 255), noise(n);
+    for (uint8_t& v : noise) seed = seed * 1664525u + 1013904223u, v = uint8_t(seed >> 24);
+    for (const std::vector<uint8_t>* bytes : {&ones, &noise})
+      for (uint32_t start : {1u, 65520u << 16 | 65520u}) {  // none yet; both sums at their largest
+        EXPECT_EQ(adler32Update(start, *bytes), adlerByDefinition(start, *bytes))
+            << n << " bytes" << (bytes == &ones ? " of 255" : " of noise") << " from " << start;
+      }
+  }
+}
 
 // A pattern with runs, gradients and noise, so every filter wins somewhere.
 Image bytePattern(int w, int h, PixelType type) {
