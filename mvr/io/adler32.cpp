@@ -1,13 +1,16 @@
 #include "mvr/io/adler32.h"
 
-#include <emmintrin.h>
-
 #include <algorithm>
+
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 namespace mvr {
 namespace {
 
 constexpr uint32_t kBase = 65521;
+#ifdef __SSE2__
 // Bytes summed between reductions: every lane's sum stays well inside 32
 // bits (the weighted sums grow by at most 255 x 63 a lane a step), and
 // the 64-bit tallies below cannot overflow.
@@ -25,6 +28,8 @@ uint64_t lanes32(__m128i v) {
   return uint64_t(x[0]) + x[1] + x[2] + x[3];
 }
 
+#endif
+
 }  // namespace
 
 // Over n bytes d[0..n) from (a, b): a' = a + sum d[i] and
@@ -35,6 +40,7 @@ uint32_t adler32Update(uint32_t adler, std::span<const uint8_t> bytes) {
   uint64_t a = adler & 0xffff, b = adler >> 16;
   const uint8_t* p = bytes.data();
   size_t n = bytes.size();
+#ifdef __SSE2__
   const __m128i zero = _mm_setzero_si128();
   const __m128i w0 = _mm_setr_epi16(32, 31, 30, 29, 28, 27, 26, 25), w1 = _mm_setr_epi16(24, 23, 22, 21, 20, 19, 18, 17);
   const __m128i w2 = _mm_setr_epi16(16, 15, 14, 13, 12, 11, 10, 9), w3 = _mm_setr_epi16(8, 7, 6, 5, 4, 3, 2, 1);
@@ -56,8 +62,15 @@ uint32_t adler32Update(uint32_t adler, std::span<const uint8_t> bytes) {
     a = (a + lanes64(sum)) % kBase;
     n -= taken;
   }
-  for (; n > 0; --n, ++p) a += *p, b += a;  // under 32 bytes: no overflow
-  return uint32_t((b % kBase) << 16 | (a % kBase));
+#endif
+  // The rest a byte at a time (under 32 bytes with SSE2), reduced often
+  // enough that b cannot overflow.
+  while (n > 0) {
+    const size_t run = std::min<size_t>(n, 5552);
+    for (size_t k = 0; k < run; ++k, ++p) a += *p, b += a;
+    a %= kBase, b %= kBase, n -= run;
+  }
+  return uint32_t(b << 16 | a);
 }
 
 }  // namespace mvr
