@@ -31,8 +31,7 @@ void QueuedEpiStream::writerLoop(std::ostream& out, EpiStreamHeader header) {
       }
       changed_.notify_all();  // room for the producer
       stream.putEpi(f.row, f.scanline, f.epi);
-      std::lock_guard lock(mutex_);
-      spares_.push_back(std::move(f.epi));
+      spares_.giveBack(std::move(f.epi));
     }
     stream.finish();
   } catch (...) {
@@ -46,32 +45,14 @@ void QueuedEpiStream::writerLoop(std::ostream& out, EpiStreamHeader header) {
   changed_.notify_all();
 }
 
-Image QueuedEpiStream::takeSpare() {
-  std::lock_guard lock(mutex_);
-  if (spares_.empty()) return {};
-  Image spare = std::move(spares_.back());
-  spares_.pop_back();
-  return spare;
-}
-
-// The copy is made outside the lock, into an image the writer is done with
-// when there is one: a fresh multi-megabyte image per EPI costs its pages'
-// first-touch faults (and a copy under the lock would stall the writer).
+// Into an image the writer is done with when there is one
+// (mvr/image_pool.h); in place, that image takes the EPI's pixels.
 void QueuedEpiStream::putEpi(int row, int scanline, const Image& epi) {
-  Image copy = takeSpare();
-  copy = epi;  // into the spare's pixels, no fresh allocation
-  enqueue(row, scanline, std::move(copy));
+  enqueue(row, scanline, spares_.hold(epi));
 }
 
-// A spare of the EPI's shape takes its pixels; without one, a copy.
 void QueuedEpiStream::putEpiInPlace(int row, int scanline, Image& epi) {
-  Image spare = takeSpare();
-  if (spare.width == epi.width && spare.height == epi.height && spare.type == epi.type &&
-      spare.bytes.size() == epi.bytes.size())
-    std::swap(spare, epi);
-  else
-    spare = epi;
-  enqueue(row, scanline, std::move(spare));
+  enqueue(row, scanline, spares_.hold(epi, &epi));
 }
 
 void QueuedEpiStream::enqueue(int row, int scanline, Image&& epi) {

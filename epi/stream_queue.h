@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "epi/epi_stream.h"
+#include "mvr/image_pool.h"
 
 namespace mvr {
 
@@ -34,14 +35,13 @@ class QueuedEpiStream final : public FrameSink {
     Image epi;
   };
   void writerLoop(std::ostream& out, EpiStreamHeader header);
-  Image takeSpare();
   void enqueue(int row, int scanline, Image&& epi);
 
   size_t capacity_, highWater_ = 0;
   std::mutex mutex_;
   std::condition_variable changed_;
   std::deque<Frame> queue_;
-  std::vector<Image> spares_;  // written EPIs' images, reused by putEpi
+  SpareImages spares_;  // written EPIs' images, to hold the next ones
   bool closing_ = false, writerDone_ = false;
   std::exception_ptr error_;
   std::thread writer_;

@@ -52,4 +52,26 @@ std::vector<std::shared_ptr<Image>> ImagePool::take(int count, int width, int he
   return out;
 }
 
+// The copy is made outside the lock (a copy under it would stall the
+// worker giving images back), into memory already touched: a fresh
+// multi-megabyte image per frame costs its pages' first-touch faults.
+Image SpareImages::hold(const Image& frame, Image* taken) {
+  Image held;
+  {
+    std::lock_guard lock(mutex_);
+    if (!images_.empty()) held = std::move(images_.back()), images_.pop_back();
+  }
+  if (taken && held.width == taken->width && held.height == taken->height && held.type == taken->type &&
+      held.bytes.size() == taken->bytes.size())
+    std::swap(held, *taken);
+  else
+    held = frame;
+  return held;
+}
+
+void SpareImages::giveBack(Image&& image) {
+  std::lock_guard lock(mutex_);
+  images_.push_back(std::move(image));
+}
+
 }  // namespace mvr

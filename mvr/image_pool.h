@@ -32,4 +32,20 @@ class ImagePool {
   std::shared_ptr<Shelf> shelf_;
 };
 
+// Frames a sink holds for a while (a queue), in images it had held before:
+// a frame handed over in place gives its pixels for a spare of its shape,
+// any other is copied into a spare's memory. Thread-safe: the sink's
+// worker gives images back while its producer holds new frames.
+class SpareImages {
+ public:
+  // `frame` to keep; `taken`: the frame itself when its pixels may be
+  // taken (FrameSink::putEpiInPlace), which then holds the spare's.
+  Image hold(const Image& frame, Image* taken = nullptr);
+  void giveBack(Image&& image);
+
+ private:
+  std::mutex mutex_;
+  std::vector<Image> images_;
+};
+
 }  // namespace mvr

@@ -131,8 +131,8 @@ void EpisToPngViews::put(int row, int scanline, const Image& epi, Image* taken) 
   }
 }
 
-// Scanline next_ into the queue (its pixels taken, or copied into a
-// spare), and a draining task started if none runs. A full queue is
+// Scanline next_ into the queue (in a spare, mvr/image_pool.h), and a
+// draining task started if none runs. A full queue is
 // emptied first, the caller helping.
 void EpisToPngViews::enqueue(const Image& epi, Image* taken) {
   bool full = false;
@@ -142,13 +142,7 @@ void EpisToPngViews::enqueue(const Image& epi, Image* taken) {
     full = int(queued_.size()) >= queueLength_;
   }
   if (full) settle();
-  Image held;
-  {
-    std::lock_guard lock(mutex_);
-    if (!spares_.empty()) held = std::move(spares_.back()), spares_.pop_back();
-  }
-  if (taken && held.bytes.size() == taken->bytes.size()) std::swap(held, *taken);
-  else held = epi;  // into the spare's memory
+  Image held = spares_.hold(epi, taken);
   ++next_;
   std::lock_guard lock(mutex_);
   queued_.push_back(std::move(held));
@@ -179,8 +173,7 @@ void EpisToPngViews::drain() {
       std::lock_guard lock(mutex_);
       error_ = std::current_exception();
     }
-    std::lock_guard lock(mutex_);
-    spares_.push_back(std::move(epi));
+    spares_.giveBack(std::move(epi));
   }
 }
 

@@ -29,6 +29,7 @@
 
 #include <tbb/task_group.h>
 
+#include "mvr/image_pool.h"
 #include "mvr/io/image_set.h"
 #include "mvr/io/png_encoder.h"
 
@@ -94,7 +95,7 @@ class EpisToPngViews final : public FrameSink {
   // The queue and its draining task: at most one drains at a time.
   std::mutex mutex_;
   std::deque<Image> queued_;
-  std::vector<Image> spares_;  // fed EPIs' images, to take the next ones' pixels
+  SpareImages spares_;  // fed EPIs' images, to hold the next ones
   bool draining_ = false;
   std::exception_ptr error_;
   std::unique_ptr<tbb::task_group> lane_ = std::make_unique<tbb::task_group>();  // waited on before it goes
