@@ -101,8 +101,9 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
   }
 
   // Depth-peeled layer k, its samples counted by `query`, drawn only if
-  // `onlyIf` (a query; 0: always) counted any: its depth in the returned
-  // G-buffer, its lit colour in targets_->color.
+  // `onlyIf` (a query; 0: always) counted any, and lit only if it has
+  // samples itself (the GPU decides; an empty layer is never used): its
+  // depth in the returned G-buffer, its lit colour in targets_->color.
   const GBuffer& drawLayer(const Peel& p, int k, GLuint query, GLuint onlyIf) {
     Targets& t = *targets_;
     const GBuffer& gbuffer = t.gbuffers[k % 2];
@@ -110,7 +111,7 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
     gl::BeginQuery(GL_SAMPLES_PASSED, query);
     pipeline_.geometry(p.viewProj, gbuffer, k ? &t.gbuffers[(k + 1) % 2] : nullptr, p.offset);
     gl::EndQuery(GL_SAMPLES_PASSED);
-    pipeline_.drawOnlyIf(onlyIf ? query : 0);
+    pipeline_.drawOnlyIf(query);
     pipeline_.lighting(p.viewProj, p.eye, gbuffer, t.color);
     pipeline_.drawOnlyIf(0);
     return gbuffer;
