@@ -75,8 +75,22 @@ void main() {
 }
 )";
 
+// The composite's full-screen triangle at window depth 0: tested LESS
+// against a warped reference's depth buffer (cleared to 0, far in reversed
+// Z), it passes exactly where that reference drew, and early fragment tests
+// let a CPU rasterizer skip the blocks it left empty.
+const char* const kCoverageVertex = R"(
+void main() {
+  vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+  gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
+// Over reference 0's coverage: both references blended, or reference 0
+// alone. With REST, over reference 1's coverage where 0 drew nothing.
 // The weight of reference 0 (depth_warp.h; keep in step with warpWeight).
 const char* const kComposite = R"(
+layout(early_fragment_tests) in;
 layout(binding = 0) uniform sampler2D uColor0;
 layout(binding = 1) uniform sampler2D uDepth0;
 layout(binding = 2) uniform sampler2D uColor1;
@@ -107,14 +121,18 @@ float weight0(float theta0, float theta1, float z0, float z1, float occ0, float 
 
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
-  vec4 c0 = texelFetch(uColor0, px, 0), c1 = texelFetch(uColor1, px, 0);
+#ifdef REST
+  if (texelFetch(uDepth0, px, 0).r > 0.0) discard;
+  oColor = vec4(texelFetch(uColor1, px, 0).rgb, 1.0);
+#else
+  vec4 c0 = texelFetch(uColor0, px, 0);
   float z0 = texelFetch(uDepth0, px, 0).r, z1 = uTwo != 0 ? texelFetch(uDepth1, px, 0).r : 0.0;
-  if (!(z0 > 0.0) && !(z1 > 0.0)) discard;
   if (!(z1 > 0.0)) { oColor = vec4(c0.rgb, 1.0); return; }
-  if (!(z0 > 0.0)) { oColor = vec4(c1.rgb, 1.0); return; }
+  vec4 c1 = texelFetch(uColor1, px, 0);
   vec3 p = (uPixelToWorld * vec4(vec3(gl_FragCoord.xy, 1.0) * min(z0, z1), 1.0)).xyz;
   float w = weight0(angle(p, uCenter, uCenter0), angle(p, uCenter, uCenter1), z0, z1, c0.a, c1.a);
   oColor = vec4(w * c0.rgb + (1.0 - w) * c1.rgb, 1.0);
+#endif
 }
 )";
 
@@ -264,11 +282,14 @@ DepthWarp::DepthWarp(float tau, float a)
                                      {GL_FRAGMENT_SHADER, gl::glslHeader() + kWarpFragment}})),
       splat_(gl::linkProgram("warp-splat", {{GL_VERTEX_SHADER, gl::glslHeader({"SPLAT"}) + kWarpVertex},
                                             {GL_FRAGMENT_SHADER, gl::glslHeader() + kWarpFragment}})),
-      composite_(gl::linkProgram("warp-composite",
-                                 {{GL_VERTEX_SHADER, gl::glslHeader() + gl::kFullScreenTriangleVertex},
-                                  {GL_FRAGMENT_SHADER, gl::glslHeader() + kComposite}})),
+      composite_(gl::linkProgram("warp-composite", {{GL_VERTEX_SHADER, gl::glslHeader() + kCoverageVertex},
+                                                    {GL_FRAGMENT_SHADER, gl::glslHeader() + kComposite}})),
+      compositeRest_(gl::linkProgram("warp-composite-rest",
+                                     {{GL_VERTEX_SHADER, gl::glslHeader() + kCoverageVertex},
+                                      {GL_FRAGMENT_SHADER, gl::glslHeader({"REST"}) + kComposite}})),
       grid_(gl::VertexArray::create()),
-      empty_(gl::VertexArray::create()) {
+      empty_(gl::VertexArray::create()),
+      over_(gl::Framebuffer::create()) {
   gl::setUniform(composite_, "uTau", tau);
   gl::setUniform(composite_, "uA", a);
 }
@@ -378,7 +399,6 @@ void DepthWarp::render(const WarpReference& a, const WarpReference* b, const War
   if (b) warp(*b, view, warped_[1]);
   target.bind();
   target.clear();
-  gl::Disable(GL_DEPTH_TEST);
   gl::UseProgram(composite_.id());
   gl::setUniform(composite_, "uTwo", b ? 1 : 0);
   setMatrix(composite_, "uPixelToWorld", view.pixelToWorld);
@@ -390,8 +410,21 @@ void DepthWarp::render(const WarpReference& a, const WarpReference* b, const War
   gl::BindTextureUnit(2, warped_[1].color.id());
   gl::BindTextureUnit(3, warped_[1].depth.id());
   gl::BindVertexArray(empty_.id());
-  gl::DrawArrays(GL_TRIANGLES, 0, 3);
-  gl::Enable(GL_DEPTH_TEST);
+  // Each pass over one reference's coverage (kCoverageVertex): the
+  // target's colour with that reference's depth buffer, tested, not written.
+  gl::BindFramebuffer(GL_FRAMEBUFFER, over_.id());
+  gl::NamedFramebufferTexture(over_.id(), GL_COLOR_ATTACHMENT0, target.colorTexture(), 0);
+  gl::DepthFunc(GL_LESS);
+  gl::DepthMask(GL_FALSE);
+  for (int k = 0; k < (b ? 2 : 1); ++k) {
+    gl::NamedFramebufferTexture(over_.id(), GL_DEPTH_ATTACHMENT, warped_[k].zbuffer.id(), 0);
+    gl::UseProgram(k == 0 ? composite_.id() : compositeRest_.id());
+    gl::DrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  gl::NamedFramebufferTexture(over_.id(), GL_COLOR_ATTACHMENT0, 0, 0);
+  gl::NamedFramebufferTexture(over_.id(), GL_DEPTH_ATTACHMENT, 0, 0);
+  setDepthConvention();
+  target.bind();
   gl::checkError("depth warp");
 }
 

@@ -109,8 +109,9 @@ class DepthWarp {
   void warp(const WarpReference& ref, const WarpCamera& view, const Warped& into) const;
   WarpedImage read(const Warped& from) const;
 
-  gl::Program warp_, splat_, composite_;
+  gl::Program warp_, splat_, composite_, compositeRest_;
   gl::VertexArray grid_, empty_;
+  gl::Framebuffer over_;  // the target's colour over a warped reference's depth (render)
   gl::Buffer gridVertices_;
   int gridWidth_ = 0, gridHeight_ = 0;
   Warped warped_[2];
