@@ -66,12 +66,12 @@ in vec3 vUvZ;
 in float vOcc;
 in float vValid;
 in float vDepth;
-layout(location = 0) out vec4 oColor;  // rgb, occlusion label
-layout(location = 1) out vec4 oDepth;  // r: the virtual camera's z
+// rgb, and the virtual camera's z, negative where labelled occluded: one
+// target to write (a CPU GL pays per target and fragment).
+layout(location = 0) out vec4 oColor;
 void main() {
   if (vValid < 0.999) discard;
-  oColor = vec4(texture(uColor, vUvZ.xy / vUvZ.z).rgb, vOcc);
-  oDepth = vec4(vDepth);
+  oColor = vec4(texture(uColor, vUvZ.xy / vUvZ.z).rgb, vOcc > 0.5 ? -vDepth : vDepth);
 }
 )";
 
@@ -88,13 +88,16 @@ void main() {
 
 // Over reference 0's coverage: both references blended, or reference 0
 // alone. With REST, over reference 1's coverage where 0 drew nothing.
+// Coverage is read from the other reference's depth buffer: the warped
+// colours are not cleared between views, and the pass's own depth buffer
+// is attached, so it is not sampled.
 // The weight of reference 0 (depth_warp.h; keep in step with warpWeight).
 const char* const kComposite = R"(
 layout(early_fragment_tests) in;
-layout(binding = 0) uniform sampler2D uColor0;
-layout(binding = 1) uniform sampler2D uDepth0;
-layout(binding = 2) uniform sampler2D uColor1;
-layout(binding = 3) uniform sampler2D uDepth1;
+layout(binding = 0) uniform sampler2D uWarped0;  // rgb, signed z (kWarpFragment)
+layout(binding = 1) uniform sampler2D uCover0;   // depth buffer: > 0 where drawn
+layout(binding = 2) uniform sampler2D uWarped1;
+layout(binding = 3) uniform sampler2D uCover1;
 uniform int uTwo;
 uniform mat4 uPixelToWorld;
 uniform vec3 uCenter;
@@ -122,15 +125,16 @@ float weight0(float theta0, float theta1, float z0, float z1, float occ0, float 
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
 #ifdef REST
-  if (texelFetch(uDepth0, px, 0).r > 0.0) discard;
-  oColor = vec4(texelFetch(uColor1, px, 0).rgb, 1.0);
+  if (texelFetch(uCover0, px, 0).r > 0.0) discard;
+  oColor = vec4(texelFetch(uWarped1, px, 0).rgb, 1.0);
 #else
-  vec4 c0 = texelFetch(uColor0, px, 0);
-  float z0 = texelFetch(uDepth0, px, 0).r, z1 = uTwo != 0 ? texelFetch(uDepth1, px, 0).r : 0.0;
-  if (!(z1 > 0.0)) { oColor = vec4(c0.rgb, 1.0); return; }
-  vec4 c1 = texelFetch(uColor1, px, 0);
+  vec4 c0 = texelFetch(uWarped0, px, 0);
+  if (uTwo == 0 || !(texelFetch(uCover1, px, 0).r > 0.0)) { oColor = vec4(c0.rgb, 1.0); return; }
+  vec4 c1 = texelFetch(uWarped1, px, 0);
+  float z0 = abs(c0.a), z1 = abs(c1.a);
   vec3 p = (uPixelToWorld * vec4(vec3(gl_FragCoord.xy, 1.0) * min(z0, z1), 1.0)).xyz;
-  float w = weight0(angle(p, uCenter, uCenter0), angle(p, uCenter, uCenter1), z0, z1, c0.a, c1.a);
+  float occ0 = c0.a < 0.0 ? 1.0 : 0.0, occ1 = c1.a < 0.0 ? 1.0 : 0.0;
+  float w = weight0(angle(p, uCenter, uCenter0), angle(p, uCenter, uCenter1), z0, z1, occ0, occ1);
   oColor = vec4(w * c0.rgb + (1.0 - w) * c1.rgb, 1.0);
 #endif
 }
@@ -319,25 +323,20 @@ void DepthWarp::ensureTargets(int w, int h) {
     if (t.width == w && t.height == h) continue;
     t.width = w, t.height = h;
     t.color = texture2D(GL_RGBA32F, w, h, GL_NEAREST);
-    t.depth = texture2D(GL_R32F, w, h, GL_NEAREST);
     t.zbuffer = texture2D(GL_DEPTH_COMPONENT32F, w, h, GL_NEAREST);
     t.fbo = gl::Framebuffer::create();
     gl::NamedFramebufferTexture(t.fbo.id(), GL_COLOR_ATTACHMENT0, t.color.id(), 0);
-    gl::NamedFramebufferTexture(t.fbo.id(), GL_COLOR_ATTACHMENT1, t.depth.id(), 0);
     gl::NamedFramebufferTexture(t.fbo.id(), GL_DEPTH_ATTACHMENT, t.zbuffer.id(), 0);
-    const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    gl::NamedFramebufferDrawBuffers(t.fbo.id(), 2, buffers);
     if (gl::CheckNamedFramebufferStatus(t.fbo.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       fail("GL", "warp target is incomplete");
   }
 }
 
-void DepthWarp::warp(const WarpReference& ref, const WarpCamera& view, const Warped& into) const {
+void DepthWarp::warp(const WarpReference& ref, const WarpCamera& view, const Warped& into, bool clearColor) const {
   gl::BindFramebuffer(GL_FRAMEBUFFER, into.fbo.id());
   gl::Viewport(0, 0, into.width, into.height);
   const float zero[4] = {0, 0, 0, 0};
-  gl::ClearNamedFramebufferfv(into.fbo.id(), GL_COLOR, 0, zero);
-  gl::ClearNamedFramebufferfv(into.fbo.id(), GL_COLOR, 1, zero);
+  if (clearColor) gl::ClearNamedFramebufferfv(into.fbo.id(), GL_COLOR, 0, zero);
   gl::ClearNamedFramebufferfi(into.fbo.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
   gl::BindTextureUnit(0, ref.color.id());
   gl::BindTextureUnit(1, ref.depth.id());
@@ -361,8 +360,14 @@ DepthWarp::WarpedImage DepthWarp::read(const Warped& from) const {
   WarpedImage out{Image(from.width, from.height, PixelType::F32), DepthImage(from.width, from.height)};
   gl::GetTextureSubImage(from.color.id(), 0, 0, 0, 0, from.width, from.height, 1, GL_RGBA, GL_FLOAT,
                          GLsizei(out.color.bytes.size()), out.color.bytes.data());
-  gl::GetTextureSubImage(from.depth.id(), 0, 0, 0, 0, from.width, from.height, 1, GL_RED, GL_FLOAT,
-                         GLsizei(out.depth.values.size() * sizeof(float)), out.depth.values.data());
+  // Alpha holds the signed depth (kWarpFragment): split it into the label
+  // and the depth image.
+  float* rgba = reinterpret_cast<float*>(out.color.bytes.data());
+  for (size_t k = 0; k < out.depth.values.size(); ++k) {
+    float& a = rgba[4 * k + 3];
+    out.depth.values[k] = std::abs(a);
+    a = a < 0.0f ? 1.0f : 0.0f;
+  }
   return out;
 }
 
@@ -370,7 +375,7 @@ DepthWarp::WarpedImage DepthWarp::warped(const WarpReference& ref, const WarpCam
   ensureGrid(ref.width, ref.height);
   ensureTargets(width, height);
   setDepthConvention();
-  warp(ref, view, warped_[0]);
+  warp(ref, view, warped_[0], true);
   return read(warped_[0]);
 }
 
@@ -395,8 +400,8 @@ void DepthWarp::render(const WarpReference& a, const WarpReference* b, const War
   ensureGrid(a.width, a.height);
   ensureTargets(target.width(), target.height());
   setDepthConvention();
-  warp(a, view, warped_[0]);
-  if (b) warp(*b, view, warped_[1]);
+  warp(a, view, warped_[0], false);
+  if (b) warp(*b, view, warped_[1], false);
   target.bind();
   target.clear();
   gl::UseProgram(composite_.id());
@@ -406,9 +411,9 @@ void DepthWarp::render(const WarpReference& a, const WarpReference* b, const War
   gl::setUniform(composite_, "uCenter0", a.center);
   gl::setUniform(composite_, "uCenter1", b ? b->center : a.center);
   gl::BindTextureUnit(0, warped_[0].color.id());
-  gl::BindTextureUnit(1, warped_[0].depth.id());
+  gl::BindTextureUnit(1, warped_[0].zbuffer.id());
   gl::BindTextureUnit(2, warped_[1].color.id());
-  gl::BindTextureUnit(3, warped_[1].depth.id());
+  gl::BindTextureUnit(3, warped_[1].zbuffer.id());
   gl::BindVertexArray(empty_.id());
   // Each pass over one reference's coverage (kCoverageVertex): the
   // target's colour with that reference's depth buffer, tested, not written.

@@ -8,8 +8,9 @@
 //              jumps by more than tau of the nearer depth, or it has no
 //              sample: view independent, so labelled once per reference
 //              instead of per vertex and view as the seed does); the
-//              fragment shader writes colour, label and the virtual
-//              camera's depth.
+//              fragment shader writes colour, and the virtual camera's
+//              depth signed by the label (rounded: a rubber sheet is
+//              occluded over its half nearer the labelled vertices).
 //              Triangles touching a pixel without a sample are dropped;
 //              those across a jump (rubber sheets) are drawn and labelled.
 //              A run of up to 16 cells of a grid row on one plane is one
@@ -20,9 +21,11 @@
 //              drawn as its own footprint, a flat square at its depth
 //              (labelled), so silhouettes are not eroded by the half
 //              pixel the grid of centres stops short of them.
-//   composite  one full-screen pass blends the two warped references per
-//              pixel with the seed's weight (eqs. 5-1 to 5-3): the angular
-//              weight, the visibility test and the occlusion penalty.
+//   composite  a full-screen pass over the pixels either reference drew
+//              (their depth buffers tested) blends the two warped
+//              references per pixel with the seed's weight (eqs. 5-1 to
+//              5-3): the angular weight, the visibility test and the
+//              occlusion penalty.
 // The weight of reference i at a pixel whose surface point P the two
 // warps agree on (the nearer one's), theta_i the angle at P between the
 // rays to the virtual camera and to reference i, s = theta_i / (theta_i +
@@ -98,15 +101,18 @@ class DepthWarp {
   WarpedImage warped(const WarpReference& ref, const WarpCamera& view, int width, int height);
 
  private:
-  // The warped reference: colour and label, virtual depth, depth buffer.
+  // The warped reference: colour and signed virtual depth (kWarpFragment),
+  // depth buffer.
   struct Warped {
     int width = 0, height = 0;
-    gl::Texture color, depth, zbuffer;
+    gl::Texture color, zbuffer;
     gl::Framebuffer fbo;
   };
   void ensureGrid(int width, int height);  // the grid's vertices
   void ensureTargets(int width, int height);
-  void warp(const WarpReference& ref, const WarpCamera& view, const Warped& into) const;
+  // clearColor: the colour target too, not just the depth buffer (render
+  // reads colour only where the depth buffer says drawn).
+  void warp(const WarpReference& ref, const WarpCamera& view, const Warped& into, bool clearColor) const;
   WarpedImage read(const Warped& from) const;
 
   gl::Program warp_, splat_, composite_, compositeRest_;
