@@ -33,10 +33,9 @@ uniform mat4 uPixelToWorld;
 uniform mat4 uViewProjection;
 // The reference's texture coordinates times its camera z, and that z:
 // both linear in the surface point, so a triangle spanning a planar run
-// of pixels (sampledTriangles) samples the colour exactly, uv = xy / z.
+// of pixels (GridTriangles) samples the colour exactly, uv = xy / z.
 out vec3 vUvZ;
 out float vOcc;
-out float vValid;
 out float vDepth;
 
 void main() {
@@ -49,11 +48,9 @@ void main() {
   ivec2 p = clamp(ivec2(floor(aPixel)), ivec2(0), size - 1);
   vec2 centre = aPixel, at = aPixel;
 #endif
+  // Every vertex drawn has a sample (GridTriangles, the silhouette list).
   float z = texelFetch(uDepth, p, 0).r;
-  vValid = z > 0.0 ? 1.0 : 0.0;
-  vec4 world = uPixelToWorld * vec4(vec3(at, 1.0) * z, 1.0);
-  // No sample: outside the clip volume; triangles touching it are dropped.
-  gl_Position = z > 0.0 ? uViewProjection * world : vec4(0.0, 0.0, -2.0, 1.0);
+  gl_Position = uViewProjection * (uPixelToWorld * vec4(vec3(at, 1.0) * z, 1.0));
   vDepth = gl_Position.w;  // the virtual camera's z
   vOcc = texelFetch(uLabel, p, 0).r;
   vUvZ = vec3(centre / vec2(size), 1.0) * max(z, 1e-30);
@@ -64,13 +61,11 @@ const char* const kWarpFragment = R"(
 layout(binding = 0) uniform sampler2D uColor;
 in vec3 vUvZ;
 in float vOcc;
-in float vValid;
 in float vDepth;
 // rgb, and the virtual camera's z, negative where labelled occluded: one
 // target to write (a CPU GL pays per target and fragment).
 layout(location = 0) out vec4 oColor;
 void main() {
-  if (vValid < 0.999) discard;
   oColor = vec4(texture(uColor, vUvZ.xy / vUvZ.z).rgb, vOcc > 0.5 ? -vDepth : vDepth);
 }
 )";
@@ -182,62 +177,96 @@ void labelPixels(const DepthImage& d, float tau, std::vector<float>& labels, std
 int gridPixel(int k, int n) { return std::clamp(int(std::floor(std::clamp(float(k) - 0.5f, 0.0f, float(n)))), 0, n - 1); }
 
 // The grid's triangles that touch only pixels with samples: a triangle
-// with a vertex on an empty pixel draws nothing (the fragment shader
-// discards it), so it is left out of the reference's list rather than
-// transformed for every view; most of a scene's image is background. And
-// where a run of cells of one grid row lies on a plane (no occlusion
-// label, 1/z affine along both of its rows with the same slope: a plane's
-// 1/z is affine in its image), the run is one quad: its inner vertices
-// would land on the quad's plane anyway. The vertex work is what a CPU
-// rasterizer pays for per view.
-std::vector<uint32_t> sampledTriangles(const DepthImage& d, const std::vector<float>& labels) {
-  constexpr int kLongestRun = 16;
-  constexpr float kPlanar = 2e-4f;  // largest deviation of 1/z from the plane, relative
-  const int w = d.width, h = d.height, gw = w + 2, gh = h + 2;
-  std::vector<uint8_t> valid(size_t(gw) * gh), flat(size_t(gw) * gh);
-  std::vector<float> inverse(size_t(gw) * gh);
-  for (int j = 0; j < gh; ++j)
-    for (int i = 0; i < gw; ++i) {
-      const int x = gridPixel(i, w), y = gridPixel(j, h);
-      const size_t k = size_t(j) * gw + i;
-      valid[k] = d.at(x, y) > 0.0f;
-      inverse[k] = valid[k] ? 1.0f / d.at(x, y) : 0.0f;
-      // The border ring's vertices sit at the image's edge, off the
-      // pixel-centre spacing: never inside a merged run.
-      flat[k] = valid[k] && labels[size_t(y) * w + x] == 0.0f && i > 0 && i + 1 < gw && j > 0 && j + 1 < gh;
-    }
-  // Grid columns i0..i1 of rows j and j + 1 on one plane.
-  auto planar = [&](int i0, int i1, int j) {
-    for (int i = i0; i <= i1; ++i)
-      if (!flat[size_t(j) * gw + i] || !flat[size_t(j + 1) * gw + i]) return false;
-    const float* top = inverse.data() + size_t(j) * gw;
-    const float* bottom = top + gw;
-    const float slopeTop = (top[i1] - top[i0]) / float(i1 - i0), slopeBottom = (bottom[i1] - bottom[i0]) / float(i1 - i0);
-    if (std::abs(slopeTop - slopeBottom) > kPlanar * top[i0] / float(i1 - i0)) return false;
-    for (int i = i0 + 1; i < i1; ++i)
-      if (std::abs(top[i0] + slopeTop * float(i - i0) - top[i]) > kPlanar * top[i] ||
-          std::abs(bottom[i0] + slopeBottom * float(i - i0) - bottom[i]) > kPlanar * bottom[i])
-        return false;
-    return true;
-  };
-  std::vector<uint32_t> indices;
-  for (int j = 0; j + 1 < gh; ++j)
-    for (int i = 0; i + 1 < gw;) {
-      int end = i + 1;  // the run's last grid column
-      while (end + 1 < gw && end + 1 - i <= kLongestRun && planar(i, end + 1, j)) ++end;
-      if (end > i + 1 || planar(i, end, j)) {
-        const uint32_t a = uint32_t(j * gw + i), b = uint32_t(j * gw + end), c = a + uint32_t(gw), e = b + uint32_t(gw);
-        indices.insert(indices.end(), {a, b, c, b, e, c});
-        i = end;
-        continue;
+// with a vertex on an empty pixel would draw nothing, so it is left out of
+// the reference's list rather than transformed for every view; most of a
+// scene's image is background. And where a rectangle of cells lies on a
+// plane (no occlusion label, 1/z affine over all of its vertices: a
+// plane's 1/z is affine in its image), the rectangle is one quad: its
+// inner vertices would land on the quad's plane anyway. Triangles are what
+// a CPU rasterizer pays for per view.
+class GridTriangles {
+ public:
+  GridTriangles(const DepthImage& d, const std::vector<float>& labels)
+      : gw_(d.width + 2), gh_(d.height + 2), valid_(size_t(gw_) * gh_), flat_(size_t(gw_) * gh_),
+        inverse_(size_t(gw_) * gh_), merged_(size_t(gw_) * gh_) {
+    for (int j = 0; j < gh_; ++j)
+      for (int i = 0; i < gw_; ++i) {
+        const int x = gridPixel(i, d.width), y = gridPixel(j, d.height);
+        const size_t k = at(i, j);
+        valid_[k] = d.at(x, y) > 0.0f;
+        inverse_[k] = valid_[k] ? 1.0f / d.at(x, y) : 0.0f;
+        // The border ring's vertices sit at the image's edge, off the
+        // pixel-centre spacing: never inside a merged rectangle.
+        flat_[k] = valid_[k] && labels[size_t(y) * d.width + x] == 0.0f && i > 0 && i + 1 < gw_ && j > 0 &&
+                   j + 1 < gh_;
       }
-      const uint32_t a = uint32_t(j * gw + i), b = a + 1, c = a + uint32_t(gw), e = c + 1;
-      if (valid[a] && valid[b] && valid[c]) indices.insert(indices.end(), {a, b, c});
-      if (valid[b] && valid[e] && valid[c]) indices.insert(indices.end(), {b, e, c});
-      ++i;
-    }
-  return indices;
-}
+  }
+
+  std::vector<uint32_t> indices() {
+    std::vector<uint32_t> out;
+    for (int j = 0; j + 1 < gh_; ++j)
+      for (int i = 0; i + 1 < gw_; ++i) {
+        if (merged_[at(i, j)]) continue;
+        const auto [i1, j1] = rectangle(i, j);
+        const uint32_t a = uint32_t(at(i, j));
+        if (i1 > i) {
+          const uint32_t b = uint32_t(at(i1, j)), c = uint32_t(at(i, j1)), e = uint32_t(at(i1, j1));
+          out.insert(out.end(), {a, b, c, b, e, c});
+          for (int y = j; y < j1; ++y) std::fill_n(merged_.begin() + ptrdiff_t(at(i, y)), i1 - i, uint8_t(1));
+          continue;
+        }
+        const uint32_t b = a + 1, c = a + uint32_t(gw_), e = c + 1;
+        if (valid_[a] && valid_[b] && valid_[c]) out.insert(out.end(), {a, b, c});
+        if (valid_[b] && valid_[e] && valid_[c]) out.insert(out.end(), {b, e, c});
+      }
+    return out;
+  }
+
+ private:
+  static constexpr int kLongest = 32;      // cells along a side of a rectangle
+  static constexpr float kPlanar = 2e-4f;  // largest deviation of 1/z from the plane, relative
+
+  size_t at(int i, int j) const { return size_t(j) * gw_ + i; }
+
+  // 1/z = p0 + si (i - i0) + sj (j - j0): the plane of the rectangle whose
+  // top left vertex is (i0, j0), from it and its two next vertices.
+  struct Plane {
+    float p0, si, sj;
+    int i0, j0;
+    float operator()(int i, int j) const { return p0 + si * float(i - i0) + sj * float(j - j0); }
+  };
+
+  bool onPlane(const Plane& p, int i, int j) const {
+    const size_t k = at(i, j);
+    return flat_[k] && std::abs(p(i, j) - inverse_[k]) <= kPlanar * inverse_[k];
+  }
+
+  // The rectangle of free cells on one plane from cell (i, j), widest
+  // first; returns its far vertex (i1, j1), i1 == i when there is none.
+  std::pair<int, int> rectangle(int i, int j) const {
+    if (!flat_[at(i, j)] || !flat_[at(i + 1, j)] || !flat_[at(i, j + 1)]) return {i, j};
+    const float p0 = inverse_[at(i, j)];
+    const Plane p{p0, inverse_[at(i + 1, j)] - p0, inverse_[at(i, j + 1)] - p0, i, j};
+    if (!onPlane(p, i + 1, j + 1)) return {i, j};
+    int i1 = i + 1;
+    while (i1 + 1 < gw_ && i1 + 1 - i <= kLongest && !merged_[at(i1, j)] && onPlane(p, i1 + 1, j) &&
+           onPlane(p, i1 + 1, j + 1))
+      ++i1;
+    auto rowOnPlane = [&](int y) {
+      for (int x = i; x <= i1; ++x)
+        if (!onPlane(p, x, y)) return false;
+      return true;
+    };
+    int j1 = j + 1;
+    while (j1 + 1 < gh_ && j1 + 1 - j <= kLongest && rowOnPlane(j1 + 1)) ++j1;
+    return {i1, j1};
+  }
+
+  int gw_, gh_;
+  std::vector<uint8_t> valid_, flat_;
+  std::vector<float> inverse_;
+  std::vector<uint8_t> merged_;  // cells already inside a rectangle
+};
 
 }  // namespace
 
@@ -272,7 +301,7 @@ WarpReference WarpReference::upload(const RgbdView& view, float tau) {
   gl::TextureSubImage2D(r.label.id(), 0, 0, 0, w, h, GL_RED, GL_FLOAT, labels.data());
   r.silhouettes = gl::makeBuffer(silhouettes.data(), silhouettes.size());
   r.silhouetteCount = silhouettes.size();
-  const std::vector<uint32_t> triangles = sampledTriangles(view.depth, labels);
+  const std::vector<uint32_t> triangles = GridTriangles(view.depth, labels).indices();
   r.triangles = gl::makeBuffer(triangles.data(), triangles.size());
   r.triangleIndexCount = triangles.size();
   r.pixelToWorld = glm::mat4(RgbdView::pixelToWorld(view.K, view.V));
@@ -300,7 +329,7 @@ DepthWarp::DepthWarp(float tau, float a)
 
 // The static grid (seed 5.2): one vertex per reference pixel centre and
 // the border ring, (W + 2) x (H + 2), made once per reference size; each
-// reference brings its own list of triangles (sampledTriangles).
+// reference brings its own list of triangles (GridTriangles).
 void DepthWarp::ensureGrid(int w, int h) {
   if (w == gridWidth_ && h == gridHeight_) return;
   auto at = [](int k, int n) { return std::clamp(float(k) - 0.5f, 0.0f, float(n)); };
