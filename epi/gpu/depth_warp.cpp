@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include <glm/gtc/constants.hpp>
@@ -228,37 +229,38 @@ class GridTriangles {
 
   size_t at(int i, int j) const { return size_t(j) * gw_ + i; }
 
-  // 1/z = p0 + si (i - i0) + sj (j - j0): the plane of the rectangle whose
-  // top left vertex is (i0, j0), from it and its two next vertices.
+  // 1/z = p0 + si (i - i0) + sj (j - j0): the plane of a rectangle whose
+  // top left vertex is (i0, j0).
   struct Plane {
     float p0, si, sj;
     int i0, j0;
     float operator()(int i, int j) const { return p0 + si * float(i - i0) + sj * float(j - j0); }
   };
 
-  bool onPlane(const Plane& p, int i, int j) const {
-    const size_t k = at(i, j);
-    return flat_[k] && std::abs(p(i, j) - inverse_[k]) <= kPlanar * inverse_[k];
+  // The plane through vertex (i0, j0), (i1, j0) and (i0, j1) (chords,
+  // not the next vertices' slopes: on a curved surface a chord strays a
+  // quarter as far over the same length), if every vertex of the
+  // rectangle lies on it.
+  std::optional<Plane> fit(int i0, int j0, int i1, int j1) const {
+    const float p0 = inverse_[at(i0, j0)];
+    const Plane p{p0, (inverse_[at(i1, j0)] - p0) / float(i1 - i0), (inverse_[at(i0, j1)] - p0) / float(j1 - j0),
+                  i0, j0};
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const size_t k = at(i, j);
+        if (!flat_[k] || std::abs(p(i, j) - inverse_[k]) > kPlanar * inverse_[k]) return std::nullopt;
+      }
+    return p;
   }
 
   // The rectangle of free cells on one plane from cell (i, j), widest
   // first; returns its far vertex (i1, j1), i1 == i when there is none.
   std::pair<int, int> rectangle(int i, int j) const {
-    if (!flat_[at(i, j)] || !flat_[at(i + 1, j)] || !flat_[at(i, j + 1)]) return {i, j};
-    const float p0 = inverse_[at(i, j)];
-    const Plane p{p0, inverse_[at(i + 1, j)] - p0, inverse_[at(i, j + 1)] - p0, i, j};
-    if (!onPlane(p, i + 1, j + 1)) return {i, j};
+    if (!fit(i, j, i + 1, j + 1)) return {i, j};
     int i1 = i + 1;
-    while (i1 + 1 < gw_ && i1 + 1 - i <= kLongest && !merged_[at(i1, j)] && onPlane(p, i1 + 1, j) &&
-           onPlane(p, i1 + 1, j + 1))
-      ++i1;
-    auto rowOnPlane = [&](int y) {
-      for (int x = i; x <= i1; ++x)
-        if (!onPlane(p, x, y)) return false;
-      return true;
-    };
+    while (i1 + 1 < gw_ && i1 + 1 - i <= kLongest && !merged_[at(i1, j)] && fit(i, j, i1 + 1, j + 1)) ++i1;
     int j1 = j + 1;
-    while (j1 + 1 < gh_ && j1 + 1 - j <= kLongest && rowOnPlane(j1 + 1)) ++j1;
+    while (j1 + 1 < gh_ && j1 + 1 - j <= kLongest && fit(i, j, i1, j1 + 1)) ++j1;
     return {i1, j1};
   }
 
