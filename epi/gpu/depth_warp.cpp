@@ -13,21 +13,18 @@
 namespace mvr {
 namespace {
 
-// The vertex in reference pixel coordinates: pixel centres (i + 0.5,
-// j + 0.5), and a ring on the image's border (0 and W, 0 and H) that takes
-// its pixel's depth, so that warping to the reference itself covers every
-// pixel centre (the grid of centres alone ends half a pixel short, and
-// fill rules drop centres on its right and bottom edges). With SPLAT, the
-// corner of a silhouette pixel's own footprint (splats below). Labels and
-// the silhouette list are the reference's, made once (WarpReference).
+// The vertex in reference pixel coordinates (aAt), and the point whose
+// pixel gives it depth, label and texture coordinates (aCentre). The grid:
+// pixel centres (i + 0.5, j + 0.5), and a ring on the image's border (0
+// and W, 0 and H) that takes its pixel's depth, so that warping to the
+// reference itself covers every pixel centre (the grid of centres alone
+// ends half a pixel short, and fill rules drop centres on its right and
+// bottom edges); aAt == aCentre. A splat (below): the corners of a
+// silhouette pixel's own footprint, aCentre its centre. Labels and the
+// splats are the reference's, made once (WarpReference).
 const char* const kWarpVertex = R"(
-#ifdef SPLAT
-const vec2 kCorners[6] = vec2[6](vec2(-0.5, -0.5), vec2(0.5, -0.5), vec2(-0.5, 0.5), vec2(0.5, -0.5),
-                                 vec2(0.5, 0.5), vec2(-0.5, 0.5));
-layout(std430, binding = 0) readonly buffer Silhouettes { uint uSilhouettes[]; };
-#else
-layout(location = 0) in vec2 aPixel;
-#endif
+layout(location = 0) in vec2 aAt;
+layout(location = 1) in vec2 aCentre;
 layout(binding = 1) uniform sampler2D uDepth;
 layout(binding = 2) uniform sampler2D uLabel;
 uniform mat4 uPixelToWorld;
@@ -41,20 +38,13 @@ out float vDepth;
 
 void main() {
   ivec2 size = textureSize(uDepth, 0);
-#ifdef SPLAT
-  uint index = uSilhouettes[gl_InstanceID];
-  ivec2 p = ivec2(int(index % uint(size.x)), int(index / uint(size.x)));
-  vec2 centre = vec2(p) + 0.5, at = centre + kCorners[gl_VertexID];
-#else
-  ivec2 p = clamp(ivec2(floor(aPixel)), ivec2(0), size - 1);
-  vec2 centre = aPixel, at = aPixel;
-#endif
-  // Every vertex drawn has a sample (GridTriangles, the silhouette list).
+  ivec2 p = clamp(ivec2(floor(aCentre)), ivec2(0), size - 1);
+  // Every vertex drawn has a sample (GridTriangles, the splats).
   float z = texelFetch(uDepth, p, 0).r;
-  gl_Position = uViewProjection * (uPixelToWorld * vec4(vec3(at, 1.0) * z, 1.0));
+  gl_Position = uViewProjection * (uPixelToWorld * vec4(vec3(aAt, 1.0) * z, 1.0));
   vDepth = gl_Position.w;  // the virtual camera's z
   vOcc = texelFetch(uLabel, p, 0).r;
-  vUvZ = vec3(centre / vec2(size), 1.0) * max(z, 1e-30);
+  vUvZ = vec3(aCentre / vec2(size), 1.0) * z;
 }
 )";
 
@@ -270,6 +260,27 @@ class GridTriangles {
   std::vector<uint8_t> merged_;  // cells already inside a rectangle
 };
 
+// A silhouette pixel's footprint as a quad (kWarpVertex): four corners,
+// each (corner, pixel centre), and two triangles. One indexed draw for
+// all: a CPU GL runs every instance of an instanced draw as its own draw.
+struct Splats {
+  std::vector<glm::vec4> vertices;
+  std::vector<uint32_t> indices;
+};
+
+Splats makeSplats(const std::vector<uint32_t>& pixels, int width) {
+  Splats s;
+  for (const uint32_t pixel : pixels) {
+    const glm::vec2 centre(float(pixel % uint32_t(width)) + 0.5f, float(pixel / uint32_t(width)) + 0.5f);
+    const uint32_t k = uint32_t(s.vertices.size());
+    for (const glm::vec2 corner : {glm::vec2(-0.5f, -0.5f), glm::vec2(0.5f, -0.5f), glm::vec2(-0.5f, 0.5f),
+                                   glm::vec2(0.5f, 0.5f)})
+      s.vertices.emplace_back(centre + corner, centre);
+    s.indices.insert(s.indices.end(), {k, k + 1, k + 2, k + 1, k + 3, k + 2});
+  }
+  return s;
+}
+
 }  // namespace
 
 float warpWeight(float theta0, float theta1, float z0, float z1, float occ0, float occ1, float tau, float a) {
@@ -301,8 +312,10 @@ WarpReference WarpReference::upload(const RgbdView& view, float tau) {
   labelPixels(view.depth, tau, labels, silhouettes);
   r.label = texture2D(GL_R32F, w, h, GL_NEAREST);
   gl::TextureSubImage2D(r.label.id(), 0, 0, 0, w, h, GL_RED, GL_FLOAT, labels.data());
-  r.silhouettes = gl::makeBuffer(silhouettes.data(), silhouettes.size());
-  r.silhouetteCount = silhouettes.size();
+  const Splats splats = makeSplats(silhouettes, w);
+  r.splatVertices = gl::makeBuffer(splats.vertices.data(), splats.vertices.size());
+  r.splatIndices = gl::makeBuffer(splats.indices.data(), splats.indices.size());
+  r.splatIndexCount = splats.indices.size();
   const std::vector<uint32_t> triangles = GridTriangles(view.depth, labels).indices();
   r.triangles = gl::makeBuffer(triangles.data(), triangles.size());
   r.triangleIndexCount = triangles.size();
@@ -315,16 +328,21 @@ WarpReference WarpReference::upload(const RgbdView& view, float tau) {
 DepthWarp::DepthWarp(float tau, float a)
     : warp_(gl::linkProgram("warp", {{GL_VERTEX_SHADER, gl::glslHeader() + kWarpVertex},
                                      {GL_FRAGMENT_SHADER, gl::glslHeader() + kWarpFragment}})),
-      splat_(gl::linkProgram("warp-splat", {{GL_VERTEX_SHADER, gl::glslHeader({"SPLAT"}) + kWarpVertex},
-                                            {GL_FRAGMENT_SHADER, gl::glslHeader() + kWarpFragment}})),
       composite_(gl::linkProgram("warp-composite", {{GL_VERTEX_SHADER, gl::glslHeader() + kCoverageVertex},
                                                     {GL_FRAGMENT_SHADER, gl::glslHeader() + kComposite}})),
       compositeRest_(gl::linkProgram("warp-composite-rest",
                                      {{GL_VERTEX_SHADER, gl::glslHeader() + kCoverageVertex},
                                       {GL_FRAGMENT_SHADER, gl::glslHeader({"REST"}) + kComposite}})),
       grid_(gl::VertexArray::create()),
+      splats_(gl::VertexArray::create()),
       empty_(gl::VertexArray::create()),
       over_(gl::Framebuffer::create()) {
+  // A splat vertex (makeSplats): corner, then centre.
+  for (GLuint attribute : {0u, 1u}) {
+    gl::VertexArrayAttribFormat(splats_.id(), attribute, 2, GL_FLOAT, GL_FALSE, attribute * sizeof(glm::vec2));
+    gl::VertexArrayAttribBinding(splats_.id(), attribute, 0);
+    gl::EnableVertexArrayAttrib(splats_.id(), attribute);
+  }
   gl::setUniform(composite_, "uTau", tau);
   gl::setUniform(composite_, "uA", a);
 }
@@ -341,11 +359,14 @@ void DepthWarp::ensureGrid(int w, int h) {
   for (int j = 0; j < gh; ++j)
     for (int i = 0; i < gw; ++i) vertices.emplace_back(at(i, w), at(j, h));
   gridVertices_ = gl::makeBuffer(vertices.data(), vertices.size());
+  // A grid vertex is its own centre: both attributes read the same vec2.
   const GLuint vao = grid_.id();
   gl::VertexArrayVertexBuffer(vao, 0, gridVertices_.id(), 0, sizeof(glm::vec2));
-  gl::VertexArrayAttribFormat(vao, 0, 2, GL_FLOAT, GL_FALSE, 0);
-  gl::VertexArrayAttribBinding(vao, 0, 0);
-  gl::EnableVertexArrayAttrib(vao, 0);
+  for (GLuint attribute : {0u, 1u}) {
+    gl::VertexArrayAttribFormat(vao, attribute, 2, GL_FLOAT, GL_FALSE, 0);
+    gl::VertexArrayAttribBinding(vao, attribute, 0);
+    gl::EnableVertexArrayAttrib(vao, attribute);
+  }
   gridWidth_ = w, gridHeight_ = h;
 }
 
@@ -372,19 +393,17 @@ void DepthWarp::warp(const WarpReference& ref, const WarpCamera& view, const War
   gl::BindTextureUnit(0, ref.color.id());
   gl::BindTextureUnit(1, ref.depth.id());
   gl::BindTextureUnit(2, ref.label.id());
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, ref.silhouettes.id());
-  for (const gl::Program* p : {&warp_, &splat_}) {
-    gl::UseProgram(p->id());
-    gl::setUniform(*p, "uPixelToWorld", ref.pixelToWorld);
-    setMatrix(*p, "uViewProjection", view.viewProjection);
-  }
   gl::UseProgram(warp_.id());
+  gl::setUniform(warp_, "uPixelToWorld", ref.pixelToWorld);
+  setMatrix(warp_, "uViewProjection", view.viewProjection);
   gl::BindVertexArray(grid_.id());
   gl::VertexArrayElementBuffer(grid_.id(), ref.triangles.id());
   if (ref.triangleIndexCount) gl::DrawElements(GL_TRIANGLES, GLsizei(ref.triangleIndexCount), GL_UNSIGNED_INT, nullptr);
-  gl::UseProgram(splat_.id());
-  gl::BindVertexArray(empty_.id());
-  if (ref.silhouetteCount) gl::DrawArraysInstanced(GL_TRIANGLES, 0, 6, GLsizei(ref.silhouetteCount));
+  if (!ref.splatIndexCount) return;
+  gl::BindVertexArray(splats_.id());
+  gl::VertexArrayVertexBuffer(splats_.id(), 0, ref.splatVertices.id(), 0, sizeof(glm::vec4));
+  gl::VertexArrayElementBuffer(splats_.id(), ref.splatIndices.id());
+  gl::DrawElements(GL_TRIANGLES, GLsizei(ref.splatIndexCount), GL_UNSIGNED_INT, nullptr);
 }
 
 DepthWarp::WarpedImage DepthWarp::read(const Warped& from) const {

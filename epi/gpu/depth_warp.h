@@ -57,8 +57,9 @@ float warpWeight(float theta0, float theta1, float z0, float z1, float occ0, flo
 struct WarpReference {
   int width = 0, height = 0;
   gl::Texture color, depth, label;  // RGBA32F linear, R32F camera z, R32F occlusion label
-  gl::Buffer silhouettes;           // indices of pixels with an empty 8-neighbour
-  size_t silhouetteCount = 0;
+  // Pixels with an empty 8-neighbour, each its own square (the splats).
+  gl::Buffer splatVertices, splatIndices;
+  size_t splatIndexCount = 0;
   // The grid's triangles whose three pixels have samples (the others draw
   // nothing), planar rectangles merged: the shared grid's vertices, this
   // reference's indices.
@@ -117,8 +118,8 @@ class DepthWarp {
   void warp(const WarpReference& ref, const WarpCamera& view, const Warped& into, bool clearColor) const;
   WarpedImage read(const Warped& from) const;
 
-  gl::Program warp_, splat_, composite_, compositeRest_;
-  gl::VertexArray grid_, empty_;
+  gl::Program warp_, composite_, compositeRest_;
+  gl::VertexArray grid_, splats_, empty_;
   gl::Framebuffer over_;  // the target's colour over a warped reference's depth (render)
   gl::Buffer gridVertices_;
   int gridWidth_ = 0, gridHeight_ = 0;
