@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <tuple>
 #include <vector>
 
 #include <glm/gtc/constants.hpp>
@@ -35,28 +36,79 @@ uniform mat4 uViewProjection;
 out vec3 vUvZ;
 out float vOcc;
 out float vDepth;
+out vec3 vWorld;
+// A sheet's farthest vertex's vDepth: GridTriangles puts it last, the
+// provoking vertex under GL's default (last-vertex) convention.
+flat out float vFar;
 
 void main() {
   ivec2 size = textureSize(uDepth, 0);
   ivec2 p = clamp(ivec2(floor(aCentre)), ivec2(0), size - 1);
   // Every vertex drawn has a sample (GridTriangles, the splats).
   float z = texelFetch(uDepth, p, 0).r;
-  gl_Position = uViewProjection * (uPixelToWorld * vec4(vec3(aAt, 1.0) * z, 1.0));
+  vec4 world = uPixelToWorld * vec4(vec3(aAt, 1.0) * z, 1.0);
+  gl_Position = uViewProjection * world;
+  vWorld = world.xyz;
   vDepth = gl_Position.w;  // the virtual camera's z
+  vFar = vDepth;
   vOcc = texelFetch(uLabel, p, 0).r;
   vUvZ = vec3(aCentre / vec2(size), 1.0) * z;
 }
 )";
 
+// With SHEET, a rubber sheet's fragment (a triangle across a depth jump):
+// a guess at a surface this reference could not see, on the view's ray
+// behind the sheet's point, no farther than the jump's far side. The other
+// reference sees that stretch of the ray as a segment of its image; if at
+// every pixel of it that reference sees nothing, or a surface beyond the
+// ray's point there, the stretch is empty (a surface on it would show, or
+// hide what shows) and the fragment is dropped.
 const char* const kWarpFragment = R"(
 layout(binding = 0) uniform sampler2D uColor;
 in vec3 vUvZ;
 in float vOcc;
 in float vDepth;
+in vec3 vWorld;
+flat in float vFar;
 // rgb, and the virtual camera's z, negative where labelled occluded: one
 // target to write (a CPU GL pays per target and fragment).
 layout(location = 0) out vec4 oColor;
+
+#ifdef SHEET
+layout(binding = 4) uniform sampler2D uOtherDepth;  // the other reference's camera z
+uniform mat4 uOtherWorldToPixel;                    // world to its (x z, y z, z)
+uniform vec3 uEye;                                  // the view's
+uniform float uTau;
+
+bool seenThrough() {
+  // The ray's points from here to the far side, in the other reference's
+  // (x z, y z, z): near + s (far - near), s in [0, 1], linear in world.
+  vec3 near = (uOtherWorldToPixel * vec4(vWorld, 1.0)).xyz;
+  vec3 far = (uOtherWorldToPixel * vec4(uEye + (vWorld - uEye) * max(vFar / vDepth, 1.0), 1.0)).xyz;
+  if (!(near.z > 0.0) || !(far.z > 0.0)) return false;
+  vec2 from = near.xy / near.z, to = far.xy / far.z;
+  int axis = abs(to.x - from.x) >= abs(to.y - from.y) ? 0 : 1;
+  ivec2 size = textureSize(uOtherDepth, 0);
+  int steps = int(min(ceil(abs(to[axis] - from[axis])), float(size.x + size.y)));
+  vec3 d = far - near;
+  for (int k = 0; k <= steps; ++k) {
+    // The ray's point whose pixel coordinate along the axis is u.
+    float u = mix(from[axis], to[axis], steps > 0 ? float(k) / float(steps) : 0.0);
+    float s = abs(d[axis] - u * d.z) > 1e-20 ? clamp((u * near.z - near[axis]) / (d[axis] - u * d.z), 0.0, 1.0) : 0.0;
+    vec3 p = near + s * d;
+    vec2 at = floor(p.xy / p.z);
+    if (any(lessThan(at, vec2(0.0))) || any(greaterThanEqual(at, vec2(size)))) return false;
+    float seen = texelFetch(uOtherDepth, ivec2(at), 0).r;
+    if (seen > 0.0 && seen < p.z * (1.0 + uTau)) return false;
+  }
+  return true;
+}
+#endif
+
 void main() {
+#ifdef SHEET
+  if (seenThrough()) discard;
+#endif
   oColor = vec4(texture(uColor, vUvZ.xy / vUvZ.z).rgb, vOcc > 0.5 ? -vDepth : vDepth);
 }
 )";
@@ -177,8 +229,8 @@ int gridPixel(int k, int n) { return std::clamp(int(std::floor(std::clamp(float(
 // a CPU rasterizer pays for per view.
 class GridTriangles {
  public:
-  GridTriangles(const DepthImage& d, const std::vector<float>& labels)
-      : gw_(d.width + 2), gh_(d.height + 2), valid_(size_t(gw_) * gh_), flat_(size_t(gw_) * gh_),
+  GridTriangles(const DepthImage& d, const std::vector<float>& labels, float tau)
+      : tau_(tau), gw_(d.width + 2), gh_(d.height + 2), valid_(size_t(gw_) * gh_), flat_(size_t(gw_) * gh_),
         inverse_(size_t(gw_) * gh_), merged_(size_t(gw_) * gh_) {
     for (int j = 0; j < gh_; ++j)
       for (int i = 0; i < gw_; ++i) {
@@ -193,8 +245,24 @@ class GridTriangles {
       }
   }
 
-  std::vector<uint32_t> indices() {
-    std::vector<uint32_t> out;
+  // The triangles; those across a depth jump (rubber sheets) last, from
+  // index `sheets` on, each with its farthest vertex last (the provoking
+  // vertex: kWarpVertex's vFar).
+  struct Lists {
+    std::vector<uint32_t> indices;
+    size_t sheets = 0;
+  };
+  Lists lists() {
+    std::vector<uint32_t> out, sheets;
+    auto cell = [&](uint32_t a, uint32_t b, uint32_t c) {
+      if (!valid_[a] || !valid_[b] || !valid_[c]) return;
+      if (!jump(a, b, c)) {
+        out.insert(out.end(), {a, b, c});
+        return;
+      }
+      while (inverse_[c] > std::min(inverse_[a], inverse_[b])) std::tie(a, b, c) = std::tuple(b, c, a);
+      sheets.insert(sheets.end(), {a, b, c});
+    };
     for (int j = 0; j + 1 < gh_; ++j)
       for (int i = 0; i + 1 < gw_; ++i) {
         if (merged_[at(i, j)]) continue;
@@ -207,10 +275,12 @@ class GridTriangles {
           continue;
         }
         const uint32_t b = a + 1, c = a + uint32_t(gw_), e = c + 1;
-        if (valid_[a] && valid_[b] && valid_[c]) out.insert(out.end(), {a, b, c});
-        if (valid_[b] && valid_[e] && valid_[c]) out.insert(out.end(), {b, e, c});
+        cell(a, b, c);
+        cell(b, e, c);
       }
-    return out;
+    const size_t start = out.size();
+    out.insert(out.end(), sheets.begin(), sheets.end());
+    return {std::move(out), start};
   }
 
  private:
@@ -218,6 +288,13 @@ class GridTriangles {
   static constexpr float kPlanar = 2e-4f;  // largest deviation of 1/z from the plane, relative
 
   size_t at(int i, int j) const { return size_t(j) * gw_ + i; }
+
+  // Vertices whose depths differ by more than tau of the nearer.
+  bool jump(uint32_t a, uint32_t b, uint32_t c) const {
+    const float near = std::max({inverse_[a], inverse_[b], inverse_[c]});
+    const float far = std::min({inverse_[a], inverse_[b], inverse_[c]});
+    return 1.0f / far - 1.0f / near > tau_ / near;
+  }
 
   // 1/z = p0 + si (i - i0) + sj (j - j0): the plane of a rectangle whose
   // top left vertex is (i0, j0).
@@ -254,6 +331,7 @@ class GridTriangles {
     return {i1, j1};
   }
 
+  float tau_;
   int gw_, gh_;
   std::vector<uint8_t> valid_, flat_;
   std::vector<float> inverse_;
@@ -316,9 +394,10 @@ WarpReference WarpReference::upload(const RgbdView& view, float tau) {
   r.splatVertices = gl::makeBuffer(splats.vertices.data(), splats.vertices.size());
   r.splatIndices = gl::makeBuffer(splats.indices.data(), splats.indices.size());
   r.splatIndexCount = splats.indices.size();
-  const std::vector<uint32_t> triangles = GridTriangles(view.depth, labels).indices();
+  const auto [triangles, sheets] = GridTriangles(view.depth, labels, tau).lists();
   r.triangles = gl::makeBuffer(triangles.data(), triangles.size());
   r.triangleIndexCount = triangles.size();
+  r.sheetIndexStart = sheets;
   r.pixelToWorld = glm::mat4(RgbdView::pixelToWorld(view.K, view.V));
   r.center = glm::vec3(view.center());
   gl::checkError("uploading an RGB-D reference");
@@ -328,6 +407,8 @@ WarpReference WarpReference::upload(const RgbdView& view, float tau) {
 DepthWarp::DepthWarp(float tau, float a)
     : warp_(gl::linkProgram("warp", {{GL_VERTEX_SHADER, gl::glslHeader() + kWarpVertex},
                                      {GL_FRAGMENT_SHADER, gl::glslHeader() + kWarpFragment}})),
+      warpSheet_(gl::linkProgram("warp-sheet", {{GL_VERTEX_SHADER, gl::glslHeader() + kWarpVertex},
+                                                {GL_FRAGMENT_SHADER, gl::glslHeader({"SHEET"}) + kWarpFragment}})),
       composite_(gl::linkProgram("warp-composite", {{GL_VERTEX_SHADER, gl::glslHeader() + kCoverageVertex},
                                                     {GL_FRAGMENT_SHADER, gl::glslHeader() + kComposite}})),
       compositeRest_(gl::linkProgram("warp-composite-rest",
@@ -344,6 +425,7 @@ DepthWarp::DepthWarp(float tau, float a)
     gl::EnableVertexArrayAttrib(splats_.id(), attribute);
   }
   gl::setUniform(composite_, "uTau", tau);
+  gl::setUniform(warpSheet_, "uTau", tau);
   gl::setUniform(composite_, "uA", a);
 }
 
@@ -384,7 +466,8 @@ void DepthWarp::ensureTargets(int w, int h) {
   }
 }
 
-void DepthWarp::warp(const WarpReference& ref, const WarpCamera& view, const Warped& into, bool clearColor) const {
+void DepthWarp::warp(const WarpReference& ref, const WarpReference* other, const WarpCamera& view, const Warped& into,
+                     bool clearColor) const {
   gl::BindFramebuffer(GL_FRAMEBUFFER, into.fbo.id());
   gl::Viewport(0, 0, into.width, into.height);
   const float zero[4] = {0, 0, 0, 0};
@@ -393,12 +476,26 @@ void DepthWarp::warp(const WarpReference& ref, const WarpCamera& view, const War
   gl::BindTextureUnit(0, ref.color.id());
   gl::BindTextureUnit(1, ref.depth.id());
   gl::BindTextureUnit(2, ref.label.id());
-  gl::UseProgram(warp_.id());
-  gl::setUniform(warp_, "uPixelToWorld", ref.pixelToWorld);
-  setMatrix(warp_, "uViewProjection", view.viewProjection);
+  for (const gl::Program* p : {&warp_, &warpSheet_}) {
+    gl::setUniform(*p, "uPixelToWorld", ref.pixelToWorld);
+    setMatrix(*p, "uViewProjection", view.viewProjection);
+  }
   gl::BindVertexArray(grid_.id());
   gl::VertexArrayElementBuffer(grid_.id(), ref.triangles.id());
-  if (ref.triangleIndexCount) gl::DrawElements(GL_TRIANGLES, GLsizei(ref.triangleIndexCount), GL_UNSIGNED_INT, nullptr);
+  // The surfaces, then the rubber sheets, tested against the other
+  // reference where there is one.
+  gl::UseProgram(warp_.id());
+  const size_t sheets = other ? ref.sheetIndexStart : ref.triangleIndexCount;
+  if (sheets) gl::DrawElements(GL_TRIANGLES, GLsizei(sheets), GL_UNSIGNED_INT, nullptr);
+  if (sheets < ref.triangleIndexCount) {
+    gl::UseProgram(warpSheet_.id());
+    gl::BindTextureUnit(4, other->depth.id());
+    gl::setUniform(warpSheet_, "uOtherWorldToPixel", glm::inverse(other->pixelToWorld));
+    gl::setUniform(warpSheet_, "uEye", glm::vec3(view.center));
+    gl::DrawElements(GL_TRIANGLES, GLsizei(ref.triangleIndexCount - sheets), GL_UNSIGNED_INT,
+                     reinterpret_cast<const void*>(sheets * sizeof(uint32_t)));
+    gl::UseProgram(warp_.id());
+  }
   if (!ref.splatIndexCount) return;
   gl::BindVertexArray(splats_.id());
   gl::VertexArrayVertexBuffer(splats_.id(), 0, ref.splatVertices.id(), 0, sizeof(glm::vec4));
@@ -425,7 +522,7 @@ DepthWarp::WarpedImage DepthWarp::warped(const WarpReference& ref, const WarpCam
   ensureGrid(ref.width, ref.height);
   ensureTargets(width, height);
   setDepthConvention();
-  warp(ref, view, warped_[0], true);
+  warp(ref, nullptr, view, warped_[0], true);
   return read(warped_[0]);
 }
 
@@ -450,8 +547,8 @@ void DepthWarp::render(const WarpReference& a, const WarpReference* b, const War
   ensureGrid(a.width, a.height);
   ensureTargets(target.width(), target.height());
   setDepthConvention();
-  warp(a, view, warped_[0], false);
-  if (b) warp(*b, view, warped_[1], false);
+  warp(a, b, view, warped_[0], false);
+  if (b) warp(*b, &a, view, warped_[1], false);
   target.bind();
   target.clear();
   gl::UseProgram(composite_.id());
