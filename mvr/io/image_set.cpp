@@ -45,25 +45,6 @@ ImageSetWriter::~ImageSetWriter() {
   for (const std::string& f : written_) fs::remove(f, ec);
 }
 
-std::shared_ptr<Image> ImageSetWriter::copyOf(const Image& image) {
-  std::shared_ptr<Image> copy;
-  {
-    std::lock_guard lock(spareMutex_);
-    if (!spares_.empty()) {
-      copy = std::move(spares_.back());
-      spares_.pop_back();
-    }
-  }
-  if (!copy) return std::make_shared<Image>(image);
-  *copy = image;  // reuses the spare's storage when it is large enough
-  return copy;
-}
-
-void ImageSetWriter::recycle(std::shared_ptr<Image> copy) {
-  std::lock_guard lock(spareMutex_);
-  if (spares_.size() < size_t(BoundedTasks::defaultLimit()) + 1) spares_.push_back(std::move(copy));
-}
-
 void ImageSetWriter::submit(const std::string& name, std::function<void(const std::string& path)> write) {
   encoder_.submit([this, path = pathOf(name), write = std::move(write)] {
     write(path);
@@ -74,12 +55,12 @@ void ImageSetWriter::submit(const std::string& name, std::function<void(const st
 
 void ImageSetWriter::put(const std::string& name, const Image& image,
                          std::vector<std::pair<std::string, std::string>> attributes) {
-  auto copy = copyOf(image);  // the caller's image is gone after return
-  submit(name, [this, copy, attributes = std::move(attributes)](const std::string& path) mutable {
+  // The caller's image is gone after return: a copy, in a spare's memory.
+  submit(name, [this, copy = spares_.hold(image), attributes = std::move(attributes)](const std::string& path) mutable {
     ImageEncoding encoding = manifest_.encoding();
     encoding.attributes = attributes;
-    writeImage(*copy, path, encoding);
-    recycle(std::move(copy));
+    writeImage(copy, path, encoding);
+    spares_.giveBack(std::move(copy));
   });
 }
 

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "mvr/image_pool.h"
 #include "mvr/io/manifest.h"
 #include "mvr/parallel.h"
 #include "mvr/renderer.h"
@@ -64,18 +65,15 @@ class ImageSetWriter final : public FrameSink {
   size_t removeStale(const std::vector<std::string>& othersWritten) const;
   // Encodes on the pool; the file is removed with the rest on failure.
   void submit(const std::string& name, std::function<void(const std::string& path)> write);
-  // Copies of the caller's frames, recycled: a fresh multi-megabyte
-  // allocation per file costs page faults that serialise on the kernel's
-  // memory lock and kept two cores from encoding twice as fast.
-  std::shared_ptr<Image> copyOf(const Image& image);
-  void recycle(std::shared_ptr<Image> copy);
 
   std::string dir_;
   Manifest manifest_;
   std::mutex writtenMutex_;
   std::vector<std::string> written_;
-  std::mutex spareMutex_;
-  std::vector<std::shared_ptr<Image>> spares_;
+  // Copies of the caller's frames, recycled: a fresh multi-megabyte
+  // allocation per file costs page faults that serialise on the kernel's
+  // memory lock and kept two cores from encoding twice as fast.
+  SpareImages spares_;
   bool committed_ = false;
   BoundedTasks encoder_;  // last member: destroyed (drained) first
 };
