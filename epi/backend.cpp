@@ -68,6 +68,7 @@ void interpOption(const std::string& token, InterpOptions& o, const char* where)
   else if (key == 'b') o.budget = int(std::strtol(text + 1, &end, 10));
   else if (key == 'c') o.coalesce = std::strtof(text + 1, &end);
   else if (key == 'o') o.overlap = std::strtof(text + 1, &end);
+  else if (key == 'x') o.outlineSamples = int(std::strtol(text + 1, &end, 10));
   else o.maxLayers = int(std::strtol(text, &end, 10));
   if (token.empty() || *end != '\0') fail(where, "unknown interp option '" + token + "'");
 }

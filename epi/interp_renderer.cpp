@@ -23,6 +23,7 @@ void validate(const InterpOptions& options) {
   if (options.budget < 2 || options.budget > 1024) fail("--budget", "must be 2 to 1024 source views");
   if (options.splits < 0 || options.splits > 64) fail("--splits", "must be 0 to 64");
   if (!(options.overlap >= 0.0f && options.overlap <= 4.0f)) fail("--overlap", "must be 0 to 4 pixels");
+  if (options.outlineSamples < 1 || options.outlineSamples > 16) fail("--outline-samples", "must be 1 to 16");
 }
 
 namespace {
@@ -90,7 +91,7 @@ class InterpRenderer final : public Renderer {
  public:
   InterpRenderer(const Scene& scene, PixelType type, const InterpOptions& options)
       : options_(validated(options)), scene_(scene), splits_(splitsFor(scene, options)),
-        sources_(makeSourceLayerRenderer(scene, splits_ > 0)) {
+        sources_(makeSourceLayerRenderer(scene, splits_ > 0, options_.outlineSamples)) {
     // Every image slice is coloured by its own vector of source pixels.
     const EpiShading shading{.sliceVectors = true, .sliceHighlights = splits_ > 0};
     rasterizer_ = makeRasterizer(options.mode, type, shading, options.builder);

@@ -55,6 +55,10 @@ struct InterpOptions {
   // fraction of the image's pixels, before a source is added there
   // (negative: at every halfway view, until the budget is spent).
   double holeFraction = 1e-3;
+  // Columns a pixel each source's nearest layer is sampled at for its
+  // outline (SourceLayer::outline): slices at a silhouette end where the
+  // surface does, within the pixel, instead of on its boundary. 1: off.
+  int outlineSamples = 4;
 };
 
 // Throws mvr::Error naming the option that is out of range; needs no GL.

@@ -105,18 +105,27 @@ class LayerSlicer {
     const glm::vec3 c(texels_[0]);
     double ends[2] = {x - oL, x + n + oR};  // the ends' pixel x
     float d[2] = {d0 + (-oL - 0.5f) * slope, d0 + (float(n) + oR - 0.5f) * slope};
+    bool onOutline[2] = {false, false};
+    if (!layer.outline.empty()) {
+      const PixelOutline* outline = layer.outline.data() + size_t(j) * cam_.width();
+      onOutline[0] = outlineEnd(outline[x], depth, x, -1, ends[0], d[0]);
+      onOutline[1] = outlineEnd(outline[x + n - 1], depth, x + n - 1, +1, ends[1], d[1]);
+    }
     if (options_.fitRims && n == 1) {
       double e;
       float zt;
-      if (rimFit(depth, x, -1, e, zt)) ends[0] = e, d[0] = zt;
-      if (rimFit(depth, x, +1, e, zt)) ends[1] = e, d[1] = zt;
+      if (!onOutline[0] && rimFit(depth, x, -1, e, zt)) ends[0] = e, d[0] = zt;
+      if (!onOutline[1] && rimFit(depth, x, +1, e, zt)) ends[1] = e, d[1] = zt;
     }
-    if (other_) meetOtherOutline(layer, j, ends, d);
+    if (other_) meetOtherOutline(layer, j, ends, d, onOutline);
     for (int e = 0; e < 2; ++e)
       transform_.add(cam_.unprojectAt(layer.eye.x, layer.eye.y, {ends[e], j + 0.5, d[e]}), c, c, nullptr);
     out_.vertices.triangles.push_back({base, base + 1, base + 1});
-    SliceVector vector{out_.vertices.vectorTexels.addTexels(texels_), n, -oL / float(n),
-                       1.0f + oR / float(n)};
+    // The vector's texels span the run's pixels; an end on the outline
+    // lies inside its pixel.
+    SliceVector vector{out_.vertices.vectorTexels.addTexels(texels_), n,
+                       onOutline[0] ? float(ends[0] - x) / float(n) : -oL / float(n),
+                       onOutline[1] ? float(ends[1] - x) / float(n) : 1.0f + oR / float(n)};
     if (n == 1 && highlights_ && !layer.normals.empty()) {
       const glm::vec4 normal = layer.normals[size_t(j) * cam_.width() + x];
       const glm::vec3 p(cam_.unprojectAt(layer.eye.x, layer.eye.y, {x + 0.5, j + 0.5, d0}));
@@ -161,6 +170,22 @@ class LayerSlicer {
     return true;
   }
 
+  // An end of pixel i toward an empty pixel at i + dir (the source's
+  // silhouette) where the source sampled its outline finer: at the
+  // outermost covered sample's edge and at that sample's depth, a point of
+  // the surface by the silhouette, instead of the pixel's boundary at the
+  // centre's depth. The boundary stands up to half a pixel outside the
+  // surface, and its track, moving with the centre's depth, leaves the
+  // outline as the view moves: a view next to the source drew the bunny's
+  // outline one pixel wide at 39 pixels (issue 18).
+  bool outlineEnd(const PixelOutline& o, const float* depth, int i, int dir, double& end, float& d) const {
+    const int next = i + dir;
+    if (next < 0 || next >= cam_.width() || depth[next] != 0.0f || o.left < 0.0f) return false;
+    end = i + double(dir < 0 ? o.left : o.right);
+    d = dir < 0 ? o.leftDepth : o.rightDepth;
+    return true;
+  }
+
   // The overlap toward pixel `to` from the run's end pixel `from`: only
   // where `to` continues the surface; beyond the image's edge it may.
   float widening(const float* depth, int from, int to) const {
@@ -176,11 +201,21 @@ class LayerSlicer {
   // of its neighbours where both continue its surface: its footprint then
   // lies on the surface's tangent, so a pixel the source sees frontally
   // shrinks where another view grazes the surface instead of standing out
-  // of the silhouette at its full width. A pixel at a silhouette or a step
-  // stays flat: extrapolated along a grazing tangent, its outer end would
-  // leave the surface.
+  // of the silhouette at its full width. Between two covered neighbours
+  // too far in depth to be joined, on a profile that rises or falls
+  // through it, the gentler of its two one-sided slopes (a minmod
+  // limiter): a surface the source sees steeply (a back layer near the
+  // rim) then keeps its footprints on it, where flat ones stood out of
+  // other views' outlines (bunny, 160x120: 26.5 -> 27.7 dB with this
+  // alone), while a true step (one side flat) keeps them flat. A pixel at
+  // a silhouette stays flat: extrapolated along a grazing tangent, its
+  // outer end would leave the surface.
   float surfaceSlope(const float* depth, int x) const {
-    return joined(depth, x, x - 1) && joined(depth, x, x + 1) ? 0.5f * (depth[x + 1] - depth[x - 1]) : 0.0f;
+    if (joined(depth, x, x - 1) && joined(depth, x, x + 1)) return 0.5f * (depth[x + 1] - depth[x - 1]);
+    if (x < 1 || x + 1 >= cam_.width() || depth[x - 1] == 0.0f || depth[x + 1] == 0.0f) return 0.0f;
+    const float a = depth[x] - depth[x - 1], b = depth[x + 1] - depth[x];
+    if (!(a * b > 0.0f)) return 0.0f;
+    return std::abs(a) < std::abs(b) ? a : b;
   }
 
   // Where the other source sees nothing, nothing may be drawn in its view:
@@ -192,7 +227,10 @@ class LayerSlicer {
   // fixed points (a contour slides over the surface as the eye moves).
   // Moves of more than a pixel are left alone: a real surface point lies
   // inside every view's outline, its footprint at most half a pixel out.
-  void meetOtherOutline(const SourceLayer& layer, int j, const double (&x)[2], float (&d)[2]) const {
+  // Ends on the source's own finer outline (`fixed`) are surface points
+  // already and stay.
+  void meetOtherOutline(const SourceLayer& layer, int j, const double (&x)[2], float (&d)[2],
+                        const bool (&fixed)[2]) const {
     const int w = cam_.width();
     const float* theirs = other_->depth.data() + size_t(j) * w;
     // A point at pixel x and window depth d of this source lands at
@@ -220,7 +258,7 @@ class LayerSlicer {
       else target[0] = target[1] = std::floor(0.5 * (l + r) + 0.5);  // a pixel edge: no centre covered
     }
     for (int e = 0; e < 2; ++e) {
-      if (target[e] == at[e] || std::abs(target[e] - at[e]) > 1.0) continue;
+      if (fixed[e] || target[e] == at[e] || std::abs(target[e] - at[e]) > 1.0) continue;
       const double moved = ((target[e] - x[e]) / delta - zy) / zx;
       if (moved > 0.0 && moved <= 1.0) d[e] = float(moved);
     }

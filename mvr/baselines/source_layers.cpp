@@ -2,18 +2,53 @@
 // chosen eye, depth peeled with de Quilletes' extended offset.
 #include "mvr/baselines/source_layers.h"
 
+#include <algorithm>
 #include <optional>
 
 #include "mvr/baselines/deferred_pipeline.h"
 #include "mvr/error.h"
+#include "mvr/gl/gl_program.h"
 
 namespace mvr {
 namespace {
 
+// A pixel's outline from its samples at uSamples columns a pixel (a depth
+// texture of uSamples x the width), as PixelOutline: the first and last
+// covered sample's outer edges and depths, each end kept on its own side
+// of the pixel's centre (a covered centre means the silhouette lies
+// beyond it; between two sample centres, a quarter sample out).
+const char* const kOutline = R"(
+layout(local_size_x = 64) in;
+layout(binding = 0) uniform sampler2D uFine;
+layout(std430, binding = 0) writeonly buffer Outline { vec4 uOutline[]; };
+uniform int uWidth;
+uniform int uSamples;
+uniform uint uFirst;  // the layer's first pixel in Outline
+void main() {
+  int x = int(gl_GlobalInvocationID.x), j = int(gl_GlobalInvocationID.y);
+  if (x >= uWidth) return;
+  int lo = -1, hi = -1;
+  float dLo = 0.0, dHi = 0.0;
+  for (int s = 0; s < uSamples; ++s) {
+    float d = texelFetch(uFine, ivec2(x * uSamples + s, j), 0).r;
+    if (d == 0.0) continue;
+    if (lo < 0) { lo = s; dLo = d; }
+    hi = s;
+    dHi = d;
+  }
+  float n = float(uSamples), quarter = 0.25 / n;
+  uOutline[uFirst + uint(j * uWidth + x)] =
+      lo < 0 ? vec4(-1.0, 0.0, -1.0, 0.0)
+             : vec4(min(float(lo) / n, 0.5 - quarter), dLo, max(float(hi + 1) / n, 0.5 + quarter), dHi);
+}
+)";
+
 class SourceLayerRendererImpl final : public SourceLayerRenderer {
  public:
-  SourceLayerRendererImpl(const Scene& scene, bool separateHighlights)
-      : pipeline_(scene, separateHighlights), normals_(separateHighlights) {}
+  SourceLayerRendererImpl(const Scene& scene, bool separateHighlights, int outlineSamples)
+      : pipeline_(scene, separateHighlights), normals_(separateHighlights), outlineSamples_(outlineSamples) {
+    if (outlineSamples_ > 1) outline_ = gl::linkProgram("source-outline", {{GL_COMPUTE_SHADER, gl::glslHeader() + kOutline}});
+  }
 
   std::vector<SourceLayer> render(const ShearingCamera& cam, const glm::dvec2& eye, int maxLayers,
                                   double trackWidth, RenderStats& stats,
@@ -48,6 +83,14 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
       if (filter && !filter(layers, layer)) break;
       layers.push_back(std::move(layer));
     }
+    if (!layers.empty() && samplesFor(w) > 1) {
+      ScopedStage s(stats.times, "acquire");
+      const gl::Buffer outline = gl::makeBuffer<PixelOutline>(nullptr, size_t(w) * h);
+      drawOutline(cam, peel, outline.id(), 0);
+      layers[0].outline.resize(size_t(w) * h);
+      gl::GetNamedBufferSubData(outline.id(), 0, GLsizeiptr(layers[0].outline.size() * sizeof(PixelOutline)),
+                                layers[0].outline.data());
+    }
     gl::checkError("source layers");
     return layers;
   }
@@ -72,6 +115,10 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
     for (GLuint samples = 1; added < maxLayers && samples; added += samples ? 1 : 0)
       gl::GetQueryObjectuiv(queries[added], GL_QUERY_RESULT, &samples);
     store.truncate(first + added);
+    if (added > 0 && samplesFor(cam.width()) > 1) {
+      drawOutline(cam, peel, store.outlineBuffer(), uint32_t(size_t(first) * store.pixelsPerLayer()));
+      store.markOutlined(first);
+    }
     gl::checkError("source layers");
     return added;
   }
@@ -117,6 +164,43 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
     return gbuffer;
   }
 
+  // Samples a pixel the outline of a view w pixels wide gets: the option,
+  // within the GL's largest viewport (1: none).
+  int samplesFor(int w) const {
+    if (outlineSamples_ <= 1) return 1;
+    GLint dims[2] = {0, 0};
+    gl::GetIntegerv(GL_MAX_VIEWPORT_DIMS, dims);
+    return std::max(1, std::min(outlineSamples_, dims[0] / std::max(1, w)));
+  }
+
+  // The nearest layer's outline (PixelOutline per pixel) into `buffer`
+  // from pixel `first` on: its geometry drawn once more at samplesFor(w)
+  // columns a pixel, each pixel's samples reduced on the GPU. The peel's
+  // later layers need only the nearest, so this comes last.
+  void drawOutline(const ShearingCamera& cam, const Peel& p, GLuint buffer, uint32_t first) {
+    const int w = cam.width(), h = cam.height(), n = samplesFor(w);
+    if (!fine_ || fine_->width != n * w || fine_->height != h) fine_.emplace(n * w, h, pipeline_);
+    pipeline_.begin(n * w, h, cam.share().scanlines);
+    pipeline_.drawOnlyIf(0);
+    pipeline_.geometry(p.viewProj, fine_->gbuffer, nullptr);
+    pipeline_.begin(w, h, cam.share().scanlines);
+    gl::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    gl::UseProgram(outline_.id());
+    gl::setUniform(outline_, "uWidth", w);
+    gl::setUniform(outline_, "uSamples", n);
+    gl::ProgramUniform1ui(outline_.id(), gl::GetUniformLocation(outline_.id(), "uFirst"), first);
+    gl::BindTextureUnit(0, fine_->gbuffer.depthTexture());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer);
+    gl::DispatchCompute(uint32_t((w + 63) / 64), uint32_t(h), 1);
+    gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  }
+
+  struct Fine {
+    Fine(int w, int h, const DeferredPipeline& p) : width(w), height(h), gbuffer(p.makeGBuffer(w, h)) {}
+    int width, height;
+    GBuffer gbuffer;
+  };
+
   // Kept across calls (every source eye of every row has the same size).
   struct Targets {
     Targets(int w, int h, const DeferredPipeline& p)
@@ -131,18 +215,22 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
 
   DeferredPipeline pipeline_;
   bool normals_;
+  int outlineSamples_;
+  gl::Program outline_;
   std::optional<Targets> targets_;
+  std::optional<Fine> fine_;  // the outline's G-buffer
 };
 
 }  // namespace
 
 void DeviceLayers::reset(int width, int height, int capacity) {
   eyes_.clear();
+  outlined_.clear();
   limit_ = capacity;
   if (width == width_ && height == height_) return;
   width_ = width, height_ = height;
   allocated_ = 0;
-  color_ = gl::Buffer(), depth_ = gl::Buffer();
+  color_ = gl::Buffer(), depth_ = gl::Buffer(), outline_ = gl::Buffer();
 }
 
 // Room for `layers` layers, the ones held copied over on the GPU.
@@ -150,11 +238,13 @@ void DeviceLayers::grow(int layers) {
   const size_t pixels = pixelsPerLayer(), held = pixels * size_t(count());
   gl::Buffer color = gl::makeBuffer<glm::vec4>(nullptr, pixels * layers);
   gl::Buffer depth = gl::makeBuffer<float>(nullptr, pixels * layers);
+  gl::Buffer outline = gl::makeBuffer<PixelOutline>(nullptr, pixels * layers);
   if (held > 0) {
     gl::CopyNamedBufferSubData(color_.id(), color.id(), 0, 0, GLsizeiptr(held * sizeof(glm::vec4)));
     gl::CopyNamedBufferSubData(depth_.id(), depth.id(), 0, 0, GLsizeiptr(held * sizeof(float)));
+    gl::CopyNamedBufferSubData(outline_.id(), outline.id(), 0, 0, GLsizeiptr(held * sizeof(PixelOutline)));
   }
-  color_ = std::move(color), depth_ = std::move(depth);
+  color_ = std::move(color), depth_ = std::move(depth), outline_ = std::move(outline);
   allocated_ = layers;
   gl::checkError("allocating the layer store");
 }
@@ -176,11 +266,18 @@ void DeviceLayers::append(const glm::dvec2& eye, GLuint colorTexture, GLuint dep
                          GLsizei(pixels * sizeof(float)), reinterpret_cast<void*>(at * sizeof(float)));
   gl::BindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   eyes_.push_back(eye);
+  outlined_.push_back(0);
+}
+
+void DeviceLayers::markOutlined(int layer) {
+  if (layer < 0 || layer >= count()) fail("layer store", "no layer " + std::to_string(layer));
+  outlined_[size_t(layer)] = 1;
 }
 
 void DeviceLayers::truncate(int count) {
   if (count < 0 || count > this->count()) fail("layer store", "cannot keep " + std::to_string(count) + " layers");
   eyes_.resize(size_t(count));
+  outlined_.resize(size_t(count));
 }
 
 Image DeviceLayers::readColor(int layer) const {
@@ -191,9 +288,9 @@ Image DeviceLayers::readColor(int layer) const {
   return image;
 }
 
-std::unique_ptr<SourceLayerRenderer> makeSourceLayerRenderer(const Scene& scene,
-                                                             bool separateHighlights) {
-  return std::make_unique<SourceLayerRendererImpl>(scene, separateHighlights);
+std::unique_ptr<SourceLayerRenderer> makeSourceLayerRenderer(const Scene& scene, bool separateHighlights,
+                                                             int outlineSamples) {
+  return std::make_unique<SourceLayerRendererImpl>(scene, separateHighlights, outlineSamples);
 }
 
 }  // namespace mvr

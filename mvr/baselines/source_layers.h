@@ -16,6 +16,16 @@
 
 namespace mvr {
 
+// Where the samples of a pixel that a finer render covered begin and end
+// (offsets across the pixel, 0 its left boundary, 1 its right) and the
+// window depth of the outermost sample on each side: the silhouette within
+// the pixel and the surface point beside it. A pixel whose centre is
+// covered gets ends on its own side of the centre (left below 0.5, right
+// above). left < 0: no sample covered.
+struct PixelOutline {
+  float left = -1.0f, leftDepth = 0.0f, right = -1.0f, rightDepth = 0.0f;
+};
+
 struct SourceLayer {
   glm::dvec2 eye{0.0};        // camera x, y on the camera plane
   int layer = 0;              // 0 is the nearest
@@ -25,6 +35,10 @@ struct SourceLayer {
   // With separate highlights: per pixel the world normal of the side seen
   // (xyz) and the material index (w); empty otherwise.
   std::vector<glm::vec4> normals;
+  // The nearest layer's outline within its pixels, per pixel, where the
+  // renderer samples it finer (makeSourceLayerRenderer's outlineSamples);
+  // empty otherwise and for the layers behind.
+  std::vector<PixelOutline> outline;
 };
 
 // Sees each layer as it is read back, with the nearer ones, and may drop
@@ -46,10 +60,16 @@ class DeviceLayers {
   const glm::dvec2& eye(int layer) const { return eyes_[layer]; }
   GLuint colorBuffer() const { return color_.id(); }  // vec4 per pixel, alpha 1 where covered
   GLuint depthBuffer() const { return depth_.id(); }  // window depth, reversed Z: 0 where empty
+  // PixelOutline per pixel of the layers that have one (outlined(layer)).
+  GLuint outlineBuffer() const { return outline_.id(); }
+  bool outlined(int layer) const { return outlined_[size_t(layer)] != 0; }
   size_t pixelsPerLayer() const { return size_t(width_) * height_; }
   // Copies one layer in on the GPU: a colour and a depth texture of the
   // store's size. Throws mvr::Error when the store is full.
   void append(const glm::dvec2& eye, GLuint colorTexture, GLuint depthTexture);
+  // Marks a layer whose outline the caller has written into
+  // outlineBuffer() at its pixels.
+  void markOutlined(int layer);
   // Drops the layers from `count` on (their memory is kept).
   void truncate(int count);
   // One layer's colour read back (F32, rows top first).
@@ -60,7 +80,8 @@ class DeviceLayers {
 
   int width_ = 0, height_ = 0, limit_ = 0, allocated_ = 0;
   std::vector<glm::dvec2> eyes_;
-  gl::Buffer color_, depth_;
+  std::vector<uint8_t> outlined_;
+  gl::Buffer color_, depth_, outline_;
 };
 
 class SourceLayerRenderer {
@@ -83,8 +104,12 @@ class SourceLayerRenderer {
 
 // Needs a current GL context. separateHighlights: the colours leave out
 // specular highlights, and normals and materials are read back so that
-// the caller can add highlights per view.
+// the caller can add highlights per view. outlineSamples > 1: the nearest
+// layer's outline is sampled that many columns a pixel (its geometry
+// drawn once more at that width) and kept with it (SourceLayer::outline,
+// DeviceLayers::outlined).
 std::unique_ptr<SourceLayerRenderer> makeSourceLayerRenderer(const Scene& scene,
-                                                             bool separateHighlights = false);
+                                                             bool separateHighlights = false,
+                                                             int outlineSamples = 1);
 
 }  // namespace mvr

@@ -104,6 +104,8 @@ uniform dvec2 uZOverW;          // Z / w = x d + y at window depth d
 uniform dvec2 uInvW;            // 1 / w = x d + y
 uniform double uStepPerZOverW;  // x step per view per unit of Z / w
 uniform bool uOwnTexels;        // vectors with MIP chains in Texels, else the colour buffer
+layout(std430, binding = 11) readonly buffer Outline { vec4 uOutline[]; };  // PixelOutline per pixel
+layout(std430, binding = 12) readonly buffer Outlined { int uOutlined[]; };  // per layer: 1 if it has one
 
 // In double, rounded once to float, as the CPU's ExtremeTransform: the two
 // back ends then agree to the last bit almost everywhere, and exact mode's
@@ -140,7 +142,7 @@ float widening(int k, int j, int from, int to) {
 // As LayerSlicer::meetOtherOutline: the ends slide along their rays until
 // the slice stops at the other source's outline in that source's view.
 bool theirs(int m, int j, int i) { return i >= 0 && i < uWidth && uDepth[pixelIndex(m, j, i)] != 0.0; }
-void meetOtherOutline(int k, int m, int j, double xE[2], inout float dE[2]) {
+void meetOtherOutline(int k, int m, int j, double xE[2], inout float dE[2], bool fixedE[2]) {
   double delta = uLayers[k].x - uLayers[m].x;
   if (delta == 0.0) return;
   double at[2] = double[2](xE[0] + delta * (uZOverW.x * double(dE[0]) + uZOverW.y),
@@ -158,15 +160,34 @@ void meetOtherOutline(int k, int m, int j, double xE[2], inout float dE[2]) {
     else { target[0] = floor(0.5 * (l + r) + 0.5); target[1] = target[0]; }
   }
   for (int e = 0; e < 2; ++e) {
-    if (target[e] == at[e] || abs(target[e] - at[e]) > 1.0) continue;
+    if (fixedE[e] || target[e] == at[e] || abs(target[e] - at[e]) > 1.0) continue;
     double moved = ((target[e] - xE[e]) / delta - uZOverW.y) / uZOverW.x;
     if (moved > 0.0 && moved <= 1.0) dE[e] = float(moved);
   }
 }
 
 float surfaceSlope(int k, int j, int x) {
-  if (!joined(k, j, x, x - 1) || !joined(k, j, x, x + 1)) return 0.0;
-  return 0.5 * (uDepth[pixelIndex(k, j, x + 1)] - uDepth[pixelIndex(k, j, x - 1)]);
+  if (joined(k, j, x, x - 1) && joined(k, j, x, x + 1))
+    return 0.5 * (uDepth[pixelIndex(k, j, x + 1)] - uDepth[pixelIndex(k, j, x - 1)]);
+  if (x < 1 || x + 1 >= uWidth) return 0.0;
+  float before = uDepth[pixelIndex(k, j, x - 1)], at = uDepth[pixelIndex(k, j, x)],
+        after = uDepth[pixelIndex(k, j, x + 1)];
+  if (before == 0.0 || after == 0.0) return 0.0;
+  float a = at - before, b = after - at;
+  if (!(a * b > 0.0)) return 0.0;
+  return abs(a) < abs(b) ? a : b;
+}
+
+// As LayerSlicer::outlineEnd: pixel i's end toward an empty pixel at
+// i + dir on the layer's finer outline, where it has one.
+bool outlineEnd(int k, int j, int i, int dir, inout double end, inout float d) {
+  int next = i + dir;
+  if (uOutlined[k] == 0 || next < 0 || next >= uWidth || uDepth[pixelIndex(k, j, next)] != 0.0) return false;
+  vec4 o = uOutline[pixelIndex(k, j, i)];
+  if (o.x < 0.0) return false;
+  end = double(i) + double(dir < 0 ? o.x : o.z);
+  d = dir < 0 ? o.y : o.w;
+  return true;
 }
 
 void main() {
@@ -182,14 +203,17 @@ void main() {
   vec3 c = uColor[p].rgb;
   double xE[2] = double[2](double(float(x) - oL), double(float(x + n) + oR));
   float dE[2] = float[2](d0 + (-oL - 0.5) * slope, d0 + (float(n) + oR - 0.5) * slope);
+  bool onOutline[2] = bool[2](outlineEnd(k, j, x, -1, xE[0], dE[0]), outlineEnd(k, j, x + n - 1, 1, xE[1], dE[1]));
   int other = int(uLayers[k].w);
-  if (other >= 0) meetOtherOutline(k, other, j, xE, dE);
+  if (other >= 0) meetOtherOutline(k, other, j, xE, dE, onOutline);
   writeEnd(2u * slot, float(xE[0]), dE[0], shift, c);
   writeEnd(2u * slot + 1u, float(xE[1]), dE[1], shift, c);
   uSlices[slot] = uvec4(slot, 0u, 0u, 256u);  // a segment
   uTriangles[slot] = uvec4(2u * slot, 2u * slot + 1u, 2u * slot + 1u, 0u);
   uint base = uOwnTexels ? 2u * p : p;
-  uVectors[slot] = uvec4(base, uint(n), floatBitsToUint(-oL / float(n)), floatBitsToUint(1.0 + oR / float(n)));
+  float u0 = onOutline[0] ? float(xE[0] - double(x)) / float(n) : -oL / float(n);
+  float u1 = onOutline[1] ? float(xE[1] - double(x)) / float(n) : 1.0 + oR / float(n);
+  uVectors[slot] = uvec4(base, uint(n), floatBitsToUint(u0), floatBitsToUint(u1));
   if (!uOwnTexels) return;
   // Level 0 and its box-filtered MIP chain (TextureVectors::addTexels).
   for (int i = 0; i < n; ++i) uTexels[base + uint(i)] = vec4(uColor[p + uint(i)].rgb, 1.0);
@@ -242,6 +266,9 @@ GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingC
     perLayer[k] = glm::dvec4((x - left) * perPlane, tolerance, join, options.meetSilhouettes ? double(other[k]) : -1.0);
   }
   const gl::Buffer layerInfo = gl::makeBuffer(perLayer.data(), perLayer.size());
+  std::vector<int32_t> outlined(std::max(count, 1), 0);
+  for (int k = 0; k < count; ++k) outlined[size_t(k)] = layers.outlined(k) ? 1 : 0;
+  const gl::Buffer outlinedInfo = gl::makeBuffer(outlined.data(), outlined.size());
   const size_t pixels = layers.pixelsPerLayer() * size_t(count);
   if (pixels > flagsSize_) {
     flagsSize_ = pixels;
@@ -325,6 +352,8 @@ GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingC
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, v.triangles.id());
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, v.vectors.id());
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, v.texelBuffer);
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, layers.outlineBuffer());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, outlinedInfo.id());
     gl::DispatchCompute(groups(size_t(w)), uint32_t(h), uint32_t(count));
     gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   }

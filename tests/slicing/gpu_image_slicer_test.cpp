@@ -55,25 +55,47 @@ void expectSameSlices(const std::vector<SourceLayer>& host, const DeviceLayers& 
 
 class GpuImageSlicerTest : public test::GlTest {};
 
+// With and without the nearest layers' finer outlines (4 samples a pixel:
+// the store keeps the read-back path's outlines, and silhouette ends move
+// onto them alike).
 TEST_F(GpuImageSlicerTest, RenderedLayersSliceAsOnTheCpu) {
   const Scene scene = loadScene(test::assetPath("default.json"));
   const ShearingCamera cam(*scene.camera, 88, 60, 9);  // 88: not a power of two
-  auto sources = makeSourceLayerRenderer(scene);
   const double track = cam.spec().trackRight - cam.spec().trackLeft;
-  std::vector<SourceLayer> host;
-  DeviceLayers device;
-  device.reset(cam.width(), cam.height(), 8);
-  RenderStats stats;
-  for (double x : {cam.viewX(0), cam.viewX(8)}) {
-    for (SourceLayer& l : sources->render(cam, {x, 0.0}, 4, track, stats)) host.push_back(std::move(l));
-    sources->render(cam, {x, 0.0}, 4, track, stats, device);
+  for (int samples : {1, 4}) {
+    auto sources = makeSourceLayerRenderer(scene, false, samples);
+    std::vector<SourceLayer> host;
+    DeviceLayers device;
+    device.reset(cam.width(), cam.height(), 8);
+    RenderStats stats;
+    for (double x : {cam.viewX(0), cam.viewX(8)}) {
+      for (SourceLayer& l : sources->render(cam, {x, 0.0}, 4, track, stats)) host.push_back(std::move(l));
+      sources->render(cam, {x, 0.0}, 4, track, stats, device);
+    }
+    ASSERT_EQ(device.count(), int(host.size()));
+    ASSERT_GE(device.count(), 4);
+    const std::string label = std::to_string(samples) + " samples a pixel, ";
+    const auto outlines = test::download<PixelOutline>(device.outlineBuffer(), device.pixelsPerLayer() * host.size());
+    int inside = 0;  // outline ends strictly within their pixels
+    for (size_t k = 0; k < host.size(); ++k) {
+      const bool nearest = host[k].layer == 0;
+      ASSERT_EQ(device.outlined(int(k)), samples > 1 && nearest) << label << "layer " << k;
+      ASSERT_EQ(host[k].outline.size(), samples > 1 && nearest ? device.pixelsPerLayer() : 0u) << label;
+      for (size_t p = 0; p < host[k].outline.size(); ++p) {
+        const PixelOutline& h = host[k].outline[p], &d = outlines[k * device.pixelsPerLayer() + p];
+        ASSERT_TRUE(h.left == d.left && h.leftDepth == d.leftDepth && h.right == d.right && h.rightDepth == d.rightDepth)
+            << label << "layer " << k << " pixel " << p;
+        inside += h.left > 0.0f || (h.right > 0.0f && h.right < 1.0f);
+      }
+    }
+    if (samples > 1) {
+      EXPECT_GT(inside, 100) << label;
+    }
+    for (float coalesce : {0.0f, 0.5f, 2.0f})
+      for (float overlap : {0.0f, 0.25f})
+        expectSameSlices(host, device, cam, {overlap, coalesce},
+                         label + "coalesce " + std::to_string(coalesce) + " overlap " + std::to_string(overlap));
   }
-  ASSERT_EQ(device.count(), int(host.size()));
-  ASSERT_GE(device.count(), 4);
-  for (float coalesce : {0.0f, 0.5f, 2.0f})
-    for (float overlap : {0.0f, 0.25f})
-      expectSameSlices(host, device, cam, {overlap, coalesce},
-                       "coalesce " + std::to_string(coalesce) + " overlap " + std::to_string(overlap));
 }
 
 // The store's peel issues every layer at once and cuts the empty tail from
