@@ -109,12 +109,26 @@ GBuffer::GBuffer(int w, int h, bool exactAlbedo)
     fail("GL", "G-buffer is incomplete");
 }
 
+GBuffer GBuffer::depthOnly(int width, int height) { return GBuffer(width, height, DepthOnly{}); }
+
+GBuffer::GBuffer(int w, int h, DepthOnly)
+    : width_(w), height_(h), depth_(GL_TEXTURE_2D), fbo_(gl::Framebuffer::create()), colour_(false) {
+  gl::TextureStorage2D(depth_.id(), 1, GL_DEPTH_COMPONENT32F, w, h);
+  gl::NamedFramebufferTexture(fbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
+  const GLenum none = GL_NONE;
+  gl::NamedFramebufferDrawBuffers(fbo_.id(), 1, &none);
+  if (gl::CheckNamedFramebufferStatus(fbo_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    fail("GL", "depth-only G-buffer is incomplete");
+}
+
 void GBuffer::bindForWriting() const {
   gl::BindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
   gl::Viewport(0, 0, width_, height_);
   const float zero[4] = {0, 0, 0, 0};
-  gl::ClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zero);
-  gl::ClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 1, zero);
+  if (colour_) {
+    gl::ClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zero);
+    gl::ClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 1, zero);
+  }
   gl::ClearNamedFramebufferfi(fbo_.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
 }
 

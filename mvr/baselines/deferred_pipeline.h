@@ -21,6 +21,8 @@ class GBuffer {
  public:
   // exactAlbedo: albedo in float (Scene::exactColors), else 8 bits.
   GBuffer(int width, int height, bool exactAlbedo = false);
+  // Depth alone (a coverage pass: no colour is written or kept).
+  static GBuffer depthOnly(int width, int height);
   void bindForWriting() const;  // sets the viewport, as RenderTarget::bind
   GLuint depthTexture() const { return depth_.id(); }
   GLuint normalTexture() const { return normal_.id(); }
@@ -31,9 +33,13 @@ class GBuffer {
   }
 
  private:
+  struct DepthOnly {};
+  GBuffer(int width, int height, DepthOnly);
+
   int width_, height_;
   gl::Texture albedo_, normal_, depth_;
   gl::Framebuffer fbo_;
+  bool colour_ = true;
 };
 
 // The two passes of deferred shading, shared by the baseline and the

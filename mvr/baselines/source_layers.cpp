@@ -179,7 +179,7 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
   // later layers need only the nearest, so this comes last.
   void drawOutline(const ShearingCamera& cam, const Peel& p, GLuint buffer, uint32_t first) {
     const int w = cam.width(), h = cam.height(), n = samplesFor(w);
-    if (!fine_ || fine_->width != n * w || fine_->height != h) fine_.emplace(n * w, h, pipeline_);
+    if (!fine_ || fine_->width != n * w || fine_->height != h) fine_.emplace(n * w, h);
     pipeline_.begin(n * w, h, cam.share().scanlines);
     pipeline_.drawOnlyIf(0);
     pipeline_.geometry(p.viewProj, fine_->gbuffer, nullptr);
@@ -196,7 +196,7 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
   }
 
   struct Fine {
-    Fine(int w, int h, const DeferredPipeline& p) : width(w), height(h), gbuffer(p.makeGBuffer(w, h)) {}
+    Fine(int w, int h) : width(w), height(h), gbuffer(GBuffer::depthOnly(w, h)) {}
     int width, height;
     GBuffer gbuffer;
   };
