@@ -57,8 +57,11 @@ class LayerSlicer {
   // Scanlines [first, last) of the layer; other: the front layer of the
   // nearest other source, whose outline the slices meet in its view
   // (null: none).
-  void slice(const SourceLayer& layer, int first, int last, const SourceLayer* other = nullptr) {
+  // front: the nearest layer of the layer's source.
+  void slice(const SourceLayer& layer, int first, int last, const SourceLayer* other = nullptr,
+             const SourceLayer* front = nullptr) {
     other_ = other;
+    outlined_ = front && !front->outline.empty() ? front : nullptr;
     const int w = cam_.width();
     // Off: even equal depths stay apart. Never infinite (a track with no
     // width): a block holding an empty pixel spans an infinite range.
@@ -106,10 +109,16 @@ class LayerSlicer {
     double ends[2] = {x - oL, x + n + oR};  // the ends' pixel x
     float d[2] = {d0 + (-oL - 0.5f) * slope, d0 + (float(n) + oR - 0.5f) * slope};
     bool onOutline[2] = {false, false};
-    if (!layer.outline.empty()) {
-      const PixelOutline* outline = layer.outline.data() + size_t(j) * cam_.width();
-      onOutline[0] = outlineEnd(outline[x], depth, x, -1, ends[0], d[0]);
-      onOutline[1] = outlineEnd(outline[x + n - 1], depth, x + n - 1, +1, ends[1], d[1]);
+    if (outlined_) {
+      const size_t row = size_t(j) * cam_.width();
+      const PixelOutline* outline = outlined_->outline.data() + row;
+      const float* at = outlined_->depth.data() + row;
+      float own[2] = {d[0], d[1]};
+      onOutline[0] = outlineEnd(outline[x], at, x, -1, ends[0], d[0]);
+      onOutline[1] = outlineEnd(outline[x + n - 1], at, x + n - 1, +1, ends[1], d[1]);
+      if (outlined_ != &layer)
+        for (int e = 0; e < 2; ++e)
+          if (onOutline[e]) d[e] += kBehindOutline * (own[e] - d[e]);
     }
     if (options_.fitRims && n == 1) {
       double e;
@@ -177,7 +186,15 @@ class LayerSlicer {
   // centre's depth. The boundary stands up to half a pixel outside the
   // surface, and its track, moving with the centre's depth, leaves the
   // outline as the view moves: a view next to the source drew the bunny's
-  // outline one pixel wide at 39 pixels (issue 18).
+  // outline one pixel wide at 39 pixels (issue 18). `depth`: the nearest
+  // layer's, whose empty pixels make the silhouette. A layer behind it
+  // ends on the same ray, kBehindOutline of the way from the silhouette's
+  // point to its own depth: at the point itself (where a closed surface's
+  // back meets its front) it ties with the nearest layer's slice and wins
+  // half the depth tests there (the teacup's dark inner wall showed through
+  // the rim: 35.5 against 37.0 dB mean), at its own depth it stands outside
+  // the surface as the boundary did. 0.5 to 0.75 measured alike.
+  static constexpr float kBehindOutline = 0.75f;
   bool outlineEnd(const PixelOutline& o, const float* depth, int i, int dir, double& end, float& d) const {
     const int next = i + dir;
     if (next < 0 || next >= cam_.width() || depth[next] != 0.0f || o.left < 0.0f) return false;
@@ -274,6 +291,7 @@ class LayerSlicer {
   std::vector<glm::vec4> texels_;
   float join_ = 0.0f;  // the layer's depth step between neighbours of one surface
   const SourceLayer* other_ = nullptr;
+  const SourceLayer* outlined_ = nullptr;  // the nearest layer of the source, where it has an outline
 };
 
 }  // namespace
@@ -289,6 +307,12 @@ std::vector<int> nearestOtherSource(const std::vector<glm::dvec2>& eyes) {
     }
   }
   return other;
+}
+
+std::vector<int> nearestLayerOf(const std::vector<glm::dvec2>& eyes) {
+  std::vector<int> front(eyes.size());
+  for (size_t k = 0; k < eyes.size(); ++k) front[k] = k > 0 && eyes[k - 1] == eyes[k] ? front[k - 1] : int(k);
+  return front;
 }
 
 float coalesceDepthRange(const ShearingCamera& cam, double eyeX, float pixels) {
@@ -308,7 +332,7 @@ ImageSlices sliceSourceLayers(const std::vector<SourceLayer>& layers, const Shea
   // so joined in band order each scanline lists them as one pass would.
   std::vector<glm::dvec2> eyes;
   for (const SourceLayer& layer : layers) eyes.push_back(layer.eye);
-  const std::vector<int> other = nearestOtherSource(eyes);
+  const std::vector<int> other = nearestOtherSource(eyes), front = nearestLayerOf(eyes);
   const int bandRows = std::max(1, options.bandRows), bands = (h + bandRows - 1) / bandRows;
   std::vector<ImageSlices> parts(size_t(std::max(1, bands)));
   std::vector<std::vector<uint32_t>> scanlines(parts.size());
@@ -325,7 +349,8 @@ ImageSlices sliceSourceLayers(const std::vector<SourceLayer>& layers, const Shea
     LayerSlicer slicer(cam, row, options, parts[b]);
     slicer.scanlineOf.reserve(covered);
     for (size_t k = 0; k < layers.size(); ++k) {
-      slicer.slice(layers[k], first, last, options.meetSilhouettes && other[k] >= 0 ? &layers[other[k]] : nullptr);
+      slicer.slice(layers[k], first, last, options.meetSilhouettes && other[k] >= 0 ? &layers[other[k]] : nullptr,
+                   &layers[front[k]]);
       layerOf[b].resize(slicer.scanlineOf.size(), uint32_t(k));
     }
     scanlines[b] = std::move(slicer.scanlineOf);

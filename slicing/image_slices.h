@@ -76,6 +76,10 @@ ImageSlices sliceSourceLayers(const std::vector<SourceLayer>& layers, const Shea
 // another eye, or -1: whose outline its slices meet (meetSilhouettes).
 std::vector<int> nearestOtherSource(const std::vector<glm::dvec2>& eyes);
 
+// Per layer (as nearestOtherSource's eyes), the index of its source's
+// nearest layer: the first of the run of layers with its eye.
+std::vector<int> nearestLayerOf(const std::vector<glm::dvec2>& eyes);
+
 // The window-depth range a coalesced run may span from a source eye at
 // camera x `eyeX` (infinite when the track has no width).
 float coalesceDepthRange(const ShearingCamera& camera, double eyeX, float pixels);

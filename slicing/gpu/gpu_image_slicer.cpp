@@ -105,7 +105,8 @@ uniform dvec2 uInvW;            // 1 / w = x d + y
 uniform double uStepPerZOverW;  // x step per view per unit of Z / w
 uniform bool uOwnTexels;        // vectors with MIP chains in Texels, else the colour buffer
 layout(std430, binding = 11) readonly buffer Outline { vec4 uOutline[]; };  // PixelOutline per pixel
-layout(std430, binding = 12) readonly buffer Outlined { int uOutlined[]; };  // per layer: 1 if it has one
+// Per layer: its source's nearest layer where that has an outline, else -1.
+layout(std430, binding = 12) readonly buffer OutlineOf { int uOutlineOf[]; };
 
 // In double, rounded once to float, as the CPU's ExtremeTransform: the two
 // back ends then agree to the last bit almost everywhere, and exact mode's
@@ -179,14 +180,19 @@ float surfaceSlope(int k, int j, int x) {
 }
 
 // As LayerSlicer::outlineEnd: pixel i's end toward an empty pixel at
-// i + dir on the layer's finer outline, where it has one.
+// i + dir of its source's nearest layer on that layer's finer outline,
+// where it has one; a layer behind it kBehindOutline of the way back to
+// its own depth.
+const float kBehindOutline = 0.75;
 bool outlineEnd(int k, int j, int i, int dir, inout double end, inout float d) {
-  int next = i + dir;
-  if (uOutlined[k] == 0 || next < 0 || next >= uWidth || uDepth[pixelIndex(k, j, next)] != 0.0) return false;
-  vec4 o = uOutline[pixelIndex(k, j, i)];
+  int m = uOutlineOf[k], next = i + dir;
+  if (m < 0 || next < 0 || next >= uWidth || uDepth[pixelIndex(m, j, next)] != 0.0) return false;
+  vec4 o = uOutline[pixelIndex(m, j, i)];
   if (o.x < 0.0) return false;
   end = double(i) + double(dir < 0 ? o.x : o.z);
+  float own = d;
   d = dir < 0 ? o.y : o.w;
+  if (m != k) d += kBehindOutline * (own - d);
   return true;
 }
 
@@ -266,9 +272,10 @@ GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingC
     perLayer[k] = glm::dvec4((x - left) * perPlane, tolerance, join, options.meetSilhouettes ? double(other[k]) : -1.0);
   }
   const gl::Buffer layerInfo = gl::makeBuffer(perLayer.data(), perLayer.size());
-  std::vector<int32_t> outlined(std::max(count, 1), 0);
-  for (int k = 0; k < count; ++k) outlined[size_t(k)] = layers.outlined(k) ? 1 : 0;
-  const gl::Buffer outlinedInfo = gl::makeBuffer(outlined.data(), outlined.size());
+  const std::vector<int> front = nearestLayerOf(eyes);
+  std::vector<int32_t> outlineOf(std::max(count, 1), -1);
+  for (int k = 0; k < count; ++k) outlineOf[size_t(k)] = layers.outlined(front[k]) ? front[k] : -1;
+  const gl::Buffer outlinedInfo = gl::makeBuffer(outlineOf.data(), outlineOf.size());
   const size_t pixels = layers.pixelsPerLayer() * size_t(count);
   if (pixels > flagsSize_) {
     flagsSize_ = pixels;
