@@ -24,6 +24,14 @@ void main() {
 }
 )";
 
+// Coverage as the geometry pass decides it, nothing written but depth.
+const char* const kDepthFragment = R"(
+flat in float vCull;
+void main() {
+  if (!gl_FrontFacing && vCull > 0.5) discard;
+}
+)";
+
 const char* const kGeometryFragment = R"(
 in vec3 vNormal;
 in vec3 vAlbedo;
@@ -180,6 +188,18 @@ void DeferredPipeline::geometry(const glm::dmat4& viewProj, const GBuffer& gbuff
   }
   gl::UseProgram(program->id());
   gl::setUniform(*program, "uViewProj", glm::mat4(viewProj));
+  buffers_.bind();
+  inRows([&] { buffers_.draw(); });
+}
+
+void DeferredPipeline::depth(const glm::dmat4& viewProj, const GBuffer& target) {
+  if (!depth_.id())
+    depth_ = gl::linkProgram("deferred-depth", {{GL_VERTEX_SHADER, gl::glslHeader() + kSceneVertexInputs + kGeometryVertex},
+                                                {GL_FRAGMENT_SHADER, gl::glslHeader() + kDepthFragment}});
+  target.bindForWriting();
+  gl::Enable(GL_DEPTH_TEST);
+  gl::UseProgram(depth_.id());
+  gl::setUniform(depth_, "uViewProj", glm::mat4(viewProj));
   buffers_.bind();
   inRows([&] { buffers_.draw(); });
 }

@@ -60,6 +60,9 @@ class DeferredPipeline {
                 const glm::vec4& peel = glm::vec4(0.0f));
   void lighting(const glm::dmat4& viewProj, const glm::dvec3& eye, const GBuffer& gbuffer,
                 const RenderTarget& target);
+  // The nearest surface's depth alone, into a GBuffer::depthOnly target:
+  // the geometry pass's coverage (its culling too) without its shading.
+  void depth(const glm::dmat4& viewProj, const GBuffer& target);
   // The passes that follow draw only if this samples-passed query counted
   // any (conditional rendering: the GPU decides, the CPU does not wait);
   // their clears still happen, so a skipped pass leaves an empty target.
@@ -74,7 +77,7 @@ class DeferredPipeline {
 
   SceneBuffers buffers_;
   shading::ShadingPlan plan_;
-  gl::Program geometry_, peeling_, lighting_;
+  gl::Program geometry_, peeling_, lighting_, depth_;
   gl::VertexArray emptyVao_;
   shading::GpuMaterials materials_;
   bool exactAlbedo_;

@@ -84,7 +84,7 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
       layers.push_back(std::move(layer));
     }
     if (!layers.empty() && samplesFor(w) > 1) {
-      ScopedStage s(stats.times, "acquire");
+      ScopedStage s(stats.times, "outline");  // its own stage: what the finer outline costs
       const gl::Buffer outline = gl::makeBuffer<PixelOutline>(nullptr, size_t(w) * h);
       drawOutline(cam, peel, outline.id(), 0);
       layers[0].outline.resize(size_t(w) * h);
@@ -182,7 +182,7 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
     if (!fine_ || fine_->width != n * w || fine_->height != h) fine_.emplace(n * w, h);
     pipeline_.begin(n * w, h, cam.share().scanlines);
     pipeline_.drawOnlyIf(0);
-    pipeline_.geometry(p.viewProj, fine_->gbuffer, nullptr);
+    pipeline_.depth(p.viewProj, fine_->gbuffer);
     pipeline_.begin(w, h, cam.share().scanlines);
     gl::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     gl::UseProgram(outline_.id());
