@@ -129,6 +129,7 @@ class InterpRenderer final : public Renderer {
     stats.counters["coalesce"] = options_.coalesce;
     stats.counters["visibility"] = options_.visibility;
     stats.counters["splits"] = splits_;
+    stats.counters["outline_samples"] = options_.outlineSamples;
   }
 
  private:
