@@ -60,7 +60,7 @@ double sourceWeight(Blend mode, const ShearingCamera& interval, int row, int sca
 }
 
 void blendEpi(Blend mode, const ShearingCamera& interval, int row, int scanline, const Image& a, const Image& b,
-              Image& joint) {
+              Image& joint, int firstView) {
   std::vector<uint8_t> aBackground, bBackground;
   for (int v = 0; v < joint.height; ++v) {
     markBackground(a, joint, v, aBackground);
@@ -69,7 +69,7 @@ void blendEpi(Blend mode, const ShearingCamera& interval, int row, int scanline,
       const glm::vec4 j = joint.linear(x, v);
       if (j.a == 0.0f) continue;
       const glm::vec4 pa = a.linear(x, v), pb = b.linear(x, v);
-      const auto w = float(sourceWeight(mode, interval, row, scanline, v, x));
+      const auto w = float(sourceWeight(mode, interval, row, scanline, firstView + v, x));
       if (pa.a > 0.0f && pb.a > 0.0f) {
         const glm::vec3 d = glm::abs(glm::vec3(pa) - glm::vec3(pb));
         if (std::max({d.r, d.g, d.b}) <= kSameSurface) joint.setLinear(x, v, w * pa + (1.0f - w) * pb);

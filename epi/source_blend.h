@@ -39,9 +39,10 @@ inline constexpr NameTable<Blend, 3> kBlendNames{
 // minus it. 1 at A, 0 at B.
 double sourceWeight(Blend mode, const ShearingCamera& interval, int row, int scanline, int view, int x);
 
-// Blends one EPI of `interval` in place, as above: `joint` is both sources'
-// EPI, `a` and `b` each source's alone, all of the interval's size.
+// Blends one EPI in place, as above: `joint` is both sources' EPI, `a` and
+// `b` each source's alone, all of one size, their rows the interval's
+// views from `firstView` on.
 void blendEpi(Blend mode, const ShearingCamera& interval, int row, int scanline, const Image& a, const Image& b,
-              Image& joint);
+              Image& joint, int firstView = 0);
 
 }  // namespace mvr

@@ -27,6 +27,7 @@ layout(std430, binding = 3) buffer Flags { uint uFlags[]; };
 // step between neighbours of one surface, the front layer of the nearest
 // other source (-1: none; LayerSlicer::meetOtherOutline).
 layout(std430, binding = 4) readonly buffer Layers { dvec4 uLayers[]; };
+layout(std430, binding = 13) readonly buffer Keep { int uKeep[]; };  // per layer: 1 if sliced
 uniform int uWidth;
 uniform int uHeight;
 uniform int uLayerCount;
@@ -83,8 +84,9 @@ void main() {
   barrier();
   int x = int(gl_GlobalInvocationID.x), j = int(gl_GlobalInvocationID.y), k = int(gl_GlobalInvocationID.z);
   if (x < uWidth) {
-    uFlags[flagIndex(k, j, x)] = runLevel(k, j, x) >= 0 ? 1u : 0u;
-    if (uDepth[pixelIndex(k, j, x)] != 0.0) atomicAdd(sCovered, 1u);
+    bool kept = uKeep[k] != 0;
+    uFlags[flagIndex(k, j, x)] = kept && runLevel(k, j, x) >= 0 ? 1u : 0u;
+    if (kept && uDepth[pixelIndex(k, j, x)] != 0.0) atomicAdd(sCovered, 1u);
   }
   barrier();
   if (gl_LocalInvocationIndex == 0u && sCovered > 0u) atomicAdd(uCovered, sCovered);
@@ -199,7 +201,7 @@ bool outlineEnd(int k, int j, int i, int dir, inout double end, inout float d) {
 void main() {
   int x = int(gl_GlobalInvocationID.x), j = int(gl_GlobalInvocationID.y), k = int(gl_GlobalInvocationID.z);
   if (x >= uWidth) return;
-  int level = runLevel(k, j, x);
+  int level = uKeep[k] != 0 ? runLevel(k, j, x) : -1;
   if (level < 0) return;
   uint slot = uFlags[flagIndex(k, j, x)], p = pixelIndex(k, j, x);
   int n = 1 << level;
@@ -245,7 +247,7 @@ GpuImageSlicer::GpuImageSlicer()
       fill_(compute("image-slice-fill", kFill)) {}
 
 GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingCamera& cam,
-                                     const ImageSliceOptions& options) {
+                                     const ImageSliceOptions& options, const std::vector<uint8_t>& keep) {
   if (options.scene && options.splits > 0)
     fail("GpuImageSlicer", "split highlight tracks are built on the CPU");
   const int w = cam.width(), h = cam.height(), count = layers.count();
@@ -276,6 +278,10 @@ GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingC
   std::vector<int32_t> outlineOf(std::max(count, 1), -1);
   for (int k = 0; k < count; ++k) outlineOf[size_t(k)] = layers.outlined(front[k]) ? front[k] : -1;
   const gl::Buffer outlinedInfo = gl::makeBuffer(outlineOf.data(), outlineOf.size());
+  if (!keep.empty() && int(keep.size()) != count) fail("GpuImageSlicer", "a keep flag per layer");
+  std::vector<int32_t> kept(std::max(count, 1), 1);
+  for (size_t k = 0; k < keep.size(); ++k) kept[k] = keep[k] ? 1 : 0;
+  const gl::Buffer keepInfo = gl::makeBuffer(kept.data(), kept.size());
   const size_t pixels = layers.pixelsPerLayer() * size_t(count);
   if (pixels > flagsSize_) {
     flagsSize_ = pixels;
@@ -300,6 +306,7 @@ GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingC
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, levels > 1 ? mips_.id() : flags_.id());
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, flags_.id());
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, layerInfo.id());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, keepInfo.id());
   };
   auto overPixels = [&](int width) {
     gl::DispatchCompute(groups(size_t(width)), uint32_t(h), uint32_t(count));

@@ -45,7 +45,10 @@ class GpuImageSlicer {
   // options.scene and splits are not supported (highlights split on the
   // CPU); throws mvr::Error if set. With coalescing off, the vectors index
   // the layers' colour buffer itself, which must outlive the draws.
-  GpuImageSlices build(const DeviceLayers& layers, const ShearingCamera& cam, const ImageSliceOptions& options);
+  // keep: per layer of the store, whether its pixels become slices (the
+  // others still serve as outlines to meet); empty: all.
+  GpuImageSlices build(const DeviceLayers& layers, const ShearingCamera& cam, const ImageSliceOptions& options,
+                       const std::vector<uint8_t>& keep = {});
 
  private:
   gl::Program mip_, flag_, fill_;
