@@ -90,7 +90,7 @@ int viewAt(const ShearingCamera& cam, double x) {
 class InterpRenderer final : public Renderer {
  public:
   InterpRenderer(const Scene& scene, PixelType type, const InterpOptions& options)
-      : options_(validated(options)), scene_(scene), splits_(splitsFor(scene, options)),
+      : options_(validated(options)), type_(type), scene_(scene), splits_(splitsFor(scene, options)),
         sources_(makeSourceLayerRenderer(scene, splits_ > 0, options_.outlineSamples)) {
     // Every image slice is coloured by its own vector of source pixels.
     const EpiShading shading{.sliceVectors = true, .sliceHighlights = splits_ > 0};
@@ -179,14 +179,16 @@ class InterpRenderer final : public Renderer {
   struct PieceLayers {
     int first, last, fromA, fromB;
   };
-  // Halves meet at the middle view, which the second draws; an interval
-  // too short to halve is drawn whole, and so is one whose sources are
-  // blended (blending weighs what each source alone draws over the whole
-  // interval: halved, the bunny's blended views lost 0.4-0.9 dB).
+  // Halves of one length (a rasterizer keeps its targets between calls
+  // of one size), sharing the middle view where the count is odd, which
+  // the second draws; an interval too short to halve is drawn whole, and
+  // so is one whose sources are blended (blending weighs what each source
+  // alone draws over the whole interval: halved, the bunny's blended views
+  // lost 0.4-0.9 dB).
   static std::vector<PieceLayers> pieceLayers(int a, int b, int layersA, int layersB, bool halve = true) {
     if (!halve || b - a < 2 || layersA == 0 || layersB == 0) return {{a, b, layersA, layersB}};
-    const int m = (a + b) / 2;
-    return {{a, m, layersA, 1}, {m, b, 1, layersB}};
+    const int length = (b - a) / 2 + 1;
+    return {{a, a + length - 1, layersA, 1}, {b - length + 1, b, 1, layersB}};
   }
 
   // Hands on the EPIs of cam's share, each assembled from `count` pieces
@@ -273,7 +275,7 @@ class InterpRenderer final : public Renderer {
   // three passes and, with several intervals, the assembled row) within
   // 256 MB.
   int bandScanlines(const ShearingCamera& cam, bool assembled) const {
-    const double epi = double(cam.width()) * cam.views() * 16.0;  // at most RGBA32F
+    const double epi = double(cam.width()) * cam.views() * 4.0 * Image::channelBytes(type_);
     const double held = epi * ((options_.blend != Blend::None ? 3.0 : 1.0) + (assembled ? 1.0 : 0.0));
     return std::max(1, int(256e6 / held));
   }
@@ -458,6 +460,7 @@ class InterpRenderer final : public Renderer {
   }
 
   InterpOptions options_;
+  PixelType type_;
   const Scene& scene_;
   int splits_;  // options_.splits where the scene has highlights, else 0
   std::unique_ptr<SourceLayerRenderer> sources_;
