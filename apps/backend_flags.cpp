@@ -70,6 +70,9 @@ void BackendFlags::add(CLI::App& app) {
                      "more holes, dilates outlines)")
           ->type_name("P")
           ->capture_default_str(),
+      app.add_flag("--whole-intervals", wholeIntervals_,
+                   "interp: draw the views between two sources from every layer of both, not each "
+                   "half from its near source's layers and the far source's nearest layer"),
       app.add_option("--outline-samples", interp.outlineSamples,
                      "interp: sample each source's outline at S columns a pixel (its nearest layer "
                      "drawn once more, S times as wide) so that silhouettes end where the surface "
@@ -106,6 +109,7 @@ BackendOptions BackendFlags::resolve() const {
   if (o.backend == Backend::Interp) {
     if (!acquire_.empty()) o.interp.acquire = parseAcquire(acquire_);
     if (!blend_.empty()) o.interp.blend = parseName(kBlendNames, blend_, "--blend", "blend");
+    if (wholeIntervals_) o.interp.halves = false;
     validate(o.interp);
   }
   if (o.backend == Backend::Warp) {

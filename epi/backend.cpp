@@ -56,6 +56,10 @@ void interpOption(const std::string& token, InterpOptions& o, const char* where)
     o.visibility = true;
     return;
   }
+  if (token == "whole") {
+    o.halves = false;
+    return;
+  }
   for (const auto& blend : kBlendNames)
     if (token == blend.name) {
       o.blend = blend.value;

@@ -160,7 +160,7 @@ class InterpRenderer final : public Renderer {
       const int a = viewAt(cam, sources[k].x), b = viewAt(cam, sources[k + 1].x);
       if (a < 0 || b <= a) fail("interp", "a source's eye is not a view of the set");
       const int layersA = int(sources[k].layers.size()), layersB = int(sources[k + 1].layers.size());
-      for (const PieceLayers& p : pieceLayers(a, b, layersA, layersB, options_.blend == Blend::None)) {
+      for (const PieceLayers& p : pieceLayers(a, b, layersA, layersB, halves())) {
         std::vector<SourceLayer> layers;
         for (int i = 0; i < p.fromA; ++i) layers.push_back(sources[k].layers[size_t(i)]);
         for (int i = 0; i < p.fromB; ++i) layers.push_back(sources[k + 1].layers[size_t(i)]);
@@ -341,7 +341,7 @@ class InterpRenderer final : public Renderer {
     // stay outlines to meet.
     if (xs.size() == 1) layersA = store_.count();
     const std::vector<PieceLayers> parts =
-        xs.size() == 2 ? pieceLayers(0, cam.views() - 1, layersA, store_.count() - layersA)
+        xs.size() == 2 ? pieceLayers(0, cam.views() - 1, layersA, store_.count() - layersA, halves())
                        : std::vector<PieceLayers>{{0, cam.views() - 1, store_.count(), 0}};
     std::vector<GpuImageSlices> slices;
     {
@@ -373,6 +373,8 @@ class InterpRenderer final : public Renderer {
       return std::pair(p.first, kept(slices[size_t(k)].vertices, slices[size_t(k)].table, sub, row, stats));
     });
   }
+
+  bool halves() const { return options_.halves && options_.blend == Blend::None; }
 
   // Whether the views at source eyes are the sources' images: not where
   // highlights are split off the source colours (they are added per view).

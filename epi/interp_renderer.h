@@ -59,6 +59,10 @@ struct InterpOptions {
   // outline (SourceLayer::outline): slices at a silhouette end where the
   // surface does, within the pixel, instead of on its boundary. 1: off.
   int outlineSamples = 4;
+  // Each half of an interval between two sources from its near source's
+  // layers and the far source's nearest layer (false: every layer of both
+  // over the whole interval; blending always draws it whole).
+  bool halves = true;
 };
 
 // Throws mvr::Error naming the option that is out of range; needs no GL.
