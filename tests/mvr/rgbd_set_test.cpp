@@ -87,9 +87,10 @@ TEST(RgbdSet, ReadsTheHciLayout) {
     const RgbdView &a = mvrSet.references[i], &b = hci.references[i];
     for (int col = 0; col < 3; ++col)
       for (int row = 0; row < 3; ++row) EXPECT_NEAR(a.K[col][row], b.K[col][row], 1e-6) << i;
-    if (std::abs(c.trackLeft + c.trackRight) < 1e-12)  // the HCI grid is centred on the axis
+    if (std::abs(c.trackLeft + c.trackRight) < 1e-12) {  // the HCI grid is centred on the axis
       for (int col = 0; col < 4; ++col)
         for (int row = 0; row < 4; ++row) EXPECT_NEAR(a.V[col][row], b.V[col][row], 1e-9) << i;
+    }
     EXPECT_EQ(a.depth.values, b.depth.values) << i;  // bit for bit, rows in order
     EXPECT_EQ(a.color.bytes, b.color.bytes) << i;
   }
