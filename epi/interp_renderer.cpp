@@ -185,7 +185,7 @@ class InterpRenderer final : public Renderer {
   // so is one whose sources are blended (blending weighs what each source
   // alone draws over the whole interval: halved, the bunny's blended views
   // lost 0.4-0.9 dB).
-  static std::vector<PieceLayers> pieceLayers(int a, int b, int layersA, int layersB, bool halve = true) {
+  static std::vector<PieceLayers> pieceLayers(int a, int b, int layersA, int layersB, bool halve) {
     if (!halve || b - a < 2 || layersA == 0 || layersB == 0) return {{a, b, layersA, layersB}};
     const int length = (b - a) / 2 + 1;
     return {{a, a + length - 1, layersA, 1}, {b - length + 1, b, 1, layersB}};
@@ -329,20 +329,18 @@ class InterpRenderer final : public Renderer {
       const double x = xs[k];
       stats.counters["source_views"] += 1;
       const int first = store_.count();
-      if (k == 1) layersA = first;
       gl::GpuClock::mark("acquire");
       const int added =
           sources_->render(sourceCamera(cam), {x, cam.rowY(row)}, options_.maxLayers, trackWidth(cam), stats, store_);
       if (const int v = passesThrough() ? viewAt(cam, x) : -1; v >= 0) passing.push_back({v, added > 0 ? first : -1});
+      if (k == 0) layersA = store_.count();
     }
     stats.counters["layers"] += double(store_.count());
     // Dual: each half of the track from its near source's layers and the
     // far source's nearest (renderIntervals); the store's other layers
-    // stay outlines to meet.
-    if (xs.size() == 1) layersA = store_.count();
+    // stay outlines to meet. Center: one source, drawn whole.
     const std::vector<PieceLayers> parts =
-        xs.size() == 2 ? pieceLayers(0, cam.views() - 1, layersA, store_.count() - layersA, halves())
-                       : std::vector<PieceLayers>{{0, cam.views() - 1, store_.count(), 0}};
+        pieceLayers(0, cam.views() - 1, layersA, store_.count() - layersA, halves());
     std::vector<GpuImageSlices> slices;
     {
       ScopedStage s(stats.times, "slicing");

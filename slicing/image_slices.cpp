@@ -296,23 +296,24 @@ class LayerSlicer {
 
 }  // namespace
 
-std::vector<int> nearestOtherSource(const std::vector<glm::dvec2>& eyes) {
-  std::vector<int> other(eyes.size(), -1);
-  for (size_t k = 0; k < eyes.size(); ++k) {
-    double nearest = INFINITY;
-    for (size_t m = 0; m < eyes.size(); ++m) {
-      const double apart = glm::length(eyes[m] - eyes[k]);
-      const bool front = m == 0 || eyes[m - 1] != eyes[m];
-      if (front && apart > 0.0 && apart < nearest) nearest = apart, other[k] = int(m);
-    }
-  }
-  return other;
-}
-
 std::vector<int> nearestLayerOf(const std::vector<glm::dvec2>& eyes) {
   std::vector<int> front(eyes.size());
   for (size_t k = 0; k < eyes.size(); ++k) front[k] = k > 0 && eyes[k - 1] == eyes[k] ? front[k - 1] : int(k);
   return front;
+}
+
+std::vector<int> nearestOtherSource(const std::vector<glm::dvec2>& eyes) {
+  std::vector<int> other(eyes.size(), -1);
+  const std::vector<int> nearestLayer = nearestLayerOf(eyes);
+  for (size_t k = 0; k < eyes.size(); ++k) {
+    double nearest = INFINITY;
+    for (size_t m = 0; m < eyes.size(); ++m) {
+      const double apart = glm::length(eyes[m] - eyes[k]);
+      const bool front = nearestLayer[m] == int(m);
+      if (front && apart > 0.0 && apart < nearest) nearest = apart, other[k] = int(m);
+    }
+  }
+  return other;
 }
 
 float coalesceDepthRange(const ShearingCamera& cam, double eyeX, float pixels) {

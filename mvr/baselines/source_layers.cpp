@@ -176,14 +176,14 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
   // The nearest layer's outline (PixelOutline per pixel) into `buffer`
   // from pixel `first` on: its geometry drawn once more at samplesFor(w)
   // columns a pixel, each pixel's samples reduced on the GPU. The peel's
-  // later layers need only the nearest, so this comes last.
+  // later layers need only the nearest, so this comes last; the next
+  // peel's start() begins the pipeline at its own width again.
   void drawOutline(const ShearingCamera& cam, const Peel& p, GLuint buffer, uint32_t first) {
     const int w = cam.width(), h = cam.height(), n = samplesFor(w);
     if (!fine_ || fine_->width != n * w || fine_->height != h) fine_.emplace(n * w, h);
     pipeline_.begin(n * w, h, cam.share().scanlines);
     pipeline_.drawOnlyIf(0);
     pipeline_.depth(p.viewProj, fine_->gbuffer);
-    pipeline_.begin(w, h, cam.share().scanlines);
     gl::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     gl::UseProgram(outline_.id());
     gl::setUniform(outline_, "uWidth", w);
