@@ -101,7 +101,7 @@ class LayerSlicer {
   void addRun(const SourceLayer& layer, int j, int x, int n) {
     const float* depth = layer.depth.data() + size_t(j) * cam_.width();
     const float d0 = depth[x], slope = n > 1 ? (depth[x + n - 1] - d0) / float(n - 1) : surfaceSlope(depth, x);
-    const float oL = widening(depth, x, x - 1), oR = widening(depth, x + n - 1, x + n);
+    const float oL = widening(x - 1), oR = widening(x + n);
     texels_.clear();
     for (int k = 0; k < n; ++k) texels_.push_back(glm::vec4(glm::vec3(layer.color.pixel(x + k, j)), 1.0f));
     const auto base = uint32_t(out_.vertices.vertexCount());
@@ -109,6 +109,14 @@ class LayerSlicer {
     double ends[2] = {x - oL, x + n + oR};  // the ends' pixel x
     float d[2] = {d0 + (-oL - 0.5f) * slope, d0 + (float(n) + oR - 0.5f) * slope};
     bool onOutline[2] = {false, false};
+    // A side that continues its neighbour's surface ends on their shared
+    // boundary at the mean of the two centres' depths, as the neighbour's
+    // slice does: the two meet in every view, so no crack opens between
+    // them and neither stands over the other's pixel (widened by the
+    // overlap instead, the nearer of the two took a quarter pixel of the
+    // other's colour: bunny 160x120, 30.4 -> 30.7 dB with this alone).
+    if (joined(depth, x, x - 1)) d[0] = 0.5f * (depth[x - 1] + depth[x]);
+    if (joined(depth, x + n - 1, x + n)) d[1] = 0.5f * (depth[x + n - 1] + depth[x + n]);
     if (outlined_) {
       const size_t row = size_t(j) * cam_.width();
       const PixelOutline* outline = outlined_->outline.data() + row;
@@ -116,9 +124,7 @@ class LayerSlicer {
       float own[2] = {d[0], d[1]};
       onOutline[0] = outlineEnd(outline[x], at, x, -1, ends[0], d[0]);
       onOutline[1] = outlineEnd(outline[x + n - 1], at, x + n - 1, +1, ends[1], d[1]);
-      if (outlined_ != &layer)
-        for (int e = 0; e < 2; ++e)
-          if (onOutline[e]) d[e] += kBehindOutline * (own[e] - d[e]);
+      if (outlined_ != &layer) behindOutline(x, n, own, ends, d, onOutline);
     }
     if (options_.fitRims && n == 1) {
       double e;
@@ -195,20 +201,31 @@ class LayerSlicer {
   // the rim: 35.5 against 37.0 dB mean), at its own depth it stands outside
   // the surface as the boundary did. 0.5 to 0.75 measured alike.
   static constexpr float kBehindOutline = 0.75f;
+  // The outline may lie in the empty neighbour's near half (PixelOutline);
+  // a layer behind keeps its ends within its own pixels there, where the
+  // front's ray through them still runs inside the surface: on the ray
+  // that grazes the silhouette, a point behind the front one lies outside
+  // the object and its track leaves the outline (bunny 160x120: 30.2
+  // against 31.0 dB).
+  static void behindOutline(int x, int n, const float (&own)[2], double (&ends)[2], float (&d)[2],
+                            const bool (&onOutline)[2]) {
+    for (int e = 0; e < 2; ++e)
+      if (onOutline[e]) d[e] += kBehindOutline * (own[e] - d[e]);
+    if (onOutline[0]) ends[0] = std::max(ends[0], double(x));
+    if (onOutline[1]) ends[1] = std::min(ends[1], double(x + n));
+  }
   bool outlineEnd(const PixelOutline& o, const float* depth, int i, int dir, double& end, float& d) const {
     const int next = i + dir;
-    if (next < 0 || next >= cam_.width() || depth[next] != 0.0f || o.left < 0.0f) return false;
+    if (next < 0 || next >= cam_.width() || depth[next] != 0.0f || o.right < 0.0f) return false;
     end = i + double(dir < 0 ? o.left : o.right);
     d = dir < 0 ? o.leftDepth : o.rightDepth;
     return true;
   }
 
   // The overlap toward pixel `to` from the run's end pixel `from`: only
-  // where `to` continues the surface; beyond the image's edge it may.
-  float widening(const float* depth, int from, int to) const {
-    if (to < 0 || to >= cam_.width()) return options_.overlap;
-    return joined(depth, from, to) ? options_.overlap : 0.0f;
-  }
+  // beyond the image's edge, where the surface may go on; a joined side
+  // meets its neighbour's slice instead (addRun).
+  float widening(int to) const { return to < 0 || to >= cam_.width() ? options_.overlap : 0.0f; }
 
   bool joined(const float* depth, int from, int to) const {
     return to >= 0 && to < cam_.width() && depth[to] != 0.0f && std::abs(depth[from] - depth[to]) <= join_;

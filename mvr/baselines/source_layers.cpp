@@ -16,7 +16,10 @@ namespace {
 // texture of uSamples x the width), as PixelOutline: the first and last
 // covered sample's outer edges and depths, each end kept on its own side
 // of the pixel's centre (a covered centre means the silhouette lies
-// beyond it; between two sample centres, a quarter sample out).
+// beyond it; between two sample centres, a quarter sample out), and run
+// on over the neighbour's covered samples short of its centre. Kept
+// within the pixel, the silhouette of a view beside the source stood up
+// to half a pixel inside svr's (bunny 160x120, view 1: 26 pixels short).
 const char* const kOutline = R"(
 layout(local_size_x = 64) in;
 layout(binding = 0) uniform sampler2D uFine;
@@ -37,9 +40,27 @@ void main() {
     dHi = d;
   }
   float n = float(uSamples), quarter = 0.25 / n;
+  if (lo < 0) {
+    uOutline[uFirst + uint(j * uWidth + x)] = vec4(-1.0, 0.0, -1.0, 0.0);
+    return;
+  }
+  // Covered from its boundary on: the silhouette may lie in the empty
+  // neighbour's near half, whose samples this pixel's ends extend over.
+  int L = x * uSamples + lo, R = x * uSamples + hi, halfway = uSamples / 2;
+  for (int s = 0; lo == 0 && x > 0 && s < halfway; ++s) {
+    float d = texelFetch(uFine, ivec2(L - 1, j), 0).r;
+    if (d == 0.0) break;
+    L -= 1;
+    dLo = d;
+  }
+  for (int s = 0; hi == uSamples - 1 && x + 1 < uWidth && s < halfway; ++s) {
+    float d = texelFetch(uFine, ivec2(R + 1, j), 0).r;
+    if (d == 0.0) break;
+    R += 1;
+    dHi = d;
+  }
   uOutline[uFirst + uint(j * uWidth + x)] =
-      lo < 0 ? vec4(-1.0, 0.0, -1.0, 0.0)
-             : vec4(min(float(lo) / n, 0.5 - quarter), dLo, max(float(hi + 1) / n, 0.5 + quarter), dHi);
+      vec4(min(float(L) / n - float(x), 0.5 - quarter), dLo, max(float(R + 1) / n - float(x), 0.5 + quarter), dHi);
 }
 )";
 

@@ -21,7 +21,10 @@ namespace mvr {
 // window depth of the outermost sample on each side: the silhouette within
 // the pixel and the surface point beside it. A pixel whose centre is
 // covered gets ends on its own side of the centre (left below 0.5, right
-// above). left < 0: no sample covered.
+// above); covered up to its boundary, its ends go on over the covered
+// samples of the neighbour's near half (left down to -0.5, right up to
+// 1.5), where a silhouette the neighbour's centre misses lies.
+// right < 0: no sample covered.
 struct PixelOutline {
   float left = -1.0f, leftDepth = 0.0f, right = -1.0f, rightDepth = 0.0f;
 };

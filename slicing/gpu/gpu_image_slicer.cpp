@@ -131,17 +131,15 @@ void writeEnd(uint vertex, float x, float d, double shift, vec3 c) {
 }
 
 // As LayerSlicer: pixel `to` continues the surface of pixel `from`; the
-// overlap toward it (beyond the image's edge the surface may go on); a
-// lone pixel's slope between two neighbours of its surface.
+// overlap toward it (beyond the image's edge only: a joined side meets its
+// neighbour's slice); a lone pixel's slope between two neighbours of its
+// surface.
 bool joined(int k, int j, int from, int to) {
   if (to < 0 || to >= uWidth) return false;
   float b = uDepth[pixelIndex(k, j, to)];
   return b != 0.0 && abs(uDepth[pixelIndex(k, j, from)] - b) <= float(uLayers[k].z);
 }
-float widening(int k, int j, int from, int to) {
-  if (to < 0 || to >= uWidth) return uOverlap;
-  return joined(k, j, from, to) ? uOverlap : 0.0;
-}
+float widening(int to) { return to < 0 || to >= uWidth ? uOverlap : 0.0; }
 // As LayerSlicer::meetOtherOutline: the ends slide along their rays until
 // the slice stops at the other source's outline in that source's view.
 bool theirs(int m, int j, int i) { return i >= 0 && i < uWidth && uDepth[pixelIndex(m, j, i)] != 0.0; }
@@ -190,11 +188,14 @@ bool outlineEnd(int k, int j, int i, int dir, inout double end, inout float d) {
   int m = uOutlineOf[k], next = i + dir;
   if (m < 0 || next < 0 || next >= uWidth || uDepth[pixelIndex(m, j, next)] != 0.0) return false;
   vec4 o = uOutline[pixelIndex(m, j, i)];
-  if (o.x < 0.0) return false;
+  if (o.z < 0.0) return false;  // no sample covered (left may be below 0)
   end = double(i) + double(dir < 0 ? o.x : o.z);
   float own = d;
   d = dir < 0 ? o.y : o.w;
-  if (m != k) d += kBehindOutline * (own - d);
+  if (m != k) {  // LayerSlicer::behindOutline: behind, within its own pixel
+    d += kBehindOutline * (own - d);
+    end = dir < 0 ? max(end, double(i)) : min(end, double(i + 1));
+  }
   return true;
 }
 
@@ -206,11 +207,13 @@ void main() {
   uint slot = uFlags[flagIndex(k, j, x)], p = pixelIndex(k, j, x);
   int n = 1 << level;
   float d0 = uDepth[p], slope = n > 1 ? (uDepth[p + uint(n - 1)] - d0) / float(n - 1) : surfaceSlope(k, j, x);
-  float oL = widening(k, j, x, x - 1), oR = widening(k, j, x + n - 1, x + n);
+  float oL = widening(x - 1), oR = widening(x + n);
   double shift = uLayers[k].x;
   vec3 c = uColor[p].rgb;
   double xE[2] = double[2](double(float(x) - oL), double(float(x + n) + oR));
   float dE[2] = float[2](d0 + (-oL - 0.5) * slope, d0 + (float(n) + oR - 0.5) * slope);
+  if (joined(k, j, x, x - 1)) dE[0] = 0.5 * (uDepth[pixelIndex(k, j, x - 1)] + d0);
+  if (joined(k, j, x + n - 1, x + n)) dE[1] = 0.5 * (uDepth[p + uint(n - 1)] + uDepth[pixelIndex(k, j, x + n)]);
   bool onOutline[2] = bool[2](outlineEnd(k, j, x, -1, xE[0], dE[0]), outlineEnd(k, j, x + n - 1, 1, xE[1], dE[1]));
   int other = int(uLayers[k].w);
   if (other >= 0) meetOtherOutline(k, other, j, xE, dE, onOutline);

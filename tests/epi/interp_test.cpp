@@ -103,32 +103,42 @@ TEST(ImageSlices, CoalescingMergesAlignedRunsOfCloseDepth) {
   EXPECT_EQ(s.pixels, 9u);
   const std::vector<int> lengths = {4, 2, 1, 1, 1};
   for (size_t k = 0; k < lengths.size(); ++k) EXPECT_EQ(s.vertices.vectors[k].length, lengths[k]) << k;
-  // The block of four: ends at x = -1/4 and 4 + 1/4, u from -1/16 to 17/16,
-  // its texels the pixels' colours.
+  // The block of four: ends at x = -1/4 (widened beyond the image's edge)
+  // and 4 (the boundary it shares with the next block, which starts there),
+  // u from -1/16 to 1, its texels the pixels' colours.
   const SliceVector& v = s.vertices.vectors[0];
   EXPECT_FLOAT_EQ(v.u0, -0.0625f);
-  EXPECT_FLOAT_EQ(v.u1, 1.0625f);
+  EXPECT_FLOAT_EQ(v.u1, 1.0f);
   EXPECT_FLOAT_EQ(s.vertices.vectorTexels.texels()[v.base + 3].r, 0.3f);
   auto [e0, e1] = sliceEnds(s.vertices, s.table.scanline(0)[0]);
   EXPECT_NEAR(e0.x0 + e0.dx, -0.25f, 1e-4f);  // the middle view is the source
-  EXPECT_NEAR(e1.x0 + e1.dx, 4.25f, 1e-4f);
+  EXPECT_NEAR(e1.x0 + e1.dx, 4.0f, 1e-4f);
+  auto [n0, n1] = sliceEnds(s.vertices, s.table.scanline(0)[1]);
+  EXPECT_NEAR(n0.x0 + n0.dx, 4.0f, 1e-4f);
   // A unit of depth is 8 / 3 pixels: merging 8 and 9 needs T >= 8/3.
   const float range = coalesceDepthRange(c.cam, 0.0, 1.0f);
   EXPECT_NEAR(c.depthAt(1.0) - c.depthAt(0.0), 8.0f / 3.0f * range, 1e-5f);
   EXPECT_EQ(sliceSourceLayers({c.layer}, c.cam, 0, {.coalesce = 2.7f}).table.sliceCount(), 4u);
 }
 
-// Footprints widen only toward a neighbour of the same surface or one in
-// front: a silhouette pixel ends on its pixel boundary (issue 18).
+// No footprint widens inside the image: a silhouette pixel ends on its
+// pixel boundary (issue 18), and two pixels of one surface end on the
+// boundary they share, at the mean of their depths, so that their tracks
+// meet in every view.
 TEST(ImageSlices, SilhouettesKeepThePixelBoundary) {
   RunCase c;
   c.set(3, 0.0, 0.5f);  // alone between empty pixels
   c.set(7, 0.0, 0.5f);
-  c.set(8, 0.0, 0.5f);  // continues 7: they widen toward each other
+  c.set(8, 0.1, 0.5f);  // continues 7 (0.27 pixels of parallax apart): they share x = 8
   c.set(9, 1.0, 0.5f);  // a unit in front of 8: 8/3 pixels of parallax over the track, a step
   const ImageSlices s = sliceSourceLayers({c.layer}, c.cam, 0, {.overlap = 0.25f});
   ASSERT_EQ(s.table.sliceCount(), 4u);
-  const float want[4][2] = {{3.0f, 4.0f}, {7.0f, 8.25f}, {7.75f, 9.0f}, {9.0f, 10.0f}};
+  const float want[4][2] = {{3.0f, 4.0f}, {7.0f, 8.0f}, {8.0f, 9.0f}, {9.0f, 10.0f}};
+  auto [a0, a1] = sliceEnds(s.vertices, s.table.scanline(0)[1]);
+  auto [b0, b1] = sliceEnds(s.vertices, s.table.scanline(0)[2]);
+  EXPECT_FLOAT_EQ(a1.depth, 0.5f * (c.layer.depth[7] + c.layer.depth[8]));
+  EXPECT_FLOAT_EQ(b0.depth, a1.depth);
+  EXPECT_NEAR(a1.dx, b0.dx, 1e-6f);  // the same point: the same track
   for (int k = 0; k < 4; ++k) {
     auto [e0, e1] = sliceEnds(s.vertices, s.table.scanline(0)[size_t(k)]);
     EXPECT_NEAR(e0.x0 + e0.dx, want[k][0], 1e-4f) << k;  // the middle view is the source
@@ -185,7 +195,7 @@ TEST(ImageSlices, ASilhouetteEndsOnTheFinerOutline) {
   auto x = [](const SliceEnd& e) { return e.x0 + e.dx; };  // the middle view is the source
   EXPECT_NEAR(x(fine[0]), 4.375f, 1e-4f);
   EXPECT_FLOAT_EQ(fine[0].depth, back);
-  EXPECT_NEAR(x(fine[1]), 5.25f, 1e-4f);  // toward 5: widened as ever
+  EXPECT_NEAR(x(fine[1]), 5.0f, 1e-4f);  // toward 5: the boundary they share
   EXPECT_NEAR(x(fine[5]), 6.625f, 1e-4f);
   EXPECT_FLOAT_EQ(fine[5].depth, front);
   EXPECT_FLOAT_EQ(vectors[0].u0, 0.375f);  // the texel spans the pixel still
@@ -203,6 +213,20 @@ TEST(ImageSlices, ASilhouetteEndsOnTheFinerOutline) {
   EXPECT_NEAR(x(b0), 6.0f, 1e-4f);  // toward 5, covered in front: its boundary
   EXPECT_NEAR(x(b1), 6.625f, 1e-4f);
   EXPECT_NEAR(b1.depth, front + 0.75f * (behind.depth[6] - front), 1e-6f);
+  // The outline in the empty neighbour's near half (covered samples short
+  // of pixel 3's centre): the front's end goes there, a layer behind stops
+  // at its own pixel's boundary, where the front's ray still runs inside.
+  SourceLayer beyond = c.layer;
+  beyond.outline[4].left = -0.375f;
+  const auto [wide, wideVectors] = ends(beyond);
+  EXPECT_NEAR(x(wide[0]), 3.625f, 1e-4f);
+  EXPECT_FLOAT_EQ(wideVectors[0].u0, -0.375f);
+  behind.depth[4] = c.depthAt(-0.5);
+  const ImageSlices deeper = sliceSourceLayers({beyond, behind}, c.cam, 0, {.overlap = 0.25f});
+  ASSERT_EQ(deeper.table.sliceCount(), 5u);
+  auto [d0, d1] = sliceEnds(deeper.vertices, deeper.table.scanline(0)[3]);
+  EXPECT_NEAR(x(d0), 4.0f, 1e-4f);
+  EXPECT_NEAR(d0.depth, back + 0.75f * (behind.depth[4] - back), 1e-6f);
   // Nothing sampled: the pixel's boundary at its centre's depth.
   SourceLayer none = c.layer;
   none.outline[6] = PixelOutline{};
@@ -639,6 +663,49 @@ Outside outsideTheSilhouette(const Scene& scene, const ShearingCamera& cam, Acqu
   return out;
 }
 
+// The finer outline (issue 18): at 4 samples a pixel, a silhouette
+// pixel's outline end lies within half a sample of the true silhouette
+// (svr 16 times finer in x, through the source's own eye), within its
+// pixel or over the empty neighbour's near half.
+TEST_F(InterpTest, TheFinerOutlineFindsTheSilhouetteWithinHalfASample) {
+  const Scene sphere = test::sphereScene(0.6f, 48, 96);
+  const ShearingCamera cam(cameraFor(sphere, 80, 60), 80, 60, 9);
+  constexpr int kFactor = 16;
+  CameraSpec fineSpec = cam.spec();
+  fineSpec.planeHeight = cam.planeHeight();
+  const ShearingCamera fine(fineSpec, cam.width() * kFactor, cam.height(), cam.views());
+  const test::CaptureSink reference = test::renderViews(*makeSvrRenderer(sphere, PixelType::U8), fine);
+  const Image& truth = reference.views.at({0, 0});
+  RenderStats stats;
+  const double track = cam.spec().trackRight - cam.spec().trackLeft;
+  const std::vector<SourceLayer> layers =
+      makeSourceLayerRenderer(sphere, false, 4)->render(cam, {cam.viewX(0), cam.rowY(0)}, 1, track, stats);
+  ASSERT_EQ(layers.size(), 1u);
+  const SourceLayer& front = layers[0];
+  int rows = 0, beyond = 0;
+  for (int y = 0; y < cam.height(); ++y) {
+    const float* depth = front.depth.data() + size_t(y) * cam.width();
+    int first = 0, last = cam.width() - 1;
+    while (first < cam.width() && depth[first] == 0.0f) ++first;
+    while (last >= 0 && depth[last] == 0.0f) --last;
+    int c0 = 0, c1 = truth.width - 1;
+    while (c0 < truth.width && truth.row(y)[c0 * 4 + 3] == 0) ++c0;
+    while (c1 >= 0 && truth.row(y)[c1 * 4 + 3] == 0) --c1;
+    if (last - first < 2 || c1 - c0 < 2 * kFactor) continue;
+    ++rows;
+    const PixelOutline& l = front.outline[size_t(y) * cam.width() + first];
+    const PixelOutline& r = front.outline[size_t(y) * cam.width() + last];
+    // The true edges, between a covered fine sample and the next one out.
+    EXPECT_NEAR(first + l.left, double(c0) / kFactor, 0.125 + 0.5 / kFactor) << "row " << y;
+    EXPECT_NEAR(last + r.right, double(c1 + 1) / kFactor, 0.125 + 0.5 / kFactor) << "row " << y;
+    EXPECT_GE(l.left, -0.5f);
+    EXPECT_LE(r.right, 1.5f);
+    beyond += (l.left < 0.0f) + (r.right > 1.0f);
+  }
+  EXPECT_GT(rows, 30);
+  EXPECT_GT(beyond, 10);  // ends over the empty neighbour: about half of them
+}
+
 // Issue 18: no interp pixel more than half a pixel outside the true
 // silhouette, on a cube, a sphere and thin bars before a deep box.
 TEST_F(InterpTest, NoPixelMoreThanHalfAPixelOutsideTheSilhouette) {
@@ -658,8 +725,10 @@ TEST_F(InterpTest, NoPixelMoreThanHalfAPixelOutsideTheSilhouette) {
 
 // Scenes interp was not tuned on (issue 18). The scanned bunny comes from
 // Debian's glmark2-data (GPL, not in the repo): skipped where absent.
-// Thresholds are today's figures less a margin, not issue 18's targets
-// (32 dB on the bunny at 160x120), which are not met: docs/BENCHMARKS.md.
+// Thresholds are today's figures less a margin. These are linear 8-bit
+// images; issue 18's target (32 dB on the bunny at 160x120) is measured on
+// what mvr render writes, sRGB-encoded, where the same views score lower
+// (31.2 dB) and the target is not met: docs/BENCHMARKS.md.
 TEST_F(InterpTest, ScenesItWasNotTunedOn) {
   struct Case {
     const char* name;
@@ -672,14 +741,15 @@ TEST_F(InterpTest, ScenesItWasNotTunedOn) {
   std::vector<Case> cases;
   // Bars thinner than a pixel: svr drops or keeps them by where pixel
   // centres fall, so an image-based view differs from it whole bars at a
-  // time. Measured (llvmpipe): thin-deep 16.3 dB, 15.8 with outlines at the
-  // pixels' boundaries, blending 16.6-16.7; bunny 31.7 dB with each half of
-  // the track from its near source's layers (30.9 with all layers over the
-  // whole track, 28.6 before the finer outlines and the steep footprints'
-  // slopes), blending (whole track) 31.3-31.4.
+  // time. Measured (llvmpipe): thin-deep 16.3 dB, 15.9 with outlines at the
+  // pixels' boundaries, 16.2 over the whole track, blending 16.7-16.8;
+  // bunny 33.0 dB (31.7 before the outlines ran over the empty neighbour
+  // and joined pixels shared their ends), 31.7 with all layers over the
+  // whole track, 31.2 with outlines at the pixels' boundaries, blending
+  // (whole track) 32.8-33.1.
   cases.push_back({"thin-deep", app::makeThinAndDeepScene(), 16.0, -0.1, 0.3, 0.2});
   const char* bunny = "/usr/share/glmark2/models/bunny.obj";
-  if (std::filesystem::exists(bunny)) cases.push_back({"bunny", app::loadInputScene(bunny, false), 31.2, 0.5, 0.3, -0.6});
+  if (std::filesystem::exists(bunny)) cases.push_back({"bunny", app::loadInputScene(bunny, false), 32.5, 1.0, 1.3, -0.5});
   for (const Case& c : cases) {
     const ShearingCamera cam(cameraFor(c.scene, 160, 120), 160, 120, 16);
     const test::CaptureSink svr = test::renderViews(*makeSvrRenderer(c.scene, PixelType::U8), cam);
@@ -688,11 +758,15 @@ TEST_F(InterpTest, ScenesItWasNotTunedOn) {
     EXPECT_GE(d.minPsnr, c.minPsnr) << c.name;
     RecordProperty(std::string(c.name) + "_dual_min_psnr_db", std::to_string(d.minPsnr));
     const test::CaptureSink whole = test::renderViews(*makeInterpRenderer(c.scene, PixelType::U8, {.halves = false}), cam);
-    EXPECT_GE(d.minPsnr, test::compareViews(svr, whole).minPsnr + c.halvesGain) << c.name;
+    const double wholePsnr = test::compareViews(svr, whole).minPsnr;
+    RecordProperty(std::string(c.name) + "_whole_min_psnr_db", std::to_string(wholePsnr));
+    EXPECT_GE(d.minPsnr, wholePsnr + c.halvesGain) << c.name;
     // Silhouette slices end where the surface does within their pixels.
     const test::CaptureSink coarse =
         test::renderViews(*makeInterpRenderer(c.scene, PixelType::U8, {.outlineSamples = 1}), cam);
-    EXPECT_GE(d.minPsnr, test::compareViews(svr, coarse).minPsnr + c.outlineGain) << c.name;
+    const double coarsePsnr = test::compareViews(svr, coarse).minPsnr;
+    RecordProperty(std::string(c.name) + "_coarse_min_psnr_db", std::to_string(coarsePsnr));
+    EXPECT_GE(d.minPsnr, coarsePsnr + c.outlineGain) << c.name;
     // At a source view nothing is drawn where the source saw nothing.
     for (int v : {0, 15}) EXPECT_EQ(compareImages(svr.views.at({0, v}), dual.views.at({0, v})).extras, 0) << c.name << " " << v;
     // Blending weights the two outlines' disagreement and mixes one
@@ -702,6 +776,7 @@ TEST_F(InterpTest, ScenesItWasNotTunedOn) {
       const InterpOptions options{.blend = blend};
       const test::CaptureSink b = test::renderViews(*makeInterpRenderer(c.scene, PixelType::U8, options), cam);
       const test::SetDifference bd = test::compareViews(svr, b);
+      RecordProperty(std::string(c.name) + "_" + nameOf(kBlendNames, blend) + "_min_psnr_db", std::to_string(bd.minPsnr));
       EXPECT_GE(bd.minPsnr, d.minPsnr + c.blendGain) << c.name << " " << nameOf(kBlendNames, blend);
       for (int v : {0, 15}) {
         EXPECT_LE(compareImages(dual.views.at({0, v}), b.views.at({0, v})).maxError, 1e-6) << c.name << " " << v;
@@ -713,7 +788,9 @@ TEST_F(InterpTest, ScenesItWasNotTunedOn) {
     RenderStats stats;
     const test::CaptureSink h = test::renderViews(*makeInterpRenderer(c.scene, PixelType::U8, many), cam, stats);
     EXPECT_EQ(stats.counters["source_views"], 5) << c.name;
-    EXPECT_GE(test::compareViews(svr, h).minPsnr, d.minPsnr - 0.3) << c.name;
+    const double hPsnr = test::compareViews(svr, h).minPsnr;
+    RecordProperty(std::string(c.name) + "_five_sources_min_psnr_db", std::to_string(hPsnr));
+    EXPECT_GE(hPsnr, d.minPsnr - 0.3) << c.name;
   }
   if (cases.size() < 2) GTEST_SKIP() << bunny << " absent (Debian's glmark2-data)";
 }
