@@ -66,8 +66,9 @@ void BackendFlags::add(CLI::App& app) {
                      "or by the angles at the pixel (angular); blending draws each interval 3 times")
           ->type_name(choices(kBlendNames)),
       app.add_option("--overlap", interp.overlap,
-                     "interp: widen each slice by P pixels per side against cracks (more closes "
-                     "more holes, dilates outlines)")
+                     "interp: join neighbouring pixels whose tracks part by at most 2P pixels over "
+                     "the track (joined, they share their boundary's end: no cracks); slices at the "
+                     "image's edge widen by P")
           ->type_name("P")
           ->capture_default_str(),
       app.add_flag("--whole-intervals", wholeIntervals_,

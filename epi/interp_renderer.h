@@ -35,7 +35,7 @@ struct InterpOptions {
   // layers stay in GPU memory (center and dual acquisition without
   // visibility or splits; the rest slice on the CPU, PSTs still pulled).
   PstBuilder builder = PstBuilder::Auto;
-  float overlap = 0.25f;    // footprint widening per side, pixels
+  float overlap = 0.25f;    // pixels: neighbours join within 2x this drift (ImageSliceOptions)
   float coalesce = 0.0f;    // pixels a coalesced run may move a pixel; 0: off
   // Drop layer pixels the nearest layer hides from the whole track, and
   // stop peeling at a layer with none left (a heuristic: a deeper layer

@@ -6,17 +6,20 @@
 // from its 3D position alone, and the same EPI rasterizers draw it, with
 // the depth test resolving overlaps between pixels and layers.
 //
-// A slice spans its pixels' footprint on the surface, widened by `overlap`
-// pixels toward a neighbour of the same surface, so that neighbours at
-// slightly different depths do not open cracks as the view moves away from
-// the source; the depth test settles the overlap. Neighbours are of one
-// surface when over the track they move apart by at most 2 x overlap
-// pixels (the measure coalescing uses), which the widening of both covers;
-// beyond that it could not close the crack and would only stick out.
-// Toward an empty pixel or across a depth step the slice ends on its
-// pixel's boundary: silhouettes stay where the source saw them instead of
-// growing by the overlap in every view (issue 18). At the image's edge it
-// widens, as the surface may go on beyond it. A lone pixel between two
+// A slice spans its pixels' footprint on the surface. Toward a neighbour
+// of the same surface it ends on the boundary the two share, at the mean
+// of their centres' depths, where the neighbour's slice ends too: the two
+// meet in every view, so no crack opens as the view moves away from the
+// source and neither covers the other's pixel. Neighbours are of one
+// surface when over the track they move apart by at most 2 x `overlap`
+// pixels (the measure coalescing uses). Toward an empty pixel or across a
+// depth step the slice ends on its pixel's boundary: silhouettes stay
+// where the source saw them instead of growing in every view (issue 18).
+// At the image's edge it widens by `overlap` pixels, as the surface may go
+// on beyond it. (Until issue 18's sixth step joined sides overlapped by
+// `overlap` instead: the nearer of two neighbours then took a quarter
+// pixel of the other's colour.)
+// A lone pixel between two
 // neighbours of its surface lies on their tangent (its depth slope the
 // central difference), so where another view grazes the surface its
 // footprint shrinks as the surface does instead of standing out of the
@@ -42,7 +45,7 @@
 namespace mvr {
 
 struct ImageSliceOptions {
-  float overlap = 0.25f;  // footprint widening toward connected neighbours, pixels
+  float overlap = 0.25f;  // neighbours join within 2x this drift, pixels; the widening at the image's edge
   float coalesce = 0.0f;  // largest added displacement, pixels; 0: a slice per pixel
   // Split tracks for highlights (slicing/highlight_splits.h): with a scene
   // and layers that carry normals, every pixel of a specular material is
