@@ -109,6 +109,7 @@ class LayerSlicer {
     double ends[2] = {x - oL, x + n + oR};  // the ends' pixel x
     float d[2] = {d0 + (-oL - 0.5f) * slope, d0 + (float(n) + oR - 0.5f) * slope};
     bool onOutline[2] = {false, false};
+    bool moved[2] = {false, false};  // ends inside the run's pixels, or beyond by the outline
     // A side that continues its neighbour's surface ends on their shared
     // boundary at the mean of the two centres' depths, as the neighbour's
     // slice does: the two meet in every view, so no crack opens between
@@ -124,7 +125,8 @@ class LayerSlicer {
       float own[2] = {d[0], d[1]};
       onOutline[0] = outlineEnd(outline[x], at, x, -1, ends[0], d[0]);
       onOutline[1] = outlineEnd(outline[x + n - 1], at, x + n - 1, +1, ends[1], d[1]);
-      if (outlined_ != &layer) behindOutline(x, n, own, ends, d, onOutline);
+      moved[0] = onOutline[0], moved[1] = onOutline[1];
+      if (outlined_ != &layer) behindTheFront(depth, x, n, slope, own, onOutline, ends, d, moved);
     }
     if (options_.fitRims && n == 1) {
       double e;
@@ -132,15 +134,15 @@ class LayerSlicer {
       if (!onOutline[0] && rimFit(depth, x, -1, e, zt)) ends[0] = e, d[0] = zt;
       if (!onOutline[1] && rimFit(depth, x, +1, e, zt)) ends[1] = e, d[1] = zt;
     }
-    if (other_) meetOtherOutline(layer, j, ends, d, onOutline);
+    if (other_ && !outlined_) meetOtherOutline(layer, j, ends, d);
     for (int e = 0; e < 2; ++e)
       transform_.add(cam_.unprojectAt(layer.eye.x, layer.eye.y, {ends[e], j + 0.5, d[e]}), c, c, nullptr);
     out_.vertices.triangles.push_back({base, base + 1, base + 1});
-    // The vector's texels span the run's pixels; an end on the outline
-    // lies inside its pixel.
+    // The vector's texels span the run's pixels; an end on the outline or
+    // inset lies elsewhere.
     SliceVector vector{out_.vertices.vectorTexels.addTexels(texels_), n,
-                       onOutline[0] ? float(ends[0] - x) / float(n) : -oL / float(n),
-                       onOutline[1] ? float(ends[1] - x) / float(n) : 1.0f + oR / float(n)};
+                       moved[0] ? float(ends[0] - x) / float(n) : -oL / float(n),
+                       moved[1] ? float(ends[1] - x) / float(n) : 1.0f + oR / float(n)};
     if (n == 1 && highlights_ && !layer.normals.empty()) {
       const glm::vec4 normal = layer.normals[size_t(j) * cam_.width() + x];
       const glm::vec3 p(cam_.unprojectAt(layer.eye.x, layer.eye.y, {x + 0.5, j + 0.5, d0}));
@@ -201,18 +203,32 @@ class LayerSlicer {
   // the rim: 35.5 against 37.0 dB mean), at its own depth it stands outside
   // the surface as the boundary did. 0.5 to 0.75 measured alike.
   static constexpr float kBehindOutline = 0.75f;
-  // The outline may lie in the empty neighbour's near half (PixelOutline);
-  // a layer behind keeps its ends within its own pixels there, where the
-  // front's ray through them still runs inside the surface: on the ray
-  // that grazes the silhouette, a point behind the front one lies outside
-  // the object and its track leaves the outline (bunny 160x120: 30.2
-  // against 31.0 dB).
-  static void behindOutline(int x, int n, const float (&own)[2], double (&ends)[2], float (&d)[2],
-                            const bool (&onOutline)[2]) {
+  // A layer behind the nearest, wherever it does not join a neighbour of
+  // its surface inside the image, ends kBehindInset inside its pixels: at
+  // the front's outline (on the ray that grazes the silhouette, a point
+  // behind the front's lies outside the object, and so does its track in
+  // other views; the outline may also lie beyond the pixel, PixelOutline)
+  // and at its own steps and holes (a surface seen steeply behind another,
+  // whose footprint's ends leave it). Their tracks stood out of other
+  // views' outlines: bunny 160x120, 31.3 -> 31.8 dB (sRGB); 0.15 pixels in
+  // at steps with the outline ends on the pixel's boundary, 31.5; half a
+  // pixel in at the outline, 31.6.
+  static constexpr double kBehindInset = 0.25;
+  void behindTheFront(const float* depth, int x, int n, float slope, const float (&own)[2], const bool (&onOutline)[2],
+                      double (&ends)[2], float (&d)[2], bool (&moved)[2]) const {
+    const auto inset = float(kBehindInset);
     for (int e = 0; e < 2; ++e)
       if (onOutline[e]) d[e] += kBehindOutline * (own[e] - d[e]);
-    if (onOutline[0]) ends[0] = std::max(ends[0], double(x));
-    if (onOutline[1]) ends[1] = std::min(ends[1], double(x + n));
+    if (onOutline[0]) {
+      ends[0] = std::max(ends[0], x + kBehindInset);
+    } else if (x > 0 && !joined(depth, x, x - 1)) {
+      ends[0] = x + kBehindInset, d[0] += inset * slope, moved[0] = true;
+    }
+    if (onOutline[1]) {
+      ends[1] = std::min(ends[1], x + n - kBehindInset);
+    } else if (x + n < cam_.width() && !joined(depth, x + n - 1, x + n)) {
+      ends[1] = x + n - kBehindInset, d[1] -= inset * slope, moved[1] = true;
+    }
   }
   bool outlineEnd(const PixelOutline& o, const float* depth, int i, int dir, double& end, float& d) const {
     const int next = i + dir;
@@ -261,10 +277,12 @@ class LayerSlicer {
   // fixed points (a contour slides over the surface as the eye moves).
   // Moves of more than a pixel are left alone: a real surface point lies
   // inside every view's outline, its footprint at most half a pixel out.
-  // Ends on the source's own finer outline (`fixed`) are surface points
-  // already and stay.
-  void meetOtherOutline(const SourceLayer& layer, int j, const double (&x)[2], float (&d)[2],
-                        const bool (&fixed)[2]) const {
+  // Only where the source has no finer outline: with one, its silhouette
+  // ends are surface points already, and the slides of the others made
+  // chords of the outline's curve across the track that stood outside it
+  // in the middle views (teacup 640x480 x 100, dual: 40.6 -> 42.4 dB
+  // without them; bunny 160x120 31.2 -> 31.3).
+  void meetOtherOutline(const SourceLayer& layer, int j, const double (&x)[2], float (&d)[2]) const {
     const int w = cam_.width();
     const float* theirs = other_->depth.data() + size_t(j) * w;
     // A point at pixel x and window depth d of this source lands at
@@ -292,7 +310,7 @@ class LayerSlicer {
       else target[0] = target[1] = std::floor(0.5 * (l + r) + 0.5);  // a pixel edge: no centre covered
     }
     for (int e = 0; e < 2; ++e) {
-      if (fixed[e] || target[e] == at[e] || std::abs(target[e] - at[e]) > 1.0) continue;
+      if (target[e] == at[e] || std::abs(target[e] - at[e]) > 1.0) continue;
       const double moved = ((target[e] - x[e]) / delta - zy) / zx;
       if (moved > 0.0 && moved <= 1.0) d[e] = float(moved);
     }

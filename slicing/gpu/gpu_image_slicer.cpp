@@ -143,7 +143,7 @@ float widening(int to) { return to < 0 || to >= uWidth ? uOverlap : 0.0; }
 // As LayerSlicer::meetOtherOutline: the ends slide along their rays until
 // the slice stops at the other source's outline in that source's view.
 bool theirs(int m, int j, int i) { return i >= 0 && i < uWidth && uDepth[pixelIndex(m, j, i)] != 0.0; }
-void meetOtherOutline(int k, int m, int j, double xE[2], inout float dE[2], bool fixedE[2]) {
+void meetOtherOutline(int k, int m, int j, double xE[2], inout float dE[2]) {
   double delta = uLayers[k].x - uLayers[m].x;
   if (delta == 0.0) return;
   double at[2] = double[2](xE[0] + delta * (uZOverW.x * double(dE[0]) + uZOverW.y),
@@ -161,7 +161,7 @@ void meetOtherOutline(int k, int m, int j, double xE[2], inout float dE[2], bool
     else { target[0] = floor(0.5 * (l + r) + 0.5); target[1] = target[0]; }
   }
   for (int e = 0; e < 2; ++e) {
-    if (fixedE[e] || target[e] == at[e] || abs(target[e] - at[e]) > 1.0) continue;
+    if (target[e] == at[e] || abs(target[e] - at[e]) > 1.0) continue;
     double moved = ((target[e] - xE[e]) / delta - uZOverW.y) / uZOverW.x;
     if (moved > 0.0 && moved <= 1.0) dE[e] = float(moved);
   }
@@ -184,6 +184,7 @@ float surfaceSlope(int k, int j, int x) {
 // where it has one; a layer behind it kBehindOutline of the way back to
 // its own depth.
 const float kBehindOutline = 0.75;
+const double kBehindInset = 0.25;
 bool outlineEnd(int k, int j, int i, int dir, inout double end, inout float d) {
   int m = uOutlineOf[k], next = i + dir;
   if (m < 0 || next < 0 || next >= uWidth || uDepth[pixelIndex(m, j, next)] != 0.0) return false;
@@ -192,10 +193,7 @@ bool outlineEnd(int k, int j, int i, int dir, inout double end, inout float d) {
   end = double(i) + double(dir < 0 ? o.x : o.z);
   float own = d;
   d = dir < 0 ? o.y : o.w;
-  if (m != k) {  // LayerSlicer::behindOutline: behind, within its own pixel
-    d += kBehindOutline * (own - d);
-    end = dir < 0 ? max(end, double(i)) : min(end, double(i + 1));
-  }
+  if (m != k) d += kBehindOutline * (own - d);
   return true;
 }
 
@@ -215,15 +213,32 @@ void main() {
   if (joined(k, j, x, x - 1)) dE[0] = 0.5 * (uDepth[pixelIndex(k, j, x - 1)] + d0);
   if (joined(k, j, x + n - 1, x + n)) dE[1] = 0.5 * (uDepth[p + uint(n - 1)] + uDepth[pixelIndex(k, j, x + n)]);
   bool onOutline[2] = bool[2](outlineEnd(k, j, x, -1, xE[0], dE[0]), outlineEnd(k, j, x + n - 1, 1, xE[1], dE[1]));
-  int other = int(uLayers[k].w);
-  if (other >= 0) meetOtherOutline(k, other, j, xE, dE, onOutline);
+  bool moved[2] = bool[2](onOutline[0], onOutline[1]);
+  int front = uOutlineOf[k], other = int(uLayers[k].w);
+  if (front >= 0 && front != k) {  // LayerSlicer::behindTheFront
+    if (onOutline[0]) {
+      xE[0] = max(xE[0], double(x) + kBehindInset);
+    } else if (x > 0 && !joined(k, j, x, x - 1)) {
+      xE[0] = double(x) + kBehindInset;
+      dE[0] += float(kBehindInset) * slope;
+      moved[0] = true;
+    }
+    if (onOutline[1]) {
+      xE[1] = min(xE[1], double(x + n) - kBehindInset);
+    } else if (x + n < uWidth && !joined(k, j, x + n - 1, x + n)) {
+      xE[1] = double(x + n) - kBehindInset;
+      dE[1] -= float(kBehindInset) * slope;
+      moved[1] = true;
+    }
+  }
+  if (other >= 0 && front < 0) meetOtherOutline(k, other, j, xE, dE);
   writeEnd(2u * slot, float(xE[0]), dE[0], shift, c);
   writeEnd(2u * slot + 1u, float(xE[1]), dE[1], shift, c);
   uSlices[slot] = uvec4(slot, 0u, 0u, 256u);  // a segment
   uTriangles[slot] = uvec4(2u * slot, 2u * slot + 1u, 2u * slot + 1u, 0u);
   uint base = uOwnTexels ? 2u * p : p;
-  float u0 = onOutline[0] ? float(xE[0] - double(x)) / float(n) : -oL / float(n);
-  float u1 = onOutline[1] ? float(xE[1] - double(x)) / float(n) : 1.0 + oR / float(n);
+  float u0 = moved[0] ? float(xE[0] - double(x)) / float(n) : -oL / float(n);
+  float u1 = moved[1] ? float(xE[1] - double(x)) / float(n) : 1.0 + oR / float(n);
   uVectors[slot] = uvec4(base, uint(n), floatBitsToUint(u0), floatBitsToUint(u1));
   if (!uOwnTexels) return;
   // Level 0 and its box-filtered MIP chain (TextureVectors::addTexels).
