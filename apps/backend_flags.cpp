@@ -77,7 +77,7 @@ void BackendFlags::add(CLI::App& app) {
       app.add_option("--outline-samples", interp.outlineSamples,
                      "interp: sample each source's outline at S columns a pixel (its nearest layer "
                      "drawn once more, S times as wide) so that silhouettes end where the surface "
-                     "does within a pixel (1: at the pixel's boundary)")
+                     "does, within a sample (1: at the pixel's boundary)")
           ->type_name("S")
           ->capture_default_str(),
   };

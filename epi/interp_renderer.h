@@ -58,7 +58,9 @@ struct InterpOptions {
   // Columns a pixel each source's nearest layer is sampled at for its
   // outline (SourceLayer::outline): slices at a silhouette end where the
   // surface does, within the pixel, instead of on its boundary. 1: off.
-  int outlineSamples = 4;
+  // 8: the bunny at 160x120 x 16 scored 31.6 dB at 4, 32.2 at 8, 32.0 at
+  // 16 (the outline pass drawn 8 times as wide costs 7% more there).
+  int outlineSamples = 8;
   // Each half of an interval between two sources from its near source's
   // layers and the far source's nearest layer (false: every layer of both
   // over the whole interval; blending always draws it whole).

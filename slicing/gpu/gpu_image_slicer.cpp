@@ -190,10 +190,13 @@ bool outlineEnd(int k, int j, int i, int dir, inout double end, inout float d) {
   if (m < 0 || next < 0 || next >= uWidth || uDepth[pixelIndex(m, j, next)] != 0.0) return false;
   vec4 o = uOutline[pixelIndex(m, j, i)];
   if (o.z < 0.0) return false;  // no sample covered (left may be below 0)
+  float at = dir < 0 ? o.y : o.w;
+  if (m != k) {
+    at += kBehindOutline * (d - at);
+    if (abs(at - d) > 2.0 * float(uLayers[k].z)) return false;  // LayerSlicer::behindTheFront: another object
+  }
   end = double(i) + double(dir < 0 ? o.x : o.z);
-  float own = d;
-  d = dir < 0 ? o.y : o.w;
-  if (m != k) d += kBehindOutline * (own - d);
+  d = at;
   return true;
 }
 
@@ -218,14 +221,14 @@ void main() {
   if (front >= 0 && front != k) {  // LayerSlicer::behindTheFront
     if (onOutline[0]) {
       xE[0] = max(xE[0], double(x) + kBehindInset);
-    } else if (x > 0 && !joined(k, j, x, x - 1)) {
+    } else if (x > 0 && uDepth[pixelIndex(k, j, x - 1)] != 0.0 && !joined(k, j, x, x - 1)) {
       xE[0] = double(x) + kBehindInset;
       dE[0] += float(kBehindInset) * slope;
       moved[0] = true;
     }
     if (onOutline[1]) {
       xE[1] = min(xE[1], double(x + n) - kBehindInset);
-    } else if (x + n < uWidth && !joined(k, j, x + n - 1, x + n)) {
+    } else if (x + n < uWidth && uDepth[pixelIndex(k, j, x + n)] != 0.0 && !joined(k, j, x + n - 1, x + n)) {
       xE[1] = double(x + n) - kBehindInset;
       dE[1] -= float(kBehindInset) * slope;
       moved[1] = true;
