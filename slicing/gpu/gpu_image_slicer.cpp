@@ -193,7 +193,7 @@ bool outlineEnd(int k, int j, int i, int dir, inout double end, inout float d) {
   float at = dir < 0 ? o.y : o.w;
   if (m != k) {
     at += kBehindOutline * (d - at);
-    if (abs(at - d) > 2.0 * float(uLayers[k].z)) return false;  // LayerSlicer::behindTheFront: another object
+    if (abs(at - d) > 2.0 * float(uLayers[k].z)) return false;  // LayerSlicer::outlineEnd: another object
   }
   end = double(i) + double(dir < 0 ? o.x : o.z);
   d = at;
@@ -218,7 +218,7 @@ void main() {
   bool onOutline[2] = bool[2](outlineEnd(k, j, x, -1, xE[0], dE[0]), outlineEnd(k, j, x + n - 1, 1, xE[1], dE[1]));
   bool moved[2] = bool[2](onOutline[0], onOutline[1]);
   int front = uOutlineOf[k], other = int(uLayers[k].w);
-  if (front >= 0 && front != k) {  // LayerSlicer::behindTheFront
+  if (front >= 0 && front != k) {  // LayerSlicer::insetBehind
     if (onOutline[0]) {
       xE[0] = max(xE[0], double(x) + kBehindInset);
     } else if (x > 0 && uDepth[pixelIndex(k, j, x - 1)] != 0.0 && !joined(k, j, x, x - 1)) {
