@@ -1,5 +1,7 @@
 #include "mvr/baselines/deferred_pipeline.h"
 
+#include <utility>
+
 #include "mvr/error.h"
 #include "shading/lighting.h"
 #include "shading/view_dependent.h"
@@ -32,32 +34,41 @@ void main() {
 }
 )";
 
+// Depth peeling with de Quilletes' extended offset d s / (E - s): a
+// surface closer behind the last layer than that never moves a pixel away
+// from it anywhere on a track of width E, so it is not a new layer. One
+// function for the peeling pass and the fragment lists' resolve, so that
+// both round alike.
+const char* const kPeelTest = R"(
+layout(binding = 6) uniform sampler2D uPreviousDepth;
+uniform vec4 uPeel;  // near, far, pixel footprint per unit distance, track width E
+float distanceOf(float depth) { return uPeel.x * uPeel.y / (depth * (uPeel.y - uPeel.x) + uPeel.x); }
+// Whether a fragment at window depth `depth` lies in the layer behind the
+// one whose depth here is `previous` (0: nothing in front, nothing behind).
+bool behindLayer(float previous, float depth) {
+  if (previous == 0.0) return false;
+  float d = distanceOf(previous), s = uPeel.z * d;
+  return !(uPeel.w <= s || distanceOf(depth) <= d + d * s / (uPeel.w - s));
+}
+)";
+
 const char* const kGeometryFragment = R"(
 in vec3 vNormal;
 in vec3 vAlbedo;
 flat in float vCull;
 flat in float vMaterial;
 in vec2 vUv;
+#ifndef COLLECT
 layout(location = 0) out vec4 oAlbedo;  // a = 1 marks covered pixels
 layout(location = 1) out vec4 oNormal;  // w: material index
+#endif
 #ifdef TEXTURE
 layout(binding = 3) uniform sampler2DArray uTextures;
-#endif
-#ifdef PEEL
-layout(binding = 6) uniform sampler2D uPreviousDepth;
-uniform vec4 uPeel;  // near, far, pixel footprint per unit distance, track width E
-float distanceOf(float depth) { return uPeel.x * uPeel.y / (depth * (uPeel.y - uPeel.x) + uPeel.x); }
 #endif
 void main() {
   if (!gl_FrontFacing && vCull > 0.5) discard;
 #ifdef PEEL
-  // Depth peeling with de Quilletes' extended offset d s / (E - s): a
-  // surface closer behind the last layer than that never moves a pixel
-  // away from it anywhere on a track of width E, so it is not a new layer.
-  float previous = texelFetch(uPreviousDepth, ivec2(gl_FragCoord.xy), 0).r;
-  if (previous == 0.0) discard;  // nothing in front here: nothing behind
-  float d = distanceOf(previous), s = uPeel.z * d;
-  if (uPeel.w <= s || distanceOf(gl_FragCoord.z) <= d + d * s / (uPeel.w - s)) discard;
+  if (!behindLayer(texelFetch(uPreviousDepth, ivec2(gl_FragCoord.xy), 0).r, gl_FragCoord.z)) discard;
 #endif
   vec3 albedo = vAlbedo;
 #ifdef TEXTURE
@@ -65,8 +76,51 @@ void main() {
   vec4 texel = texture(uTextures, vec3(vUv, layer));
   if (layer >= 0.0) albedo *= texel.rgb;
 #endif
+  vec4 normal = vec4(gl_FrontFacing ? vNormal : -vNormal, vMaterial);
+#ifdef COLLECT
+  append(albedo, normal);
+#else
   oAlbedo = vec4(albedo, 1.0);
-  oNormal = vec4(gl_FrontFacing ? vNormal : -vNormal, vMaterial);
+  oNormal = normal;
+#endif
+}
+)";
+
+// The layer a peeling geometry pass keeps (previous: the layer in front's
+// G-buffer; none: the nearest), taken from the fragment lists of one
+// collecting pass: the fragments the peel keeps, met as its depth test
+// would meet them.
+const char* const kResolveFragment = R"(
+layout(location = 0) out vec4 oAlbedo;
+layout(location = 1) out vec4 oNormal;
+void main() {
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  ListHead head = listHead(px);
+#ifdef PEEL
+  float previous = texelFetch(uPreviousDepth, px, 0).r;
+#endif
+  // Counted, not walked to kListEnd, and nothing discarded before the
+  // loop: llvmpipe ran the lanes it had masked off on to its loop limit.
+  uint best = kListEnd, bestPrimitive = 0u, i = head.first;
+  float bestDepth = 0.0;  // the cleared depth buffer's
+  for (uint n = 0u; n < head.count; ++n, i = uListLink[i].y) {
+    float depth = uListSurface[i].w;
+#ifdef PEEL
+    if (!behindLayer(previous, depth)) continue;
+#endif
+    // GL_GREATER, primitives met in order: the nearest wins, and of equals
+    // the first drawn.
+    uint primitive = uListLink[i].x;
+    if (depth > bestDepth || (depth == bestDepth && best != kListEnd && primitive < bestPrimitive)) {
+      best = i;
+      bestDepth = depth;
+      bestPrimitive = primitive;
+    }
+  }
+  if (best == kListEnd) discard;
+  oAlbedo = vec4(uListSurface[best].rgb, 1.0);
+  oNormal = uListNormal[best];
+  gl_FragDepth = bestDepth;
 }
 )";
 
@@ -143,7 +197,7 @@ void GBuffer::bindForWriting() const {
 DeferredPipeline::DeferredPipeline(const Scene& scene, bool separateHighlights)
     : buffers_(scene, shading::vertexAlbedo(scene), shading::vertexCullFlags(scene)),
       plan_(shading::planShading(scene)),
-      geometry_(geometryProgram(false)),
+      geometry_(geometryProgram("deferred-geometry", "")),
       lighting_(gl::linkProgram(
           "deferred-lighting",
           {{GL_VERTEX_SHADER, gl::glslHeader() + gl::kFullScreenTriangleVertex},
@@ -158,7 +212,7 @@ DeferredPipeline::DeferredPipeline(const Scene& scene, bool separateHighlights)
 
 void DeferredPipeline::begin(int width, int height, IndexRange rows) {
   rows_ = rows.end < 0 ? IndexRange{0, height} : rows;
-  width_ = width;
+  width_ = width, height_ = height;
   setDepthConvention();
   gl::FrontFace(GL_CW);
   gl::setUniform(lighting_, "uSize", glm::vec2(width, height));
@@ -181,7 +235,7 @@ void DeferredPipeline::geometry(const glm::dmat4& viewProj, const GBuffer& gbuff
   gl::Enable(GL_DEPTH_TEST);
   const gl::Program* program = &geometry_;
   if (previous) {
-    if (!peeling_.id()) peeling_ = geometryProgram(true);
+    if (!peeling_.id()) peeling_ = geometryProgram("deferred-geometry-peel", std::string("#define PEEL\n") + kPeelTest);
     program = &peeling_;
     gl::BindTextureUnit(6, previous->depthTexture());
     gl::setUniform(peeling_, "uPeel", peel);
@@ -190,6 +244,48 @@ void DeferredPipeline::geometry(const glm::dmat4& viewProj, const GBuffer& gbuff
   gl::setUniform(*program, "uViewProj", glm::mat4(viewProj));
   buffers_.bind();
   inRows([&] { buffers_.draw(); });
+}
+
+bool DeferredPipeline::collect(const glm::dmat4& viewProj) {
+  if (!collect_.id())
+    collect_ = geometryProgram("deferred-geometry-collect", std::string("#define COLLECT\n") + FragmentLists::glsl());
+  for (;;) {
+    lists_.beginCollect(width_, height_);
+    gl::Disable(GL_DEPTH_TEST);  // every fragment, not the nearest
+    gl::UseProgram(collect_.id());
+    gl::setUniform(collect_, "uViewProj", glm::mat4(viewProj));
+    buffers_.bind();
+    const GLuint condition = std::exchange(condition_, 0);
+    inRows([&] { buffers_.draw(); });
+    condition_ = condition;
+    switch (lists_.check()) {
+      case FragmentLists::Fit::Fits: return true;
+      case FragmentLists::Fit::TooLarge: return false;
+      case FragmentLists::Fit::Grown: break;  // drawn again with room
+    }
+  }
+}
+
+void DeferredPipeline::resolve(const GBuffer& gbuffer, const GBuffer* previous, const glm::vec4& peel) {
+  gl::Program& program = previous ? resolvePeel_ : resolve_;
+  if (!program.id())
+    program = gl::linkProgram(
+        previous ? "deferred-resolve-peel" : "deferred-resolve",
+        {{GL_VERTEX_SHADER, gl::glslHeader() + gl::kFullScreenTriangleVertex},
+         {GL_FRAGMENT_SHADER, gl::glslHeader() + (previous ? std::string("#define PEEL\n") + kPeelTest : "") +
+                                  FragmentLists::glsl() + kResolveFragment}});
+  gbuffer.bindForWriting();
+  gl::Enable(GL_DEPTH_TEST);
+  gl::DepthFunc(GL_ALWAYS);  // the shader picks the fragment the depth test would
+  gl::UseProgram(program.id());
+  if (previous) {
+    gl::BindTextureUnit(6, previous->depthTexture());
+    gl::setUniform(program, "uPeel", peel);
+  }
+  lists_.bindForReading();
+  gl::BindVertexArray(emptyVao_.id());
+  inRows([] { gl::DrawArrays(GL_TRIANGLES, 0, 3); });
+  gl::DepthFunc(GL_GREATER);
 }
 
 void DeferredPipeline::depth(const glm::dmat4& viewProj, const GBuffer& target) {
@@ -219,12 +315,10 @@ void DeferredPipeline::lighting(const glm::dmat4& viewProj, const glm::dvec3& ey
 
 std::string DeferredPipeline::header() const { return gl::glslHeader() + plan_.glslDefines(); }
 
-gl::Program DeferredPipeline::geometryProgram(bool peel) const {
-  return gl::linkProgram(
-      peel ? "deferred-geometry-peel" : "deferred-geometry",
-      {{GL_VERTEX_SHADER, gl::glslHeader() + kSceneVertexInputs + kGeometryVertex},
-       {GL_FRAGMENT_SHADER, header() + (peel ? "#define PEEL\n" : "") + shading::glslLighting() +
-                                shading::glslSpecular() + kGeometryFragment}});
+gl::Program DeferredPipeline::geometryProgram(const char* name, const std::string& prelude) const {
+  return gl::linkProgram(name, {{GL_VERTEX_SHADER, gl::glslHeader() + kSceneVertexInputs + kGeometryVertex},
+                                {GL_FRAGMENT_SHADER, header() + prelude + shading::glslLighting() +
+                                                         shading::glslSpecular() + kGeometryFragment}});
 }
 
 }  // namespace mvr

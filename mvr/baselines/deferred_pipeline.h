@@ -6,6 +6,7 @@
 
 #include <glm/glm.hpp>
 
+#include "mvr/baselines/fragment_lists.h"
 #include "mvr/gl/gl_program.h"
 #include "mvr/gl/render_target.h"
 #include "mvr/gl/scene_buffers.h"
@@ -60,6 +61,16 @@ class DeferredPipeline {
                 const glm::vec4& peel = glm::vec4(0.0f));
   void lighting(const glm::dmat4& viewProj, const glm::dvec3& eye, const GBuffer& gbuffer,
                 const RenderTarget& target);
+  // Every fragment geometry() would shade (its culling too) into the
+  // pipeline's fragment lists, so that resolve() gives each depth-peeled
+  // layer without drawing the mesh again. Always drawn (drawOnlyIf does
+  // not apply). False when the lists would need more than their memory
+  // limit (FragmentLists::kMaxBytes): draw each layer with geometry().
+  bool collect(const glm::dmat4& viewProj);
+  // The layer geometry(viewProj, gbuffer, previous, peel) would draw, from
+  // the lists of the last collect() of the same view: the same pixels,
+  // depths, albedo and normals.
+  void resolve(const GBuffer& gbuffer, const GBuffer* previous, const glm::vec4& peel = glm::vec4(0.0f));
   // The nearest surface's depth alone, into a GBuffer::depthOnly target:
   // the geometry pass's coverage (its culling too) without its shading.
   void depth(const glm::dmat4& viewProj, const GBuffer& target);
@@ -73,17 +84,20 @@ class DeferredPipeline {
   // The plan's passes as defines: the geometry pass textures, the lighting
   // pass adds highlights.
   std::string header() const;
-  gl::Program geometryProgram(bool peel) const;
+  // The geometry pass's program; prelude: defines and declarations before
+  // its fragment shader (PEEL, COLLECT).
+  gl::Program geometryProgram(const char* name, const std::string& prelude) const;
 
   SceneBuffers buffers_;
   shading::ShadingPlan plan_;
-  gl::Program geometry_, peeling_, lighting_, depth_;
+  gl::Program geometry_, peeling_, lighting_, depth_, collect_, resolve_, resolvePeel_;
+  FragmentLists lists_;
   gl::VertexArray emptyVao_;
   shading::GpuMaterials materials_;
   bool exactAlbedo_;
   IndexRange rows_{0, -1};  // -1: every row
   GLuint condition_ = 0;    // drawOnlyIf
-  int width_ = 0;
+  int width_ = 0, height_ = 0;
   // Runs a draw restricted to rows_.
   template <class Draw>
   void inRows(Draw&& draw);

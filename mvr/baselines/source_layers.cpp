@@ -66,8 +66,11 @@ void main() {
 
 class SourceLayerRendererImpl final : public SourceLayerRenderer {
  public:
-  SourceLayerRendererImpl(const Scene& scene, bool separateHighlights, int outlineSamples)
-      : pipeline_(scene, separateHighlights), normals_(separateHighlights), outlineSamples_(outlineSamples) {
+  SourceLayerRendererImpl(const Scene& scene, bool separateHighlights, int outlineSamples, Peeling peeling)
+      : pipeline_(scene, separateHighlights),
+        normals_(separateHighlights),
+        outlineSamples_(outlineSamples),
+        peeling_(peeling) {
     if (outlineSamples_ > 1) outline_ = gl::linkProgram("source-outline", {{GL_COMPUTE_SHADER, gl::glslHeader() + kOutline}});
   }
 
@@ -75,7 +78,10 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
                                   double trackWidth, RenderStats& stats,
                                   const LayerFilter& filter) override {
     const int w = cam.width(), h = cam.height();
-    const Peel peel = start(cam, eye, trackWidth);
+    const Peel peel = [&] {
+      ScopedStage s(stats.times, "acquire");
+      return start(cam, eye, maxLayers, trackWidth);
+    }();
     Queries queries(1);
     std::vector<SourceLayer> layers;
     for (int k = 0; k < maxLayers; ++k) {
@@ -120,7 +126,7 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
              RenderStats& stats, DeviceLayers& store) override {
     if (normals_) fail("source layers", "highlights kept apart need layers read back");
     ScopedStage s(stats.times, "acquire");
-    const Peel peel = start(cam, eye, trackWidth);
+    const Peel peel = start(cam, eye, maxLayers, trackWidth);
     // Every layer is issued at once, each drawn only if the one in front
     // had samples (the GPU's test): asking the CPU after each layer would
     // stall the GPU between layers. A layer behind an empty one is empty
@@ -158,14 +164,19 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
     glm::dmat4 viewProj;
     glm::dvec3 eye;
     glm::vec4 offset;  // the peeling shader's uPeel
+    bool lists;        // the layers come from the pipeline's fragment lists
   };
-  Peel start(const ShearingCamera& cam, const glm::dvec2& eye, double trackWidth) {
+  Peel start(const ShearingCamera& cam, const glm::dvec2& eye, int maxLayers, double trackWidth) {
     const int w = cam.width(), h = cam.height();
     targets(w, h);
     pipeline_.begin(w, h, cam.share().scanlines);  // a share's scanlines need only those rows
     const CameraSpec& spec = cam.spec();
-    return {cam.viewProjectionAt(eye.x, eye.y), glm::dvec3(eye, spec.distance),
-            glm::vec4(spec.nearDistance, spec.farDistance, cam.planeWidth() / (w * spec.distance), trackWidth)};
+    Peel p{cam.viewProjectionAt(eye.x, eye.y), glm::dvec3(eye, spec.distance),
+           glm::vec4(spec.nearDistance, spec.farDistance, cam.planeWidth() / (w * spec.distance), trackWidth),
+           false};
+    // One layer is one pass either way; the lists pay from two on.
+    p.lists = peeling_ == Peeling::OnePass && maxLayers > 1 && pipeline_.collect(p.viewProj);
+    return p;
   }
 
   // Depth-peeled layer k, its samples counted by `query`, drawn only if
@@ -175,9 +186,13 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
   const GBuffer& drawLayer(const Peel& p, int k, GLuint query, GLuint onlyIf) {
     Targets& t = *targets_;
     const GBuffer& gbuffer = t.gbuffers[k % 2];
+    const GBuffer* previous = k ? &t.gbuffers[(k + 1) % 2] : nullptr;
     pipeline_.drawOnlyIf(onlyIf);
     gl::BeginQuery(GL_SAMPLES_PASSED, query);
-    pipeline_.geometry(p.viewProj, gbuffer, k ? &t.gbuffers[(k + 1) % 2] : nullptr, p.offset);
+    if (p.lists)
+      pipeline_.resolve(gbuffer, previous, p.offset);
+    else
+      pipeline_.geometry(p.viewProj, gbuffer, previous, p.offset);
     gl::EndQuery(GL_SAMPLES_PASSED);
     pipeline_.drawOnlyIf(query);
     pipeline_.lighting(p.viewProj, p.eye, gbuffer, t.color);
@@ -237,6 +252,7 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
   DeferredPipeline pipeline_;
   bool normals_;
   int outlineSamples_;
+  Peeling peeling_;
   gl::Program outline_;
   std::optional<Targets> targets_;
   std::optional<Fine> fine_;  // the outline's G-buffer
@@ -310,8 +326,8 @@ Image DeviceLayers::readColor(int layer) const {
 }
 
 std::unique_ptr<SourceLayerRenderer> makeSourceLayerRenderer(const Scene& scene, bool separateHighlights,
-                                                             int outlineSamples) {
-  return std::make_unique<SourceLayerRendererImpl>(scene, separateHighlights, outlineSamples);
+                                                             int outlineSamples, Peeling peeling) {
+  return std::make_unique<SourceLayerRendererImpl>(scene, separateHighlights, outlineSamples, peeling);
 }
 
 }  // namespace mvr

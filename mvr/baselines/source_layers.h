@@ -34,7 +34,7 @@ struct SourceLayer {
   int layer = 0;              // 0 is the nearest
   Image color;                // F32, rows top first (window row 0 on top)
   std::vector<float> depth;   // window depth, reversed Z: 0 where empty
-  long fragments = 0;         // samples that passed into this layer
+  long fragments = 0;         // samples its pass counted (peeled: overdraw too); 0: empty
   // With separate highlights: per pixel the world normal of the side seen
   // (xyz) and the material index (w); empty otherwise.
   std::vector<glm::vec4> normals;
@@ -105,6 +105,13 @@ class SourceLayerRenderer {
                      double trackWidth, RenderStats& stats, DeviceLayers& store) = 0;
 };
 
+// How the layers behind the nearest are found. OnePass: the mesh drawn
+// once into per-pixel fragment lists (mvr/baselines/fragment_lists.h),
+// each layer picked from them; where the lists would not fit their memory
+// limit, one pass a layer. PassPerLayer: depth peeling proper, the mesh
+// drawn once a layer. Both give the same layers.
+enum class Peeling { OnePass, PassPerLayer };
+
 // Needs a current GL context. separateHighlights: the colours leave out
 // specular highlights, and normals and materials are read back so that
 // the caller can add highlights per view. outlineSamples > 1: the nearest
@@ -113,6 +120,7 @@ class SourceLayerRenderer {
 // DeviceLayers::outlined).
 std::unique_ptr<SourceLayerRenderer> makeSourceLayerRenderer(const Scene& scene,
                                                              bool separateHighlights = false,
-                                                             int outlineSamples = 1);
+                                                             int outlineSamples = 1,
+                                                             Peeling peeling = Peeling::OnePass);
 
 }  // namespace mvr

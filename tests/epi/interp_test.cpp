@@ -323,6 +323,72 @@ TEST_F(InterpTest, DepthPeelingFindsTheLayersBehindAndStops) {
   EXPECT_EQ(sources->render(cam, {0.0, 0.0}, 8, 1e-6, stats).size(), 1u);
 }
 
+// A plane drawn twice in the same place, red then blue, behind a cube:
+// every pixel of the plane a tie of depths that the first drawn wins.
+Scene coincidentPlanes() {
+  const std::string path = ::testing::TempDir() + "/mvr_coincident_planes.json";
+  std::ofstream(path) << R"({"meshes": [
+    {"file": ")" << test::assetPath("plane.obj") << R"(", "material": {"diffuse": [0.9, 0.1, 0.1]}},
+    {"file": ")" << test::assetPath("plane.obj") << R"(", "material": {"diffuse": [0.1, 0.1, 0.9]}},
+    {"file": ")" << test::assetPath("cube.obj") << R"(", "transform": {"translate": [0.2, 0.1, 0.5], "scale": 0.4},
+     "material": {"diffuse": [0.8, 0.8, 0.8]}}],
+    "lights": [{"type": "directional", "direction": [-0.3, -0.4, -1.0], "color": [0.8, 0.8, 0.8]}],
+    "camera": {"distance": 5.0, "image_plane": 3.2, "track": [-1.5, 1.5], "near": 3.0, "far": 7.0}})";
+  return loadScene(path);
+}
+
+// Ten planes one behind the other, facing the camera: ten fragments a
+// pixel, more than the fragment lists first make room for.
+Scene stackedPlanes() {
+  const std::string path = ::testing::TempDir() + "/mvr_stacked_planes.json";
+  std::ofstream json(path);
+  json << R"({"meshes": [)";
+  for (int k = 0; k < 10; ++k)
+    json << (k ? "," : "") << R"({"file": ")" << test::assetPath("plane.obj") << R"(", "transform": {"translate": [0, 0, )"
+         << 0.5 - 0.12 * k << R"(], "scale": 3}, "material": {"diffuse": [0.5, )" << 0.1 * k << R"(, 0.5]}})";
+  json << R"(], "lights": [{"type": "directional", "direction": [0, 0, -1], "color": [1, 1, 1]}],
+    "camera": {"distance": 5.0, "image_plane": 3.2, "track": [-1.5, 1.5], "near": 3.0, "far": 7.0}})";
+  json.close();
+  return loadScene(path);
+}
+
+// The fragment lists' layers are the peel's, bit for bit: each a pass of
+// the mesh against one pass resolved per layer, on a scene whose layers
+// run deep (the cup: front, inside, back, over the floor), a textured one,
+// one of ties and one whose lists outgrow their first room, at two sizes (one not a multiple of llvmpipe's 4x4
+// blocks) and from two eyes.
+TEST_F(InterpTest, OnePassFindsTheLayersThePeelFinds) {
+  for (const auto& [file, fewest] :
+       {std::pair<const char*, size_t>{"default.json", 3}, {"textured.json", 2}, {"ties", 2}, {"stack", 6}}) {
+    const std::string name = file;
+    const Scene scene = name == "ties"    ? coincidentPlanes()
+                        : name == "stack" ? stackedPlanes()
+                                          : loadScene(test::assetPath(file));
+    for (const int size : {96, 173}) {
+      ShearingCamera cam(*scene.camera, size, size * 3 / 4, 5);
+      const double track = cam.spec().trackRight - cam.spec().trackLeft;
+      RenderStats stats;
+      for (const glm::dvec2 eye : {glm::dvec2(0.0), glm::dvec2(cam.viewX(0), 0.0)}) {
+        const auto peeled =
+            makeSourceLayerRenderer(scene, true, 1, Peeling::PassPerLayer)->render(cam, eye, 6, track, stats);
+        const auto lists = makeSourceLayerRenderer(scene, true, 1, Peeling::OnePass)->render(cam, eye, 6, track, stats);
+        ASSERT_GE(peeled.size(), fewest) << name;
+        ASSERT_EQ(lists.size(), peeled.size()) << name;
+        for (size_t k = 0; k < peeled.size(); ++k) {
+          SCOPED_TRACE(name + ", layer " + std::to_string(k) + ", " + std::to_string(size) + " px");
+          EXPECT_EQ(lists[k].depth, peeled[k].depth);
+          EXPECT_EQ(lists[k].color.bytes, peeled[k].color.bytes);
+          ASSERT_EQ(lists[k].normals.size(), peeled[k].normals.size());
+          size_t normalsDiffer = 0;
+          for (size_t i = 0; i < peeled[k].normals.size(); ++i)
+            normalsDiffer += lists[k].normals[i] != peeled[k].normals[i];
+          EXPECT_EQ(normalsDiffer, 0u);
+        }
+      }
+    }
+  }
+}
+
 TEST_F(InterpTest, SourceViewIsReproducedAndDualBeatsCenterAtTheEnds) {
   const Reference ref(5);
   const Scene& scene = ref.scene;
