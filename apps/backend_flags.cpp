@@ -74,6 +74,9 @@ void BackendFlags::add(CLI::App& app) {
       app.add_flag("--whole-intervals", wholeIntervals_,
                    "interp: draw the views between two sources from every layer of both, not each "
                    "half from its near source's layers and the far source's nearest layer"),
+      app.add_flag("--layer-passes", layerPasses_,
+                   "interp: draw the mesh once per depth-peeled layer instead of once per source "
+                   "into per-pixel fragment lists (the same layers, without the lists' memory)"),
       app.add_option("--outline-samples", interp.outlineSamples,
                      "interp: sample each source's outline at S columns a pixel (its nearest layer "
                      "drawn once more, S times as wide) so that silhouettes end where the surface "
@@ -111,6 +114,7 @@ BackendOptions BackendFlags::resolve() const {
     if (!acquire_.empty()) o.interp.acquire = parseAcquire(acquire_);
     if (!blend_.empty()) o.interp.blend = parseName(kBlendNames, blend_, "--blend", "blend");
     if (wholeIntervals_) o.interp.halves = false;
+    if (layerPasses_) o.interp.onePass = false;
     validate(o.interp);
   }
   if (o.backend == Backend::Warp) {

@@ -25,6 +25,7 @@ class BackendFlags {
   std::string backend_ = "mvr", acquire_, texture_, builder_, blend_;
   std::optional<std::string> pst_;
   bool wholeIntervals_ = false;
+  bool layerPasses_ = false;
   CLI::Option* textureOption_ = nullptr;
   CLI::Option* builderOption_ = nullptr;
   std::vector<CLI::Option*> interpOptions_, warpOptions_;

@@ -376,10 +376,11 @@ int runBench(int argc, char** argv) {
       ->check(CLI::Range(1, Limits::kMaxRows))->capture_default_str();
   app.add_option("--backends", backends,
                  "back-end specs: mvr:MODE[:direct] textures directly; "
-                 "interp[:ACQUIRE][:L][:cT][:vis][:bB][:sK][:oP][:xS][:whole][:BLEND][:MODE] is the "
-                 "image-based back end with L layers, coalescing T pixels, visibility, a budget of B "
-                 "source views, K highlight splits, overlap P pixels, outlines sampled S columns a "
-                 "pixel, every interval drawn whole, blending none, track or angular")
+                 "interp[:ACQUIRE][:L][:cT][:vis][:bB][:sK][:oP][:xS][:whole][:passes][:BLEND][:MODE] is "
+                 "the image-based back end with L layers, coalescing T pixels, visibility, a budget "
+                 "of B source views, K highlight splits, overlap P pixels, outlines sampled S "
+                 "columns a pixel, every interval drawn whole, a pass of the mesh per layer, "
+                 "blending none, track or angular")
       ->type_name("LIST")->capture_default_str();
   bool linear = false;
   app.add_flag("--linear", linear, "render 8-bit linear values (default: sRGB-encoded, as mvr render writes)");

@@ -60,6 +60,10 @@ void interpOption(const std::string& token, InterpOptions& o, const char* where)
     o.halves = false;
     return;
   }
+  if (token == "passes") {
+    o.onePass = false;
+    return;
+  }
   for (const auto& blend : kBlendNames)
     if (token == blend.name) {
       o.blend = blend.value;

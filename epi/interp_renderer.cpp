@@ -91,7 +91,8 @@ class InterpRenderer final : public Renderer {
  public:
   InterpRenderer(const Scene& scene, PixelType type, const InterpOptions& options)
       : options_(validated(options)), type_(type), scene_(scene), splits_(splitsFor(scene, options)),
-        sources_(makeSourceLayerRenderer(scene, splits_ > 0, options_.outlineSamples)) {
+        sources_(makeSourceLayerRenderer(scene, splits_ > 0, options_.outlineSamples,
+                                         options_.onePass ? Peeling::OnePass : Peeling::PassPerLayer)) {
     // Every image slice is coloured by its own vector of source pixels.
     const EpiShading shading{.sliceVectors = true, .sliceHighlights = splits_ > 0};
     rasterizer_ = makeRasterizer(options.mode, type, shading, options.builder);

@@ -65,6 +65,10 @@ struct InterpOptions {
   // layers and the far source's nearest layer (false: every layer of both
   // over the whole interval; blending always draws it whole).
   bool halves = true;
+  // Each source's layers from one pass of the mesh into per-pixel fragment
+  // lists (mvr/baselines/fragment_lists.h; false: a pass of the mesh per
+  // layer, with no lists' memory). The same layers either way.
+  bool onePass = true;
 };
 
 // Throws mvr::Error naming the option that is out of range; needs no GL.
