@@ -1,6 +1,7 @@
 #include "apps/backend_flags.h"
 
 #include "mvr/error.h"
+#include "mvr/gl/gl_api.h"
 
 namespace mvr::app {
 
@@ -11,8 +12,8 @@ void BackendFlags::add(CLI::App& app) {
       ->capture_default_str();
   app.add_option("--pst", pst_,
                  "accuracy mode of mvr and interp: " + alternatives(kPstModeNames) +
-                     " (default: mvr " + pstModeName(MvrOptions{}.mode) + ", interp " +
-                     pstModeName(InterpOptions{}.mode) + ")")
+                     " (default: cpu where GL renders on the CPU (llvmpipe), else mvr " +
+                     pstModeName(MvrOptions{}.mode) + ", interp " + pstModeName(InterpOptions{}.mode) + ")")
       ->type_name(choices(kPstModeNames));
   textureOption_ = app.add_option("--texture", texture_,
                                   "mvr texturing: 1-D texture vectors per slice (vector, default) or "
@@ -84,6 +85,11 @@ void BackendFlags::add(CLI::App& app) {
           ->type_name("S")
           ->capture_default_str(),
   };
+}
+
+void BackendFlags::chooseDefaultPst(BackendOptions& o) const {
+  if (o.hasPst() && !pst_ && !textureOption_->count() && !builderOption_->count() && gl::rendersOnCpu())
+    o.setPst(PstMode::Cpu);
 }
 
 BackendOptions BackendFlags::resolve() const {

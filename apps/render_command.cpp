@@ -427,7 +427,7 @@ int runRender(int argc, char** argv, RenderCommand command) {
     app.footer("Writes view_0000.png ... (view_r000_c0000.png for grids) and manifest.json.");
   if (auto exit = parseCommandLine(app, argc - 1, argv + 1)) return *exit;
 
-  const BackendOptions choice = synthesize ? BackendOptions{.backend = Backend::Warp} : f.backend.resolve();
+  BackendOptions choice = synthesize ? BackendOptions{.backend = Backend::Warp} : f.backend.resolve();
   f.camera.validate();
   if (synthesize) {
     validate(f.warp);
@@ -499,6 +499,7 @@ int runRender(int argc, char** argv, RenderCommand command) {
     throw;
   }
   startup.add("gl", sinceStart.seconds());
+  if (!synthesize) f.backend.chooseDefaultPst(choice);
   auto [scene, sceneSeconds] = loading.get();
   startup.add("scene", sceneSeconds);
   Stopwatch phase;

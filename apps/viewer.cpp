@@ -328,7 +328,7 @@ int runView(int argc, char** argv) {
     checkStart(set, startView, startScanline);
     window = GlfwWindow::open(set.width, set.height + std::min(set.views, 512), "mvr view", false);
   } else {  // live: render the scene in this window's context
-    const BackendOptions options = backend.resolve();
+    BackendOptions options = backend.resolve();
     Scene scene = loadInputScene(source, false);
     const auto [w, h] = size;
     set.views = views;
@@ -339,6 +339,7 @@ int runView(int argc, char** argv) {
     checkStart(set, startView, startScanline);
     window = GlfwWindow::open(w, h + std::min(set.views, 512), "mvr view", false);
     ShearingCamera cam(cameraFor(scene, w, h), w, h, set.views, set.rows);
+    backend.chooseDefaultPst(options);
     auto renderer = makeRenderer(options, scene, PixelType::Srgb8);
     ViewCollector collect(set);
     std::unique_ptr<EpisToViews> reorder;

@@ -307,6 +307,27 @@ TEST(Cli, MvrWritesEpisAndStats) {
   EXPECT_GT(m["startup_s"]["image_module_load"].get<double>(), 0.0);
 }
 
+// With no --pst, mvr and interp take the CPU spans where GL renders on the
+// CPU (exact, and several times the GL modes' speed there) and their GL
+// defaults elsewhere; a named mode, texture mode or PST builder is kept.
+TEST(Cli, TheDefaultAccuracyModeFollowsWhereGlRenders) {
+  const fs::path d = outDir("default_pst");
+  auto pstOf = [&](const std::string& args) {
+    const Result r = run("render " + args + " --views 3 --size 40x30 --out " + d.string());
+    EXPECT_EQ(r.status, 0) << r.err;
+    const auto m = nlohmann::json::parse(std::ifstream(d / "manifest.json"));
+    const std::string renderer = m["gl"]["renderer"];
+    return std::pair{m["pst"].get<std::string>(), renderer.find("llvmpipe") != std::string::npos};
+  };
+  const auto [mvr, onCpu] = pstOf("--backend mvr");
+  EXPECT_EQ(mvr, onCpu ? "cpu" : "strip");
+  EXPECT_EQ(pstOf("--backend interp").first, onCpu ? "cpu" : "quad");
+  EXPECT_EQ(pstOf("--backend mvr --pst strip").first, "strip");
+  EXPECT_EQ(pstOf("--backend mvr --pst-builder cpu").first, "strip");
+  EXPECT_EQ(pstOf("--backend mvr --texture direct").first, "strip");
+  EXPECT_EQ(pstOf("--backend interp --pst exact").first, "exact");
+}
+
 // --depth: a float exr beside every view of a grid, 0 exactly where the
 // view is empty, the same surfaces as svr's depth (mvr's CPU spans are
 // exact), and the manifest says what the files hold. Where a pixel centre
