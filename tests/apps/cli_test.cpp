@@ -130,6 +130,7 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
                            "render --backend interp --blend soft --out " + d.string(),
                            "render --backend svr --blend track --out " + d.string(),
                            "render --backend deferred --visibility --out " + d.string(),
+                           "render --backend mvr --layer-passes --out " + d.string(),
                            "render --views 0 --out " + d.string(),
                            "render --size 10 --out " + d.string(),
                            "render --backend nope --out " + d.string(),
