@@ -1,7 +1,6 @@
 #include "apps/backend_flags.h"
 
 #include "mvr/error.h"
-#include "mvr/gl/gl_api.h"
 
 namespace mvr::app {
 
@@ -12,7 +11,8 @@ void BackendFlags::add(CLI::App& app) {
       ->capture_default_str();
   app.add_option("--pst", pst_,
                  "accuracy mode of mvr and interp: " + alternatives(kPstModeNames) +
-                     " (default: cpu where GL renders on the CPU (llvmpipe), else mvr " +
+                     " (default: cpu where GL renders on the CPU (llvmpipe), else spans where they "
+                     "shade the scene, else mvr " +
                      pstModeName(MvrOptions{}.mode) + ", interp " + pstModeName(InterpOptions{}.mode) + ")")
       ->type_name(choices(kPstModeNames));
   textureOption_ = app.add_option("--texture", texture_,
@@ -87,9 +87,8 @@ void BackendFlags::add(CLI::App& app) {
   };
 }
 
-void BackendFlags::chooseDefaultPst(BackendOptions& o) const {
-  if (o.hasPst() && !pst_ && !textureOption_->count() && !builderOption_->count() && gl::rendersOnCpu())
-    o.setPst(PstMode::Cpu);
+void BackendFlags::chooseDefaultPst(BackendOptions& o, const Scene& scene) const {
+  if (o.hasPst() && !pst_ && !textureOption_->count() && !builderOption_->count()) o.setPst(fastestPst(o, scene));
 }
 
 BackendOptions BackendFlags::resolve() const {

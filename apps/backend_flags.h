@@ -20,11 +20,9 @@ class BackendFlags {
   void add(CLI::App& app);
   BackendOptions resolve() const;
   // Where the command line named no accuracy mode (and no texture mode or
-  // PST builder, which belong to the GL modes): the CPU span rasterizer
-  // if GL renders on the CPU (llvmpipe), where it is exact and 3-10x the
-  // GL modes' speed; else the back end's own default. Needs a current GL
-  // context.
-  void chooseDefaultPst(BackendOptions& options) const;
+  // PST builder, which belong to the GL modes): fastestPst(). Needs a
+  // current GL context.
+  void chooseDefaultPst(BackendOptions& options, const Scene& scene) const;
 
  private:
   BackendOptions options_;

@@ -499,8 +499,8 @@ int runRender(int argc, char** argv, RenderCommand command) {
     throw;
   }
   startup.add("gl", sinceStart.seconds());
-  if (!synthesize) f.backend.chooseDefaultPst(choice);
   auto [scene, sceneSeconds] = loading.get();
+  if (!synthesize) f.backend.chooseDefaultPst(choice, scene);
   startup.add("scene", sceneSeconds);
   Stopwatch phase;
   if (const shading::ShadingPlan plan = shading::planShading(scene); plan.texture || plan.reflection)

@@ -339,7 +339,7 @@ int runView(int argc, char** argv) {
     checkStart(set, startView, startScanline);
     window = GlfwWindow::open(w, h + std::min(set.views, 512), "mvr view", false);
     ShearingCamera cam(cameraFor(scene, w, h), w, h, set.views, set.rows);
-    backend.chooseDefaultPst(options);
+    backend.chooseDefaultPst(options, scene);
     auto renderer = makeRenderer(options, scene, PixelType::Srgb8);
     ViewCollector collect(set);
     std::unique_ptr<EpisToViews> reorder;

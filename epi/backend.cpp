@@ -6,6 +6,7 @@
 #include "epi/mvr_renderer.h"
 #include "mvr/baselines/baselines.h"
 #include "mvr/error.h"
+#include "mvr/gl/gl_api.h"
 
 namespace mvr {
 
@@ -19,6 +20,19 @@ std::unique_ptr<Renderer> makeRenderer(const BackendOptions& o, const Scene& sce
     case Backend::Deferred: return makeDeferredRenderer(scene, type);
   }
   fail("--backend", "unknown back end");
+}
+
+PstMode fastestPst(const BackendOptions& o, const Scene& scene) {
+  return gl::rendersOnCpu() ? PstMode::Cpu : fastestGpuPst(o, shading::planShading(scene));
+}
+
+PstMode fastestGpuPst(const BackendOptions& o, const shading::ShadingPlan& plan) {
+  // What the span rasterizer accepts (epi/gpu/gpu_span_rasterizer.cpp):
+  // mvr's one diffuse pass, or interp's slices coloured by texture
+  // vectors without split highlight tracks.
+  const bool spans = o.backend == Backend::Interp ? !(o.interp.splits > 0 && plan.specular)
+                                                  : plan.passes().size() == 1;
+  return spans ? PstMode::Spans : o.pst();
 }
 
 namespace {

@@ -12,6 +12,7 @@
 #include "mvr/names.h"
 #include "mvr/renderer.h"
 #include "mvr/scene.h"
+#include "shading/shading_plan.h"
 
 namespace mvr {
 
@@ -47,6 +48,17 @@ struct BackendOptions {
 // it can). GL back ends need a current context.
 std::unique_ptr<Renderer> makeRenderer(const BackendOptions& options, const Scene& scene,
                                        PixelType type);
+
+// The fastest accuracy mode that renders `options` over `scene` where the
+// user named none: the CPU spans where GL renders on the CPU (llvmpipe:
+// exact, and 3-10x the GL modes' speed there), else fastestGpuPst().
+// Needs a current GL context.
+PstMode fastestPst(const BackendOptions& options, const Scene& scene);
+// On a GPU: the GPU spans where they shade the scene (mvr: a diffuse
+// scene; interp: all but split highlights of a specular scene; an NVIDIA
+// H100 drew 33x svr with spans against strip's 14x at 160x140), else the
+// back end's own default.
+PstMode fastestGpuPst(const BackendOptions& options, const shading::ShadingPlan& plan);
 
 // The benchmark's compact form: NAME[:PST[:OPTION...]] with a texture mode
 // or a PST builder (auto-psts, gpu-psts, cpu-psts) as options (mvr:exact:direct) or

@@ -309,8 +309,9 @@ TEST(Cli, MvrWritesEpisAndStats) {
 }
 
 // With no --pst, mvr and interp take the CPU spans where GL renders on the
-// CPU (exact, and several times the GL modes' speed there) and their GL
-// defaults elsewhere; a named mode, texture mode or PST builder is kept.
+// CPU (exact, and several times the GL modes' speed there), and on a GPU
+// the GPU spans where they shade the scene, else their GL defaults; a
+// named mode, texture mode or PST builder is kept.
 TEST(Cli, TheDefaultAccuracyModeFollowsWhereGlRenders) {
   const fs::path d = outDir("default_pst");
   auto pstOf = [&](const std::string& args) {
@@ -320,9 +321,13 @@ TEST(Cli, TheDefaultAccuracyModeFollowsWhereGlRenders) {
     const std::string renderer = m["gl"]["renderer"];
     return std::pair{m["pst"].get<std::string>(), renderer.find("llvmpipe") != std::string::npos};
   };
-  const auto [mvr, onCpu] = pstOf("--backend mvr");
-  EXPECT_EQ(mvr, onCpu ? "cpu" : "strip");
-  EXPECT_EQ(pstOf("--backend interp").first, onCpu ? "cpu" : "quad");
+  const auto [mvr, onCpu] = pstOf("--backend mvr");  // the bundled scene is diffuse
+  EXPECT_EQ(mvr, onCpu ? "cpu" : "spans");
+  EXPECT_EQ(pstOf("--backend interp").first, onCpu ? "cpu" : "spans");
+  const std::string shiny = test::assetPath("shiny.json");
+  EXPECT_EQ(pstOf(shiny + " --backend mvr").first, onCpu ? "cpu" : "strip");
+  EXPECT_EQ(pstOf(shiny + " --backend interp").first, onCpu ? "cpu" : "spans");
+  EXPECT_EQ(pstOf(shiny + " --backend interp --splits 2").first, onCpu ? "cpu" : "quad");
   EXPECT_EQ(pstOf("--backend mvr --pst strip").first, "strip");
   EXPECT_EQ(pstOf("--backend mvr --pst-builder cpu").first, "strip");
   EXPECT_EQ(pstOf("--backend mvr --texture direct").first, "strip");

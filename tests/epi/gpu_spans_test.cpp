@@ -107,5 +107,34 @@ TEST_F(GpuSpans, RefuseScenesThatNeedMoreThanDiffuse) {
   }
 }
 
+// The default a GPU picks (fastestGpuPst) is spans exactly where spans
+// render the scene: each choice rendered here, spans or not, and every
+// scene and back end that spans refuse gets another mode.
+TEST_F(GpuSpans, AreTheGpuDefaultWhereTheyShadeTheScene) {
+  struct Case {
+    const char* scene;
+    const char* backend;
+    bool spans;
+  };
+  for (const Case c : {Case{"default.json", "mvr", true}, {"shiny.json", "mvr", false}, {"textured.json", "mvr", false},
+                       {"mirror.json", "mvr", false}, {"default.json", "interp", true}, {"shiny.json", "interp", true},
+                       {"shiny.json", "interp:dual:s2", false}, {"default.json", "interp:dual:s2", true}}) {
+    const std::string label = std::string(c.scene) + " " + c.backend;
+    const Scene scene = loadScene(test::assetPath(c.scene));
+    BackendOptions o = parseBackendSpec(c.backend);
+    const PstMode chosen = fastestGpuPst(o, shading::planShading(scene));
+    EXPECT_EQ(chosen == PstMode::Spans, c.spans) << label;
+    o.setPst(PstMode::Spans);
+    bool accepted = true;
+    try {
+      const ShearingCamera cam(*scene.camera, 32, 24, 3);
+      test::renderViews(*makeRenderer(o, scene, PixelType::U8), cam);
+    } catch (const Error&) {
+      accepted = false;
+    }
+    EXPECT_EQ(accepted, c.spans) << label;
+  }
+}
+
 }  // namespace
 }  // namespace mvr
