@@ -33,6 +33,8 @@ void append(vec3 albedo, vec4 normal) {
 #endif
 )";
 
+size_t gMaxBytes = FragmentLists::kMaxBytes;
+
 struct Header {
   uint32_t count, capacity;
   int32_t width;
@@ -41,6 +43,8 @@ struct Header {
 }  // namespace
 
 const char* FragmentLists::glsl() { return kLists; }
+
+void FragmentLists::setMaxBytes(size_t bytes) { gMaxBytes = bytes; }
 
 void FragmentLists::allocate(size_t fragments) {
   surface_ = gl::makeBuffer<float>(nullptr, fragments * 4);
@@ -86,7 +90,7 @@ FragmentLists::Fit FragmentLists::check() {
   // Room for a quarter more than this pass needed: the next view's
   // fragments differ a little.
   const size_t wanted = size_t(count) + size_t(count) / 4;
-  if (wanted * kBytesPerFragment > kMaxBytes || wanted * 16 > size_t(largest) || count == 0xffffffffu)
+  if (wanted * kBytesPerFragment > gMaxBytes || wanted * 16 > size_t(largest) || count == 0xffffffffu)
     return Fit::TooLarge;
   allocate(wanted);
   return Fit::Grown;

@@ -25,7 +25,8 @@ class FragmentLists {
   void beginCollect(int width, int height);
   // After that pass: Fits when every fragment found room; Grown when the
   // storage grew to hold them (draw the pass again); TooLarge when they
-  // would need more than kMaxBytes or the GL's largest buffer.
+  // would need more than the limit (setMaxBytes) or the GL's largest
+  // buffer.
   enum class Fit { Fits, Grown, TooLarge };
   Fit check();
   // Binds the buffers for a pass that reads the lists.
@@ -35,6 +36,9 @@ class FragmentLists {
   // next: 40 bytes.
   static constexpr size_t kBytesPerFragment = 40;
   static constexpr size_t kMaxBytes = size_t(1) << 30;
+  // The lists' memory limit (default kMaxBytes); tests lower it to reach
+  // the fallback.
+  static void setMaxBytes(size_t bytes);
 
  private:
   void allocate(size_t fragments);

@@ -80,7 +80,7 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
     const int w = cam.width(), h = cam.height();
     const Peel peel = [&] {
       ScopedStage s(stats.times, "acquire");
-      return start(cam, eye, maxLayers, trackWidth);
+      return start(cam, eye, maxLayers, trackWidth, stats);
     }();
     Queries queries(1);
     std::vector<SourceLayer> layers;
@@ -90,6 +90,7 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
       {
         ScopedStage s(stats.times, "acquire");
         gbuffer = &drawLayer(peel, k, queries[0], 0);
+        if (!peel.lists) stats.counters["layer_mesh_passes"] += 1;
         // Each layer is read back and judged before the next: waiting is
         // no loss here.
         gl::GetQueryObjectuiv(queries[0], GL_QUERY_RESULT, &samples);
@@ -126,7 +127,8 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
              RenderStats& stats, DeviceLayers& store) override {
     if (normals_) fail("source layers", "highlights kept apart need layers read back");
     ScopedStage s(stats.times, "acquire");
-    const Peel peel = start(cam, eye, maxLayers, trackWidth);
+    const Peel peel = start(cam, eye, maxLayers, trackWidth, stats);
+    stats.counters["layer_mesh_passes"] += peel.lists ? 0 : maxLayers;  // issued; the GPU skips the empty
     // Every layer is issued at once, each drawn only if the one in front
     // had samples (the GPU's test): asking the CPU after each layer would
     // stall the GPU between layers. A layer behind an empty one is empty
@@ -166,7 +168,9 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
     glm::vec4 offset;  // the peeling shader's uPeel
     bool lists;        // the layers come from the pipeline's fragment lists
   };
-  Peel start(const ShearingCamera& cam, const glm::dvec2& eye, int maxLayers, double trackWidth) {
+  // Counts the mesh's passes for the layers in stats (the lists' one, or
+  // one a layer as drawLayer() goes).
+  Peel start(const ShearingCamera& cam, const glm::dvec2& eye, int maxLayers, double trackWidth, RenderStats& stats) {
     const int w = cam.width(), h = cam.height();
     targets(w, h);
     pipeline_.begin(w, h, cam.share().scanlines);  // a share's scanlines need only those rows
@@ -176,6 +180,7 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
            false};
     // One layer is one pass either way; the lists pay from two on.
     p.lists = peeling_ == Peeling::OnePass && maxLayers > 1 && pipeline_.collect(p.viewProj);
+    if (p.lists) stats.counters["layer_mesh_passes"] += 1;
     return p;
   }
 

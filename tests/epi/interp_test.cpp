@@ -17,6 +17,7 @@
 #include "apps/cli.h"
 #include "apps/test_scenes.h"
 #include "epi/interp_renderer.h"
+#include "mvr/baselines/fragment_lists.h"
 #include "mvr/baselines/source_layers.h"
 #include "mvr/error.h"
 #include "mvr/io/scene_io.h"
@@ -386,6 +387,31 @@ TEST_F(InterpTest, OnePassFindsTheLayersThePeelFinds) {
         }
       }
     }
+  }
+}
+
+// One pass of the mesh a source, a pass a layer where the lists would pass
+// their memory limit: the same layers either way.
+TEST_F(InterpTest, FragmentListsOverTheirLimitPeelAPassALayer) {
+  const Scene scene = stackedPlanes();
+  const ShearingCamera cam(*scene.camera, 96, 72, 5);
+  const double track = cam.spec().trackRight - cam.spec().trackLeft;
+  RenderStats lists, limited, peeled;
+  const auto a = makeSourceLayerRenderer(scene)->render(cam, {0.0, 0.0}, 6, track, lists);
+  FragmentLists::setMaxBytes(1024);  // the first room holds two fragments a pixel; ten would not fit
+  const auto b = makeSourceLayerRenderer(scene)->render(cam, {0.0, 0.0}, 6, track, limited);
+  FragmentLists::setMaxBytes(FragmentLists::kMaxBytes);
+  const auto c = makeSourceLayerRenderer(scene, false, 1, Peeling::PassPerLayer)->render(cam, {0.0, 0.0}, 6, track, peeled);
+  ASSERT_EQ(a.size(), 6u);
+  ASSERT_EQ(b.size(), a.size());
+  ASSERT_EQ(c.size(), a.size());
+  EXPECT_EQ(lists.counters.at("layer_mesh_passes"), 1);
+  EXPECT_EQ(limited.counters.at("layer_mesh_passes"), 6);
+  EXPECT_EQ(peeled.counters.at("layer_mesh_passes"), 6);
+  for (size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(b[k].depth, a[k].depth) << "layer " << k;
+    EXPECT_EQ(b[k].color.bytes, a[k].color.bytes) << "layer " << k;
+    EXPECT_EQ(c[k].depth, a[k].depth) << "layer " << k;
   }
 }
 
