@@ -118,7 +118,8 @@ TEST_F(GpuSpans, AreTheGpuDefaultWhereTheyShadeTheScene) {
   };
   for (const Case c : {Case{"default.json", "mvr", true}, {"shiny.json", "mvr", false}, {"textured.json", "mvr", false},
                        {"mirror.json", "mvr", false}, {"default.json", "interp", true}, {"shiny.json", "interp", true},
-                       {"shiny.json", "interp:dual:s2", false}, {"default.json", "interp:dual:s2", true}}) {
+                       {"shiny.json", "interp:dual:s2", false}, {"default.json", "interp:dual:s2", true},
+                       {"textured.json", "interp", true}, {"mirror.json", "interp", true}}) {
     const std::string label = std::string(c.scene) + " " + c.backend;
     const Scene scene = loadScene(test::assetPath(c.scene));
     BackendOptions o = parseBackendSpec(c.backend);
