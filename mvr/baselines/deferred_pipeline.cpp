@@ -38,8 +38,9 @@ void main() {
 // surface closer behind the last layer than that never moves a pixel away
 // from it anywhere on a track of width E, so it is not a new layer. One
 // function for the peeling pass and the fragment lists' resolve, so that
-// both round alike.
+// both round alike; it defines PEEL for the shader that follows.
 const char* const kPeelTest = R"(
+#define PEEL
 layout(binding = 6) uniform sampler2D uPreviousDepth;
 uniform vec4 uPeel;  // near, far, pixel footprint per unit distance, track width E
 float distanceOf(float depth) { return uPeel.x * uPeel.y / (depth * (uPeel.y - uPeel.x) + uPeel.x); }
@@ -235,7 +236,7 @@ void DeferredPipeline::geometry(const glm::dmat4& viewProj, const GBuffer& gbuff
   gl::Enable(GL_DEPTH_TEST);
   const gl::Program* program = &geometry_;
   if (previous) {
-    if (!peeling_.id()) peeling_ = geometryProgram("deferred-geometry-peel", std::string("#define PEEL\n") + kPeelTest);
+    if (!peeling_.id()) peeling_ = geometryProgram("deferred-geometry-peel", kPeelTest);
     program = &peeling_;
     gl::BindTextureUnit(6, previous->depthTexture());
     gl::setUniform(peeling_, "uPeel", peel);
@@ -272,8 +273,8 @@ void DeferredPipeline::resolve(const GBuffer& gbuffer, const GBuffer* previous, 
     program = gl::linkProgram(
         previous ? "deferred-resolve-peel" : "deferred-resolve",
         {{GL_VERTEX_SHADER, gl::glslHeader() + gl::kFullScreenTriangleVertex},
-         {GL_FRAGMENT_SHADER, gl::glslHeader() + (previous ? std::string("#define PEEL\n") + kPeelTest : "") +
-                                  FragmentLists::glsl() + kResolveFragment}});
+         {GL_FRAGMENT_SHADER, gl::glslHeader() + (previous ? kPeelTest : "") + FragmentLists::glsl() +
+                                  kResolveFragment}});
   gbuffer.bindForWriting();
   gl::Enable(GL_DEPTH_TEST);
   gl::DepthFunc(GL_ALWAYS);  // the shader picks the fragment the depth test would

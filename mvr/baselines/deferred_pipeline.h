@@ -65,7 +65,7 @@ class DeferredPipeline {
   // pipeline's fragment lists, so that resolve() gives each depth-peeled
   // layer without drawing the mesh again. Always drawn (drawOnlyIf does
   // not apply). False when the lists would need more than their memory
-  // limit (FragmentLists::kMaxBytes): draw each layer with geometry().
+  // limit (FragmentLists::setMaxBytes): draw each layer with geometry().
   bool collect(const glm::dmat4& viewProj);
   // The layer geometry(viewProj, gbuffer, previous, peel) would draw, from
   // the lists of the last collect() of the same view: the same pixels,

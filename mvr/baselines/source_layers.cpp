@@ -89,8 +89,7 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
       const GBuffer* gbuffer = nullptr;
       {
         ScopedStage s(stats.times, "acquire");
-        gbuffer = &drawLayer(peel, k, queries[0], 0);
-        if (!peel.lists) stats.counters["layer_mesh_passes"] += 1;
+        gbuffer = &drawLayer(peel, k, queries[0], 0, stats);
         // Each layer is read back and judged before the next: waiting is
         // no loss here.
         gl::GetQueryObjectuiv(queries[0], GL_QUERY_RESULT, &samples);
@@ -128,7 +127,6 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
     if (normals_) fail("source layers", "highlights kept apart need layers read back");
     ScopedStage s(stats.times, "acquire");
     const Peel peel = start(cam, eye, maxLayers, trackWidth, stats);
-    stats.counters["layer_mesh_passes"] += peel.lists ? 0 : maxLayers;  // issued; the GPU skips the empty
     // Every layer is issued at once, each drawn only if the one in front
     // had samples (the GPU's test): asking the CPU after each layer would
     // stall the GPU between layers. A layer behind an empty one is empty
@@ -137,7 +135,7 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
     Queries queries(maxLayers);
     const int first = store.count();
     for (int k = 0; k < maxLayers; ++k) {
-      const GBuffer& gbuffer = drawLayer(peel, k, queries[k], k ? queries[k - 1] : 0);
+      const GBuffer& gbuffer = drawLayer(peel, k, queries[k], k ? queries[k - 1] : 0, stats);
       store.append(eye, targets_->color.colorTexture(), gbuffer.depthTexture());
     }
     int added = 0;
@@ -168,8 +166,7 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
     glm::vec4 offset;  // the peeling shader's uPeel
     bool lists;        // the layers come from the pipeline's fragment lists
   };
-  // Counts the mesh's passes for the layers in stats (the lists' one, or
-  // one a layer as drawLayer() goes).
+  // Counts the lists' pass of the mesh in stats (layer_mesh_passes).
   Peel start(const ShearingCamera& cam, const glm::dvec2& eye, int maxLayers, double trackWidth, RenderStats& stats) {
     const int w = cam.width(), h = cam.height();
     targets(w, h);
@@ -187,17 +184,20 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
   // Depth-peeled layer k, its samples counted by `query`, drawn only if
   // `onlyIf` (a query; 0: always) counted any, and lit only if it has
   // samples itself (the GPU decides; an empty layer is never used): its
-  // depth in the returned G-buffer, its lit colour in targets_->color.
-  const GBuffer& drawLayer(const Peel& p, int k, GLuint query, GLuint onlyIf) {
+  // depth in the returned G-buffer, its lit colour in targets_->color. A
+  // pass of the mesh is counted in stats (layer_mesh_passes).
+  const GBuffer& drawLayer(const Peel& p, int k, GLuint query, GLuint onlyIf, RenderStats& stats) {
     Targets& t = *targets_;
     const GBuffer& gbuffer = t.gbuffers[k % 2];
     const GBuffer* previous = k ? &t.gbuffers[(k + 1) % 2] : nullptr;
     pipeline_.drawOnlyIf(onlyIf);
     gl::BeginQuery(GL_SAMPLES_PASSED, query);
-    if (p.lists)
+    if (p.lists) {
       pipeline_.resolve(gbuffer, previous, p.offset);
-    else
+    } else {
       pipeline_.geometry(p.viewProj, gbuffer, previous, p.offset);
+      stats.counters["layer_mesh_passes"] += 1;  // issued (the GPU may skip it)
+    }
     gl::EndQuery(GL_SAMPLES_PASSED);
     pipeline_.drawOnlyIf(query);
     pipeline_.lighting(p.viewProj, p.eye, gbuffer, t.color);
