@@ -170,8 +170,8 @@ class InterpRenderer final : public Renderer {
                           uint32_t(p.fromA)});
       }
     }
-    assemble(cam, row, int(pieces.size()), out, [&](int k, IndexRange scanlines) {
-      return drawPiece(pieces[size_t(k)], cam, scanlines, row, stats);
+    assemble(cam, row, int(pieces.size()), out, [&](int k, IndexRange scanlines, std::vector<Image>& into) {
+      drawPiece(pieces[size_t(k)], cam, scanlines, row, into, stats);
     });
   }
 
@@ -193,9 +193,9 @@ class InterpRenderer final : public Renderer {
   }
 
   // Hands on the EPIs of cam's share, each assembled from `count` pieces
-  // drawn a band of scanlines at a time (draw(k, scanlines): piece k's
-  // EPIs of those scanlines, rows its views); later pieces overwrite the
-  // views they share with earlier ones.
+  // drawn a band of scanlines at a time (draw(k, scanlines, into): piece
+  // k's EPIs of those scanlines written into their views' rows of `into`);
+  // later pieces overwrite the views they share with earlier ones.
   template <class Draw>
   void assemble(const ShearingCamera& cam, int row, int count, FrameSink& out, Draw&& draw) {
     const IndexRange lines = cam.share().scanlines;
@@ -203,23 +203,28 @@ class InterpRenderer final : public Renderer {
     std::vector<Image> epis;
     for (int first = lines.begin; first < lines.end; first += band) {
       const IndexRange part{first, std::min(lines.end, first + band)};
-      epis.assign(size_t(part.size()), Image());
-      for (int k = 0; k < count; ++k) {
-        auto [firstView, rows] = draw(k, part);
-        for (int s = 0; s < part.size(); ++s) {
-          Image& e = epis[size_t(s)];
-          if (count == 1 && rows[size_t(s)].height == cam.views()) {
-            e = std::move(rows[size_t(s)]);
-            continue;
-          }
-          if (e.width == 0) e = Image(cam.width(), cam.views(), rows[size_t(s)].type);
-          for (int v = 0; v < rows[size_t(s)].height; ++v)
-            std::copy_n(rows[size_t(s)].row(v), e.rowBytes(), e.row(firstView + v));
-        }
-      }
+      epis.assign(size_t(part.size()), Image());  // views no piece draws stay empty
+      for (int k = 0; k < count; ++k) draw(k, part, epis);
       for (int s = 0; s < part.size(); ++s) out.putEpiInPlace(row, part.begin + s, epis[size_t(s)]);
     }
   }
+
+  // Writes a piece's EPIs, as they come, into the rows of its views in the
+  // EPIs of all views: one copy, no EPI of the piece's own kept.
+  class IntoViews final : public FrameSink {
+   public:
+    IntoViews(std::vector<Image>& epis, int firstScanline, int firstView, int views)
+        : epis_(epis), firstScanline_(firstScanline), firstView_(firstView), views_(views) {}
+    void putEpi(int, int scanline, const Image& epi) override {
+      Image& e = epis_[size_t(scanline - firstScanline_)];
+      if (e.width != epi.width || e.height != views_ || e.type != epi.type) e = Image(epi.width, views_, epi.type);
+      std::copy_n(epi.bytes.data(), epi.bytes.size(), e.row(firstView_));
+    }
+
+   private:
+    std::vector<Image>& epis_;
+    int firstScanline_, firstView_, views_;
+  };
 
   // A run of views drawn from one set of slices: a piece of the interval
   // between two neighbouring sources (at views a and b).
@@ -230,14 +235,15 @@ class InterpRenderer final : public Renderer {
     uint32_t firstOfB;  // the first layer of the second source
   };
 
-  // One piece's EPIs of the given scanlines: the depth-tested joint EPIs,
-  // blended with each source's own where blending is on (weights over the
-  // whole interval); with the piece's first view.
-  std::pair<int, std::vector<Image>> drawPiece(const Piece& p, const ShearingCamera& cam, IndexRange scanlines,
-                                               int row, RenderStats& stats) {
+  // One piece's EPIs of the given scanlines, written into its views' rows
+  // of `into`: the depth-tested joint EPIs, blended with each source's own
+  // where blending is on (weights over the whole interval).
+  void drawPiece(const Piece& p, const ShearingCamera& cam, IndexRange scanlines, int row, std::vector<Image>& into,
+                 RenderStats& stats) {
     const ShearingCamera sub = intervalCamera(cam, p.first, p.last, scanlines);
+    IntoViews sink(into, scanlines.begin, p.first, cam.views());
+    if (options_.blend == Blend::None) return rasterizer_->rasterize(p.slices.vertices, p.slices.table, sub, row, sink, stats);
     std::vector<Image> joint = draw(p.slices, p.slices.table, sub, row, stats);
-    if (options_.blend == Blend::None) return {p.first, std::move(joint)};
     const auto ofB = [&](uint32_t t) { return p.slices.layerOf[t] >= p.firstOfB; };
     const std::vector<Image> a = draw(p.slices, p.slices.table.keeping([&](uint32_t t) { return !ofB(t); }), sub,
                                       row, stats);
@@ -248,7 +254,7 @@ class InterpRenderer final : public Renderer {
       blendEpi(options_.blend, interval, row, scanlines.begin + k, a[size_t(k)], b[size_t(k)], joint[size_t(k)],
                p.first - p.a);
     });
-    return {p.first, std::move(joint)};
+    for (int k = 0; k < scanlines.size(); ++k) sink.putEpi(row, scanlines.begin + k, joint[size_t(k)]);
   }
 
   // The EPIs of `table`'s scanlines in cam's share, as copies.
@@ -366,10 +372,11 @@ class InterpRenderer final : public Renderer {
     for (const GpuImageSlices& piece : slices) countSlices(piece.table.sliceCount(), piece.pixels, stats);
     SourceViewSink out(sink, views);
     if (slices.size() == 1) return rasterizer_->rasterize(slices[0].vertices, slices[0].table, cam, row, out, stats);
-    assemble(cam, row, int(slices.size()), out, [&](int k, IndexRange scanlines) {
+    assemble(cam, row, int(slices.size()), out, [&](int k, IndexRange scanlines, std::vector<Image>& into) {
       const PieceLayers& p = parts[size_t(k)];
-      const ShearingCamera sub = intervalCamera(cam, p.first, p.last, scanlines);
-      return std::pair(p.first, kept(slices[size_t(k)].vertices, slices[size_t(k)].table, sub, row, stats));
+      IntoViews pieceSink(into, scanlines.begin, p.first, cam.views());
+      rasterizer_->rasterize(slices[size_t(k)].vertices, slices[size_t(k)].table,
+                             intervalCamera(cam, p.first, p.last, scanlines), row, pieceSink, stats);
     });
   }
 

@@ -289,7 +289,8 @@ void DeferredPipeline::resolve(const GBuffer& gbuffer, const GBuffer* previous, 
   gl::DepthFunc(GL_GREATER);
 }
 
-void DeferredPipeline::depth(const glm::dmat4& viewProj, const GBuffer& target) {
+void DeferredPipeline::depth(const glm::dmat4& viewProj, const GBuffer& target,
+                             const std::vector<uint32_t>* triangles) {
   if (!depth_.id())
     depth_ = gl::linkProgram("deferred-depth", {{GL_VERTEX_SHADER, gl::glslHeader() + kSceneVertexInputs + kGeometryVertex},
                                                 {GL_FRAGMENT_SHADER, gl::glslHeader() + kDepthFragment}});
@@ -298,7 +299,9 @@ void DeferredPipeline::depth(const glm::dmat4& viewProj, const GBuffer& target) 
   gl::UseProgram(depth_.id());
   gl::setUniform(depth_, "uViewProj", glm::mat4(viewProj));
   buffers_.bind();
-  inRows([&] { buffers_.draw(); });
+  if (!triangles) return inRows([&] { buffers_.draw(); });
+  const gl::Buffer subset = gl::makeBuffer(triangles->data(), triangles->size());
+  inRows([&] { buffers_.draw(subset, GLsizei(triangles->size())); });
 }
 
 void DeferredPipeline::lighting(const glm::dmat4& viewProj, const glm::dvec3& eye,

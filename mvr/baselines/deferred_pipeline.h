@@ -3,6 +3,7 @@
 // normal and depth, then a full-screen pass lights every pixel. The
 // deferred baseline and the image-based back end's source layers share it.
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -72,8 +73,9 @@ class DeferredPipeline {
   // depths, albedo and normals.
   void resolve(const GBuffer& gbuffer, const GBuffer* previous, const glm::vec4& peel = glm::vec4(0.0f));
   // The nearest surface's depth alone, into a GBuffer::depthOnly target:
-  // the geometry pass's coverage (its culling too) without its shading.
-  void depth(const glm::dmat4& viewProj, const GBuffer& target);
+  // the geometry pass's coverage (its culling too) without its shading; of
+  // the `triangles` alone (indices, three a triangle) where given.
+  void depth(const glm::dmat4& viewProj, const GBuffer& target, const std::vector<uint32_t>* triangles = nullptr);
   // The passes that follow draw only if this samples-passed query counted
   // any (conditional rendering: the GPU decides, the CPU does not wait);
   // their clears still happen, so a skipped pass leaves an empty target.

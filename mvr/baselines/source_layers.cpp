@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "mvr/baselines/deferred_pipeline.h"
+#include "mvr/baselines/outline_triangles.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
 
@@ -67,7 +68,8 @@ void main() {
 class SourceLayerRendererImpl final : public SourceLayerRenderer {
  public:
   SourceLayerRendererImpl(const Scene& scene, bool separateHighlights, int outlineSamples, Peeling peeling)
-      : pipeline_(scene, separateHighlights),
+      : scene_(scene),
+        pipeline_(scene, separateHighlights),
         normals_(separateHighlights),
         outlineSamples_(outlineSamples),
         peeling_(peeling) {
@@ -112,11 +114,17 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
     }
     if (!layers.empty() && samplesFor(w) > 1) {
       ScopedStage s(stats.times, "outline");  // its own stage: what the finer outline costs
+      // Only the pixels a slicer reads, from the triangles that reach them.
+      const std::vector<uint8_t> read = outlinePixels(layers[0].depth, w, h);
+      const std::vector<uint32_t> triangles = outlineTriangles(scene_, peel.viewProj, w, h, read);
+      stats.counters["outline_triangles"] += double(triangles.size() / 3);
       const gl::Buffer outline = gl::makeBuffer<PixelOutline>(nullptr, size_t(w) * h);
-      drawOutline(cam, peel, outline.id(), 0);
-      layers[0].outline.resize(size_t(w) * h);
-      gl::GetNamedBufferSubData(outline.id(), 0, GLsizeiptr(layers[0].outline.size() * sizeof(PixelOutline)),
-                                layers[0].outline.data());
+      drawOutline(cam, peel, outline.id(), 0, &triangles);
+      std::vector<PixelOutline>& o = layers[0].outline;
+      o.resize(size_t(w) * h);
+      gl::GetNamedBufferSubData(outline.id(), 0, GLsizeiptr(o.size() * sizeof(PixelOutline)), o.data());
+      for (size_t p = 0; p < o.size(); ++p)
+        if (!read[p]) o[p] = PixelOutline{};  // not made from all of its samples' triangles
     }
     gl::checkError("source layers");
     return layers;
@@ -215,16 +223,18 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
   }
 
   // The nearest layer's outline (PixelOutline per pixel) into `buffer`
-  // from pixel `first` on: its geometry drawn once more at samplesFor(w)
-  // columns a pixel, each pixel's samples reduced on the GPU. The peel's
+  // from pixel `first` on: its geometry (or those `triangles` alone)
+  // drawn once more at samplesFor(w) columns a pixel, each pixel's samples
+  // reduced on the GPU. The peel's
   // later layers need only the nearest, so this comes last; the next
   // peel's start() begins the pipeline at its own width again.
-  void drawOutline(const ShearingCamera& cam, const Peel& p, GLuint buffer, uint32_t first) {
+  void drawOutline(const ShearingCamera& cam, const Peel& p, GLuint buffer, uint32_t first,
+                   const std::vector<uint32_t>* triangles = nullptr) {
     const int w = cam.width(), h = cam.height(), n = samplesFor(w);
     if (!fine_ || fine_->width != n * w || fine_->height != h) fine_.emplace(n * w, h);
     pipeline_.begin(n * w, h, cam.share().scanlines);
     pipeline_.drawOnlyIf(0);
-    pipeline_.depth(p.viewProj, fine_->gbuffer);
+    pipeline_.depth(p.viewProj, fine_->gbuffer, triangles);
     gl::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     gl::UseProgram(outline_.id());
     gl::setUniform(outline_, "uWidth", w);
@@ -254,6 +264,7 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
     return *targets_;
   }
 
+  const Scene& scene_;
   DeferredPipeline pipeline_;
   bool normals_;
   int outlineSamples_;

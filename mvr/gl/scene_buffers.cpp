@@ -59,4 +59,10 @@ void SceneBuffers::draw(int instances) const {
     gl::DrawElementsInstanced(GL_TRIANGLES, indexCount_, GL_UNSIGNED_INT, nullptr, instances);
 }
 
+void SceneBuffers::draw(const gl::Buffer& indices, GLsizei count) const {
+  gl::VertexArrayElementBuffer(vao_.id(), indices.id());
+  gl::DrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
+  gl::VertexArrayElementBuffer(vao_.id(), indices_.id());
+}
+
 }  // namespace mvr

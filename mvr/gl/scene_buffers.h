@@ -13,6 +13,9 @@ class SceneBuffers {
                const std::vector<float>& cullFlags);
   void bind() const { gl::BindVertexArray(vao_.id()); }
   void draw(int instances = 1) const;
+  // The triangles of `indices` alone (three a triangle, count in all), with
+  // the same vertices.
+  void draw(const gl::Buffer& indices, GLsizei count) const;
   GLsizei indexCount() const { return indexCount_; }
 
  private:

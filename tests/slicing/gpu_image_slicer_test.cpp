@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "mvr/baselines/outline_triangles.h"
 #include "mvr/baselines/source_layers.h"
 #include "mvr/io/scene_io.h"
 #include "slicing/gpu/gpu_image_slicer.h"
@@ -76,20 +77,32 @@ TEST_F(GpuImageSlicerTest, RenderedLayersSliceAsOnTheCpu) {
     ASSERT_GE(device.count(), 4);
     const std::string label = std::to_string(samples) + " samples a pixel, ";
     const auto outlines = test::download<PixelOutline>(device.outlineBuffer(), device.pixelsPerLayer() * host.size());
-    int inside = 0;  // outline ends strictly within their pixels
+    int inside = 0;  // outline ends strictly within their pixels, where read
     for (size_t k = 0; k < host.size(); ++k) {
       const bool nearest = host[k].layer == 0;
       ASSERT_EQ(device.outlined(int(k)), samples > 1 && nearest) << label << "layer " << k;
       ASSERT_EQ(host[k].outline.size(), samples > 1 && nearest ? device.pixelsPerLayer() : 0u) << label;
+      if (host[k].outline.empty()) continue;
+      // The read-back outline draws only the triangles that reach the
+      // pixels a slicer reads, and leaves the others empty; the store draws
+      // them all. Where read, the two agree bit for bit.
+      const std::vector<uint8_t> read = outlinePixels(host[k].depth, cam.width(), cam.height());
+      int reads = 0;
       for (size_t p = 0; p < host[k].outline.size(); ++p) {
         const PixelOutline& h = host[k].outline[p], &d = outlines[k * device.pixelsPerLayer() + p];
+        if (!read[p]) {
+          ASSERT_LT(h.right, 0.0f) << label << "layer " << k << " pixel " << p;
+          continue;
+        }
         ASSERT_TRUE(h.left == d.left && h.leftDepth == d.leftDepth && h.right == d.right && h.rightDepth == d.rightDepth)
             << label << "layer " << k << " pixel " << p;
         inside += h.left > 0.0f || (h.right > 0.0f && h.right < 1.0f);
+        ++reads;
       }
+      EXPECT_GT(reads, 50) << label << "layer " << k;
     }
     if (samples > 1) {
-      EXPECT_GT(inside, 100) << label;
+      EXPECT_GT(inside, 50) << label;
     }
     for (float coalesce : {0.0f, 0.5f, 2.0f})
       for (float overlap : {0.0f, 0.25f})
