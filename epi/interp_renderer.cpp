@@ -242,7 +242,8 @@ class InterpRenderer final : public Renderer {
                  RenderStats& stats) {
     const ShearingCamera sub = intervalCamera(cam, p.first, p.last, scanlines);
     IntoViews sink(into, scanlines.begin, p.first, cam.views());
-    if (options_.blend == Blend::None) return rasterizer_->rasterize(p.slices.vertices, p.slices.table, sub, row, sink, stats);
+    if (options_.blend == Blend::None)
+      return rasterizer_->rasterize(p.slices.vertices, p.slices.table, sub, row, sink, stats);
     std::vector<Image> joint = draw(p.slices, p.slices.table, sub, row, stats);
     const auto ofB = [&](uint32_t t) { return p.slices.layerOf[t] >= p.firstOfB; };
     const std::vector<Image> a = draw(p.slices, p.slices.table.keeping([&](uint32_t t) { return !ofB(t); }), sub,

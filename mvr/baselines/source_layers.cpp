@@ -225,9 +225,9 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
   // The nearest layer's outline (PixelOutline per pixel) into `buffer`
   // from pixel `first` on: its geometry (or those `triangles` alone)
   // drawn once more at samplesFor(w) columns a pixel, each pixel's samples
-  // reduced on the GPU. The peel's
-  // later layers need only the nearest, so this comes last; the next
-  // peel's start() begins the pipeline at its own width again.
+  // reduced on the GPU. The peel's later layers need only the nearest, so
+  // this comes last; the next peel's start() begins the pipeline at its
+  // own width again.
   void drawOutline(const ShearingCamera& cam, const Peel& p, GLuint buffer, uint32_t first,
                    const std::vector<uint32_t>* triangles = nullptr) {
     const int w = cam.width(), h = cam.height(), n = samplesFor(w);

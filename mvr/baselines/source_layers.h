@@ -40,7 +40,9 @@ struct SourceLayer {
   std::vector<glm::vec4> normals;
   // The nearest layer's outline within its pixels, per pixel, where the
   // renderer samples it finer (makeSourceLayerRenderer's outlineSamples);
-  // empty otherwise and for the layers behind.
+  // empty otherwise and for the layers behind. Only the pixels a slicer
+  // reads have one (covered beside an empty pixel: outlinePixels in
+  // mvr/baselines/outline_triangles.h); the others hold PixelOutline{}.
   std::vector<PixelOutline> outline;
 };
 
