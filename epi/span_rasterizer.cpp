@@ -171,7 +171,11 @@ class SpanRasterizer final : public EpiRasterizer {
                  Image& epi, std::vector<float>& depth) const {
     const shading::ShadingPlan& plan = shading_.plan;
     const int w = epi.width;
-    if (colors.vector || plan.uv >= 0 || plan.position >= 0 || !paths_.fastDiffuse) {
+    // A vector of one texel and no highlight (interp's slice of a source
+    // pixel) is that texel's colour at every u: vectorColor's exact value.
+    const bool oneTexel = colors.vector && colors.vector->length == 1 && colors.vector->knotCount == 0 &&
+                          type_ != PixelType::F32;
+    if ((colors.vector && !oneTexel) || plan.uv >= 0 || plan.position >= 0 || !paths_.fastDiffuse) {
       auto run = [&](int i, int x0, int x1, float xa, float width) {
         float* dz = depth.data() + size_t(i) * w;
         for (int x = x0; x < x1; ++x) {
@@ -189,7 +193,13 @@ class SpanRasterizer final : public EpiRasterizer {
     }
     auto plain = [&](auto encode, size_t pixelBytes) {
       const PlainSlice slice(pst, piece.front);
-      const SliceCodes codes = pixelBytes == 4 ? sliceCodes(pst, piece.front, encode, thresholds_) : SliceCodes{};
+      SliceCodes codes;
+      if (oneTexel) {
+        codes.kind = SliceCodes::Kind::Flat;
+        encode(codes.pixel.data(), glm::clamp(glm::vec3(colors.texels->texels()[size_t(colors.vector->base)]), 0.0f, 1.0f));
+      } else if (pixelBytes == 4) {
+        codes = sliceCodes(pst, piece.front, encode, thresholds_);
+      }
       const bool flat = codes.kind == SliceCodes::Kind::Flat;
       walkPiece(
           pst, piece, w, epi.height, paths_.walk,

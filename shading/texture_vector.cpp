@@ -64,6 +64,7 @@ void TextureVectors::addLevels(int base, int k) {
 
 // Keep in step with the GLSL below.
 glm::vec4 TextureVectors::sample(int base, int k, float u, float texelsPerPixel) const {
+  if (k == 1) return texels_[size_t(base)];  // what the mixes below give, without their rounding
   const int maxLevel = std::countr_zero(unsigned(k));
   const float lod = std::clamp(std::log2(std::max(texelsPerPixel, 1.0f)), 0.0f, float(maxLevel));
   auto level = [&](int l) {
@@ -88,6 +89,7 @@ vec4 textureVectorLevel(samplerBuffer vectors, int base, float k, int l, float u
   return mix(texelFetch(vectors, start + i0), texelFetch(vectors, start + i1), s - f0);
 }
 vec4 sampleTextureVector(samplerBuffer vectors, int base, float k, float u, float texelsPerPixel) {
+  if (k == 1.0) return texelFetch(vectors, base);
   float maxLevel = log2(k);
   float lod = clamp(log2(max(texelsPerPixel, 1.0)), 0.0, maxLevel);
   int l0 = int(floor(lod)), l1 = min(l0 + 1, int(maxLevel));

@@ -3,10 +3,13 @@
 #include <gtest/gtest.h>
 
 #include "epi/epi_rasterizer.h"
+#include "mvr/baselines/source_layers.h"
 #include "mvr/io/scene_io.h"
 #include "shading/lighting.h"
 #include "slicing/extreme_vertices.h"
+#include "slicing/image_slices.h"
 #include "tests/support/capture_sink.h"
+#include "tests/support/gl_fixture.h"
 #include "tests/support/render_helpers.h"
 
 namespace mvr {
@@ -89,6 +92,46 @@ TEST(SpanRasterizer, EveryPathFillsTheSameBytes) {
       for (const auto& [at, epi] : reference)
         ASSERT_EQ(epis.at(at).bytes, epi.bytes) << "type " << int(type) << ", walk " << int(paths.walk)
                                                 << ", fast " << paths.fastDiffuse << ", scanline " << at.second;
+    }
+  }
+}
+
+// interp's slices carry vectors of their source pixels: one texel for a
+// lone pixel (its colour at every u, so the fast fill takes it), more for
+// a coalesced run (the general fill). Both fills give the same bytes.
+TEST(SpanRasterizer, VectorSlicesFillTheSameBytesOnEveryPath) {
+  test::sharedContext();
+  const Scene scene = loadScene(test::assetPath("default.json"));
+  const ShearingCamera cam(*scene.camera, 96, 72, 24);
+  const double track = cam.spec().trackRight - cam.spec().trackLeft;
+  RenderStats stats;
+  std::vector<SourceLayer> layers;
+  for (double x : {cam.viewX(0), cam.viewX(23)})
+    for (SourceLayer& l : makeSourceLayerRenderer(scene)->render(cam, {x, 0.0}, 2, track, stats))
+      layers.push_back(std::move(l));
+  using Walk = SpanPaths::Walk;
+  for (float coalesce : {0.0f, 2.0f}) {
+    const ImageSlices slices = sliceSourceLayers(layers, cam, 0, {.coalesce = coalesce});
+    size_t lone = 0;
+    for (const SliceVector& vector : slices.vertices.vectors) lone += vector.length == 1;
+    const size_t count = slices.vertices.vectors.size();
+    if (coalesce == 0.0f) {
+      EXPECT_EQ(lone, count) << "uncoalesced, every slice is one pixel's";
+    } else {
+      EXPECT_LT(lone, count * 9 / 10) << "coalesced runs should give longer vectors";
+    }
+    for (PixelType type : {PixelType::U8, PixelType::Srgb8}) {
+      auto render = [&](SpanPaths paths) {
+        test::CaptureSink sink;
+        makeSpanRasterizer(type, {.sliceVectors = true}, paths)
+            ->rasterize(slices.vertices, slices.table, cam, 0, sink, stats);
+        return sink.epis;
+      };
+      const auto reference = render({Walk::Rows, false});
+      for (SpanPaths paths : {SpanPaths{Walk::Rows, true}, SpanPaths{Walk::Columns, true}, SpanPaths{Walk::Auto, true}})
+        for (const auto& [at, epi] : render(paths))
+          ASSERT_EQ(epi.bytes, reference.at(at).bytes) << "coalesce " << coalesce << ", type " << int(type)
+                                                       << ", walk " << int(paths.walk) << ", scanline " << at.second;
     }
   }
 }
