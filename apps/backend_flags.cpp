@@ -44,6 +44,11 @@ void BackendFlags::add(CLI::App& app) {
                      "theta_j))^4")
           ->type_name("A")
           ->capture_default_str(),
+      app.add_option("--flatness", warp.flatness,
+                     "warp: merge a reference's grid cells into one quad where that moves no vertex more than "
+                     "PX pixels in the farthest view (0: only planes merge)")
+          ->type_name("PX")
+          ->capture_default_str(),
   };
   interpOptions_ = {
       app.add_option("--max-layers", interp.maxLayers, "interp: depth-peeled layers per source view")

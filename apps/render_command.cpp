@@ -386,6 +386,11 @@ struct RenderFlags {
     app.add_option("--penalty", warp.penalty, "growth a of the occlusion penalty (seed eq. 5-2)")
         ->type_name("A")
         ->capture_default_str();
+    app.add_option("--flatness", warp.flatness,
+                   "merge grid cells into one quad where that moves no vertex more than PX pixels in the "
+                   "farthest view (0: only planes merge)")
+        ->type_name("PX")
+        ->capture_default_str();
   }
 
   void addStreamOwn(CLI::App& app) {

@@ -103,6 +103,7 @@ void warpOption(const std::string& token, WarpOptions& o, const char* where) {
   if (key == 't') o.tau = std::strtof(text + 1, &end);
   else if (key == 'a') o.penalty = std::strtof(text + 1, &end);
   else if (key == 'b') o.budget = int(std::strtol(text + 1, &end, 10));
+  else if (key == 'f') o.flatness = std::strtof(text + 1, &end);
   if (!end || *end != '\0') fail(where, "unknown warp option '" + token + "'");
 }
 

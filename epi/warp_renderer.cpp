@@ -17,6 +17,7 @@ void validate(const WarpOptions& o) {
   if (!(o.tau > 0.0f && o.tau < 1.0f)) fail("--tau", "expected a relative depth step in (0, 1)");
   if (!(o.penalty >= 0.0f && std::isfinite(o.penalty))) fail("--penalty", "expected a finite value >= 0");
   if (o.budget < 2) fail("--budget", "expected at least 2 source views");
+  if (!(o.flatness >= 0.0f && o.flatness <= 16.0f)) fail("--flatness", "expected 0 to 16 pixels");
 }
 
 namespace {
@@ -39,7 +40,12 @@ class WarpRenderer final : public Renderer {
         type_(type),
         warp_(options.tau, options.penalty),
         sources_(scene ? makeSourceLayerRenderer(*scene) : nullptr) {
-    for (const RgbdView& view : captured) captured_.push_back({WarpReference::upload(view, options_.tau)});
+    // A captured reference serves the views between it and the others.
+    for (const RgbdView& view : captured) {
+      double baseline = 0.0;
+      for (const RgbdView& other : captured) baseline = std::max(baseline, glm::length(other.center() - view.center()));
+      captured_.push_back({WarpReference::upload(view, options_.tau, options_.flatness, baseline)});
+    }
     if (!scene && captured_.empty()) fail("warp", "no references");
   }
 
@@ -133,7 +139,16 @@ class WarpRenderer final : public Renderer {
       for (size_t k = 0; k < view.depth.values.size(); ++k)
         view.depth.values[k] = cameraDepth(cam.spec(), layers[0].depth[k]);
     }
-    return {WarpReference::upload(view, options_.tau), x};
+    // Both references of a view are warped to it: any view may be drawn
+    // from a source, as far as the track's far corners.
+    double baseline = 0.0;
+    for (int v : {0, cam.views() - 1})
+      for (int r : {0, cam.rows() - 1})
+        baseline = std::max(baseline, glm::length(glm::dvec2(cam.viewX(v) - x, cam.rowY(r) - y)));
+    Reference r{WarpReference::upload(view, options_.tau, options_.flatness, baseline), x};
+    // What every view draws of it: a CPU GL pays per triangle.
+    stats.counters["reference_triangles"] += double((r.gpu.triangleIndexCount + r.gpu.splatIndexCount) / 3);
+    return r;
   }
 
   WarpOptions options_;

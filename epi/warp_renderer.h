@@ -27,6 +27,12 @@ struct WarpOptions {
   // by much more than 2% of their depth.
   float tau = 0.02f;
   float penalty = 30.0f;  // a of eq. 5-2, the seed's value for its datasets
+  // Pixels a vertex of a reference's grid may move, in the farthest view
+  // the reference serves, where grid cells on a near-plane merge into one
+  // quad (GridTriangles, epi/gpu/depth_warp.cpp): fewer triangles a view
+  // (a CPU GL pays per triangle) against the surface's curvature inside a
+  // quad. 0: only planes merge. Measured (docs/BENCHMARKS.md).
+  float flatness = 0.15f;
   int budget = 9;         // hierarchical: source views per row at most
   double holeFraction = 1e-3;
 };

@@ -223,14 +223,17 @@ int gridPixel(int k, int n) { return std::clamp(int(std::floor(std::clamp(float(
 // with a vertex on an empty pixel would draw nothing, so it is left out of
 // the reference's list rather than transformed for every view; most of a
 // scene's image is background. And where a rectangle of cells lies on a
-// plane (no occlusion label, 1/z affine over all of its vertices: a
-// plane's 1/z is affine in its image), the rectangle is one quad: its
-// inner vertices would land on the quad's plane anyway. Triangles are what
-// a CPU rasterizer pays for per view.
+// plane (no occlusion label, 1/z affine over all of its vertices within
+// `deviation`: a plane's 1/z is affine in its image), the rectangle is one
+// quad: its inner vertices land within that of the quad's plane. A vertex
+// at camera z moves f e / z pixels in a view e from the reference (focal
+// length f in pixels), so a deviation of 1/z moves it f e times that.
+// Triangles are what a CPU rasterizer pays for per view.
 class GridTriangles {
  public:
-  GridTriangles(const DepthImage& d, const std::vector<float>& labels, float tau)
-      : tau_(tau), gw_(d.width + 2), gh_(d.height + 2), valid_(size_t(gw_) * gh_), flat_(size_t(gw_) * gh_),
+  GridTriangles(const DepthImage& d, const std::vector<float>& labels, float tau, float deviation)
+      : tau_(tau), deviation_(deviation), gw_(d.width + 2), gh_(d.height + 2), valid_(size_t(gw_) * gh_),
+        flat_(size_t(gw_) * gh_),
         inverse_(size_t(gw_) * gh_), merged_(size_t(gw_) * gh_) {
     for (int j = 0; j < gh_; ++j)
       for (int i = 0; i < gw_; ++i) {
@@ -284,8 +287,9 @@ class GridTriangles {
   }
 
  private:
-  static constexpr int kLongest = 32;      // cells along a side of a rectangle
-  static constexpr float kPlanar = 2e-4f;  // largest deviation of 1/z from the plane, relative
+  static constexpr int kLongest = 32;  // cells along a side of a rectangle
+  // Beside the allowed deviation, float rounding of 1/z and of the fit.
+  static constexpr float kRounding = 1e-6f;
 
   size_t at(int i, int j) const { return size_t(j) * gw_ + i; }
 
@@ -315,7 +319,7 @@ class GridTriangles {
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) {
         const size_t k = at(i, j);
-        if (!flat_[k] || std::abs(p(i, j) - inverse_[k]) > kPlanar * inverse_[k]) return std::nullopt;
+        if (!flat_[k] || std::abs(p(i, j) - inverse_[k]) > deviation_ + kRounding * inverse_[k]) return std::nullopt;
       }
     return p;
   }
@@ -331,7 +335,7 @@ class GridTriangles {
     return {i1, j1};
   }
 
-  float tau_;
+  float tau_, deviation_;  // deviation: of 1/z from a merged rectangle's plane, at most
   int gw_, gh_;
   std::vector<uint8_t> valid_, flat_;
   std::vector<float> inverse_;
@@ -372,7 +376,7 @@ float warpWeight(float theta0, float theta1, float z0, float z1, float occ0, flo
   return std::clamp(w, 0.0f, 1.0f);
 }
 
-WarpReference WarpReference::upload(const RgbdView& view, float tau) {
+WarpReference WarpReference::upload(const RgbdView& view, float tau, float flatness, double baseline) {
   const int w = view.color.width, h = view.color.height;
   if (view.color.type != PixelType::F32) fail("RGB-D reference", "colour must be float");
   if (view.depth.width != w || view.depth.height != h)
@@ -394,7 +398,9 @@ WarpReference WarpReference::upload(const RgbdView& view, float tau) {
   r.splatVertices = gl::makeBuffer(splats.vertices.data(), splats.vertices.size());
   r.splatIndices = gl::makeBuffer(splats.indices.data(), splats.indices.size());
   r.splatIndexCount = splats.indices.size();
-  const auto [triangles, sheets] = GridTriangles(view.depth, labels, tau).lists();
+  const double focal = std::max(std::abs(view.K[0][0]), std::abs(view.K[1][1]));
+  const float deviation = flatness > 0.0f && focal * baseline > 0.0 ? float(flatness / (focal * baseline)) : 0.0f;
+  const auto [triangles, sheets] = GridTriangles(view.depth, labels, tau, deviation).lists();
   r.triangles = gl::makeBuffer(triangles.data(), triangles.size());
   r.triangleIndexCount = triangles.size();
   r.sheetIndexStart = sheets;

@@ -77,8 +77,11 @@ struct WarpReference {
   glm::vec3 center{0.0f};
 
   // The labels are view independent: made here once, with tau (DepthWarp).
+  // A rectangle of grid cells becomes one quad where that moves none of
+  // its vertices more than `flatness` pixels in a view `baseline` (world
+  // units) from the reference's centre (0: none merged but exact planes).
   // Needs a current GL context.
-  static WarpReference upload(const RgbdView& view, float tau);
+  static WarpReference upload(const RgbdView& view, float tau, float flatness = 0.0f, double baseline = 0.0);
 };
 
 // The virtual camera of one view.
