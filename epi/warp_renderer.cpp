@@ -43,7 +43,8 @@ class WarpRenderer final : public Renderer {
     // A captured reference serves the views between it and the others.
     for (const RgbdView& view : captured) {
       double baseline = 0.0;
-      for (const RgbdView& other : captured) baseline = std::max(baseline, glm::length(other.center() - view.center()));
+      for (const RgbdView& other : captured)
+        baseline = std::max(baseline, glm::length(other.center() - view.center()));
       captured_.push_back({WarpReference::upload(view, options_.tau, options_.flatness, baseline)});
     }
     if (!scene && captured_.empty()) fail("warp", "no references");

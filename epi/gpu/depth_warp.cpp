@@ -233,8 +233,7 @@ class GridTriangles {
  public:
   GridTriangles(const DepthImage& d, const std::vector<float>& labels, float tau, float deviation)
       : tau_(tau), deviation_(deviation), gw_(d.width + 2), gh_(d.height + 2), valid_(size_t(gw_) * gh_),
-        flat_(size_t(gw_) * gh_),
-        inverse_(size_t(gw_) * gh_), merged_(size_t(gw_) * gh_) {
+        flat_(size_t(gw_) * gh_), inverse_(size_t(gw_) * gh_), merged_(size_t(gw_) * gh_) {
     for (int j = 0; j < gh_; ++j)
       for (int i = 0; i < gw_; ++i) {
         const int x = gridPixel(i, d.width), y = gridPixel(j, d.height);
@@ -319,7 +318,8 @@ class GridTriangles {
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) {
         const size_t k = at(i, j);
-        if (!flat_[k] || std::abs(p(i, j) - inverse_[k]) > deviation_ + kRounding * inverse_[k]) return std::nullopt;
+        if (!flat_[k] || std::abs(p(i, j) - inverse_[k]) > deviation_ + kRounding * inverse_[k])
+          return std::nullopt;
       }
     return p;
   }
