@@ -261,12 +261,6 @@ class InterpRenderer final : public Renderer {
   // The EPIs of `table`'s scanlines in cam's share, as copies.
   std::vector<Image> draw(const ImageSlices& slices, const SliceTable& table, const ShearingCamera& cam, int row,
                           RenderStats& stats) {
-    return kept(slices.vertices, table, cam, row, stats);
-  }
-  // The same from any vertices and table the rasterizer takes.
-  template <class Vertices, class Table>
-  std::vector<Image> kept(const Vertices& vertices, const Table& table, const ShearingCamera& cam, int row,
-                          RenderStats& stats) {
     struct Keep final : FrameSink {
       std::vector<Image> epis;
       int first = 0;
@@ -275,7 +269,7 @@ class InterpRenderer final : public Renderer {
     } keep;
     keep.first = cam.share().scanlines.begin;
     keep.epis.resize(size_t(cam.share().scanlines.size()));
-    rasterizer_->rasterize(vertices, table, cam, row, keep, stats);
+    rasterizer_->rasterize(slices.vertices, table, cam, row, keep, stats);
     return std::move(keep.epis);
   }
 

@@ -172,7 +172,7 @@ class SpanRasterizer final : public EpiRasterizer {
     const shading::ShadingPlan& plan = shading_.plan;
     const int w = epi.width;
     // A vector of one texel and no highlight (interp's slice of a source
-    // pixel) is that texel's colour at every u: vectorColor's exact value.
+    // pixel) has vectorColor's value at any u, view and width: that texel.
     const bool oneTexel = colors.vector && colors.vector->length == 1 && colors.vector->knotCount == 0 &&
                           type_ != PixelType::F32;
     if ((colors.vector && !oneTexel) || plan.uv >= 0 || plan.position >= 0 || !paths_.fastDiffuse) {
@@ -196,7 +196,7 @@ class SpanRasterizer final : public EpiRasterizer {
       SliceCodes codes;
       if (oneTexel) {
         codes.kind = SliceCodes::Kind::Flat;
-        encode(codes.pixel.data(), glm::clamp(glm::vec3(colors.texels->texels()[size_t(colors.vector->base)]), 0.0f, 1.0f));
+        encode(codes.pixel.data(), glm::clamp(vectorColor(colors, 0.0f, 1.0f, 0), 0.0f, 1.0f));
       } else if (pixelBytes == 4) {
         codes = sliceCodes(pst, piece.front, encode, thresholds_);
       }
