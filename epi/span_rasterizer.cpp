@@ -53,20 +53,28 @@ class SpanRasterizer final : public EpiRasterizer {
     if (!fits) ring_.clear();
     ring_.resize(std::max(ring_.size(), size_t(window)), Image(cam.width(), cam.views(), type_));
     ScopedStage s(stats.times, "raster");  // with the hand-over beside it
+    // EPIs the sink lends memory for are filled there and not handed on.
+    std::vector<uint8_t*> memory(size_t(lines.size()));
+    for (int j = lines.begin; j < lines.end; ++j)
+      memory[size_t(j - lines.begin)] = sink.epiMemory(row, j, cam.width(), cam.views(), type_);
     parallelOrdered(
         lines.begin, lines.end, window,
         [&](int j) {
           thread_local std::vector<float> depth;  // a worker's scratch, reused across EPIs
-          fillEpi(v, table, cam, j, ring_[size_t(j - lines.begin) % window], depth);
+          uint8_t* lent = memory[size_t(j - lines.begin)];
+          Image& own = ring_[size_t(j - lines.begin) % window];
+          fillEpi(v, table, cam, j, lent ? PixelRows(lent, cam.width(), cam.views(), type_) : PixelRows(own), depth);
         },
-        [&](int j) { sink.putEpiInPlace(row, j, ring_[size_t(j - lines.begin) % window]); });
+        [&](int j) {
+          if (!memory[size_t(j - lines.begin)]) sink.putEpiInPlace(row, j, ring_[size_t(j - lines.begin) % window]);
+        });
   }
 
  private:
   void fillEpi(const ExtremeVertices& v, const SliceTable& table, const ShearingCamera& cam, int j,
-               Image& epi, std::vector<float>& depth) const {
+               const PixelRows& epi, std::vector<float>& depth) const {
     const int w = cam.width(), n = cam.views();
-    std::fill(epi.bytes.begin(), epi.bytes.end(), uint8_t(0));
+    std::memset(epi.data, 0, epi.bytes());
     depth.assign(size_t(w) * n + 3, 0.0f);  // reversed Z: 0 is far; 3 floats for plainRun's last lanes
     for (const Slice& s : table.scanline(j)) {
       auto [e0, e1] = sliceEnds(v, s);
@@ -168,7 +176,7 @@ class SpanRasterizer final : public EpiRasterizer {
   // four pixels at a time (plainRun) with the same arithmetic in every
   // lane, so they get the same bytes as the general path.
   void fillPiece(const Pst& pst, const PstPiece& piece, uint32_t material, Colors colors,
-                 Image& epi, std::vector<float>& depth) const {
+                 const PixelRows& epi, std::vector<float>& depth) const {
     const shading::ShadingPlan& plan = shading_.plan;
     const int w = epi.width;
     // A vector of one texel and no highlight (interp's slice of a source
@@ -302,7 +310,7 @@ class SpanRasterizer final : public EpiRasterizer {
     return c + highlight(colors.knots + sv.firstKnot, sv.knotCount, i + 0.5f);
   }
 
-  void store(Image& img, int x, int y, const glm::vec3& c) const {
+  void store(const PixelRows& img, int x, int y, const glm::vec3& c) const {
     const glm::vec3 v = glm::clamp(c, 0.0f, 1.0f);
     uint8_t* p = img.row(y) + size_t(x) * 4 * (type_ == PixelType::F32 ? 4 : 1);
     if (type_ == PixelType::U8) storeU8(p, v);

@@ -35,6 +35,21 @@ struct Image {
   void setLinear(int x, int y, const glm::vec4& v);
 };
 
+// Rows of pixels in memory someone else owns (a run of an image's rows, a
+// sink's): what a fill writes into when it writes in place.
+struct PixelRows {
+  uint8_t* data = nullptr;
+  int width = 0, height = 0;
+  PixelType type = PixelType::U8;
+
+  PixelRows() = default;
+  PixelRows(uint8_t* d, int w, int h, PixelType t) : data(d), width(w), height(h), type(t) {}
+  explicit PixelRows(Image& image) : PixelRows(image.bytes.data(), image.width, image.height, image.type) {}
+  size_t rowBytes() const { return size_t(width) * 4 * Image::channelBytes(type); }
+  size_t bytes() const { return rowBytes() * size_t(height); }
+  uint8_t* row(int y) const { return data + size_t(y) * rowBytes(); }
+};
+
 // One float per pixel, rows top first: a depth map (mvr/depth.h).
 struct DepthImage {
   int width = 0, height = 0;

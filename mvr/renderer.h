@@ -26,6 +26,16 @@ class FrameSink {
   // stream's queue), instead of copying it. The producer writes every
   // pixel again before it hands the image on again.
   virtual void putEpiInPlace(int row, int scanline, Image& epi) { putEpi(row, scanline, epi); }
+  // Memory where the producer may write EPI (row, scanline) itself: width
+  // x views pixels of `type`, rows contiguous, owned by the sink and valid
+  // until the producer's call that asked for it returns. Once that call
+  // returns the EPI is complete there, and the producer does not hand it
+  // on. Null (the default): the producer fills an image of its own and
+  // hands it on. For a sink that would copy each EPI into a larger image
+  // (interp's pieces into the EPIs of all views): the copy goes.
+  virtual uint8_t* epiMemory(int /*row*/, int /*scanline*/, int /*width*/, int /*views*/, PixelType) {
+    return nullptr;
+  }
   virtual void finish() {}
 };
 

@@ -24,6 +24,7 @@
 #include <memory>
 #include <optional>
 
+#include "epi/epi_batch.h"
 #include "epi/epi_rasterizer.h"
 #include "epi/gpu/epi_pass.h"
 #include "epi/gpu/pst_geometry.h"
@@ -147,7 +148,7 @@ class GlRasterizer final : public EpiRasterizer {
         if (materials_) materials_->bind(EpiPass::kTextureUnit);
       }
       // The batch's EPIs, filled chunk by chunk as the ring hands them over.
-      const std::vector<std::shared_ptr<Image>> epis = pool.take(ownEnd - own, w, n, type_);
+      const EpiBatch epis(sink, pool, row, {own, ownEnd}, w, n, type_);
       // A share that owns part of the batch clears and draws only its rows:
       // on a CPU implementation of GL the clear of a whole batch costs as
       // much as filling it.
@@ -168,19 +169,14 @@ class GlRasterizer final : public EpiRasterizer {
           gl::GpuClock::mark("readback");
           if (views == chunkRows) {
             // The batch's EPIs are stacked without gaps: one read for all.
-            std::vector<std::byte*> rows;
-            for (const auto& epi : epis) rows.push_back(reinterpret_cast<std::byte*>(epi->row(view0)));
-            ring.readRowRuns(target, (own - first) * chunkRows, views, rows);
+            ring.readRowRuns(target, (own - first) * chunkRows, views, epis.rows(view0));
           } else {
             for (int j = own; j < ownEnd; ++j)
-              ring.readRows(target, (j - first) * chunkRows, views,
-                            reinterpret_cast<std::byte*>(epis[j - own]->row(view0)));
+              ring.readRows(target, (j - first) * chunkRows, views, epis.rows(j - own, view0));
           }
         }
         if (c + 1 < chunks) continue;
-        ring.submit([=, &sink] {
-          for (int j = own; j < ownEnd; ++j) sink.putEpiInPlace(row, j, *epis[j - own]);
-        });
+        ring.submit([=, &sink] { epis.handOn(sink); });
       }
       if (part) gl::Disable(GL_SCISSOR_TEST);
     }

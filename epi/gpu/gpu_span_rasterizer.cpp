@@ -18,6 +18,7 @@
 #include <array>
 #include <optional>
 
+#include "epi/epi_batch.h"
 #include "epi/epi_rasterizer.h"
 #include "epi/gpu/pst_geometry.h"
 #include "mvr/color.h"
@@ -309,17 +310,13 @@ class GpuSpanRasterizer final : public EpiRasterizer {
         gl::GpuClock::mark("raster");
         dispatch(table, first, count, out, n, w, tile);
       }
-      const std::vector<std::shared_ptr<Image>> epis = pool.take(count, w, n, type_);
+      const EpiBatch epis(sink, pool, row, {first, first + count}, w, n, type_);
       {
         ScopedStage s(stats.times, "readback");
         gl::GpuClock::mark("readback");
-        std::vector<std::byte*> dsts;
-        for (const auto& epi : epis) dsts.push_back(reinterpret_cast<std::byte*>(epi->row(0)));
-        ring.readBuffer(out.id(), size_t(count) * epiBytes, dsts);
+        ring.readBuffer(out.id(), size_t(count) * epiBytes, epis.rows(0));
       }
-      ring.submit([=, &sink] {
-        for (int e = 0; e < count; ++e) sink.putEpiInPlace(row, first + e, *epis[size_t(e)]);
-      });
+      ring.submit([=, &sink] { epis.handOn(sink); });
     }
     ring.drain();
     stats.times.add("gpu_wait", ring.waitSeconds());

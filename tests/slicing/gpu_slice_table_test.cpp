@@ -1,10 +1,14 @@
 // The slice table in GPU buffers: a round trip keeps every entry, and the
-// rasterizers give the same EPIs from either form of the table.
+// rasterizers give the same EPIs from either form of the table, into
+// their own images or into memory a sink lends.
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <map>
+#include <vector>
 
 #include "epi/epi_rasterizer.h"
+#include "mvr/gl/readback_ring.h"
 #include "mvr/io/scene_io.h"
 #include "shading/lighting.h"
 #include "slicing/extreme_vertices.h"
@@ -77,6 +81,58 @@ TEST_F(GpuSliceTableTest, RasterizersGiveTheSameEpisFromEitherForm) {
     for (const auto& [key, epi] : fromHost.epis)
       ASSERT_EQ(epi.bytes, fromDevice.epis.at(key).bytes) << pstModeName(mode) << " scanline " << key.second;
   }
+}
+
+// Lends memory (FrameSink::epiMemory) for every other scanline, filled
+// with a pattern no rasterizer writes, and keeps what is handed on.
+class LendingSink final : public FrameSink {
+ public:
+  std::map<int, std::vector<uint8_t>> lent;
+  std::map<int, Image> handed;
+  void putEpi(int, int scanline, const Image& epi) override { handed[scanline] = epi; }
+  uint8_t* epiMemory(int, int scanline, int width, int views, PixelType type) override {
+    if (scanline % 2) return nullptr;
+    std::vector<uint8_t>& m = lent[scanline];
+    m.assign(size_t(width) * views * 4 * Image::channelBytes(type), 0xA5);
+    return m.data();
+  }
+};
+
+// Where a sink lends memory, every rasterizer fills it with the bytes it
+// would have handed on, and hands on only the EPIs it filled itself; with
+// the readback ring's reads staged too (a GPU's path: they land later).
+TEST_F(GpuSliceTableTest, RasterizersFillTheMemoryASinkLends) {
+  const GpuSliceTable device = GpuSliceTable::upload(table);
+  auto check = [&](PstMode mode, PstBuilder builder, const std::string& label) {
+    auto rasterizer = makeRasterizer(mode, PixelType::U8, {}, builder);
+    test::CaptureSink own;
+    LendingSink lending;
+    RenderStats stats;
+    rasterizer->rasterize(vertices, table, *camera, 0, own, stats);
+    if (rasterizer->readsDeviceTable()) rasterizer->rasterize(vertices, device, *camera, 0, lending, stats);
+    else rasterizer->rasterize(vertices, table, *camera, 0, lending, stats);
+    ASSERT_EQ(lending.lent.size() + lending.handed.size(), size_t(camera->height())) << label;
+    for (const auto& [key, epi] : own.epis) {
+      const int j = key.second;
+      if (j % 2) {
+        ASSERT_TRUE(lending.handed.count(j)) << label << " scanline " << j;
+        EXPECT_EQ(lending.handed.at(j).bytes, epi.bytes) << label << " scanline " << j;
+      } else {
+        EXPECT_FALSE(lending.handed.count(j)) << label << " handed on lent scanline " << j;
+        EXPECT_EQ(lending.lent.at(j), epi.bytes) << label << " scanline " << j;
+      }
+    }
+  };
+  for (ReadbackStaging staging : {ReadbackStaging::Never, ReadbackStaging::Always}) {
+    setReadbackStaging(staging);
+    const std::string staged = staging == ReadbackStaging::Always ? ", staged" : "";
+    check(PstMode::Cpu, PstBuilder::Auto, "cpu");
+    check(PstMode::Spans, PstBuilder::Auto, "spans" + staged);
+    for (PstMode mode : {PstMode::Quad, PstMode::Strip, PstMode::Exact})
+      for (PstBuilder builder : {PstBuilder::Cpu, PstBuilder::Gpu})
+        check(mode, builder, pstModeName(mode) + std::string(builder == PstBuilder::Gpu ? " gpu" : " cpu") + staged);
+  }
+  setReadbackStaging(ReadbackStaging::Auto);
 }
 
 }  // namespace
