@@ -17,6 +17,15 @@
 
 #include "epi/pst.h"
 
+// Whether the fill is compiled a second time for x86-64-v2 (SSE4.1: ceil
+// and a lane select an instruction each), run where the CPU has it. v2
+// has no FMA, so both compute the same bytes.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define MVR_SPAN_V2 1
+#else
+#define MVR_SPAN_V2 0
+#endif
+
 namespace mvr::spans {
 
 // int(std::ceil(v)) for |v| up to 1e9, clamped beyond (an extrapolated

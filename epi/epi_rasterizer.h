@@ -96,6 +96,7 @@ std::unique_ptr<EpiRasterizer> makeRasterizer(PstMode mode, PixelType type,
 struct SpanPaths {
   enum class Walk { Auto, Rows, Columns } walk = Walk::Auto;
   bool fastDiffuse = true;  // four pixels at a time, and one encoding for a slice whose pixels share it
+  bool baselineIsa = false;  // x86-64's baseline code even where the CPU has x86-64-v2
 };
 
 // Exact spans on every core of the thread pool (mvr/parallel.h).

@@ -60,8 +60,9 @@ TEST(SpanRasterizer, SpansAreClippedAtTheEpiBordersOnly) {
 }
 
 // The row walk, the column walk and the fast diffuse fill are three ways
-// to the same spans: every EPI must have the same bytes whichever is
-// taken, in every pixel type. The lit teacup over a deep track gives
+// to the same spans, each compiled for x86-64 and, where the CPU has it,
+// x86-64-v2: every EPI must have the same bytes whichever is taken, in
+// every pixel type. The lit teacup over a deep track gives
 // slices from under a pixel to dozens of pixels wide, sloped both ways,
 // with colour that changes along most of them.
 TEST(SpanRasterizer, EveryPathFillsTheSameBytes) {
@@ -79,19 +80,21 @@ TEST(SpanRasterizer, EveryPathFillsTheSameBytes) {
   };
   using Walk = SpanPaths::Walk;
   for (PixelType type : {PixelType::U8, PixelType::Srgb8, PixelType::F32}) {
-    const auto reference = render(type, {Walk::Rows, false});
+    const auto reference = render(type, {Walk::Rows, false, true});
     size_t covered = 0;
     for (const auto& [at, epi] : reference)
       for (int i = 0; i < epi.height; ++i)
         for (int x = 0; x < epi.width; ++x) covered += epi.pixel(x, i).a > 0;
     ASSERT_GT(covered, size_t(96 * 72 * 40 / 10)) << "the teacup should fill a good part of the EPIs";
-    for (SpanPaths paths : {SpanPaths{Walk::Columns, false}, SpanPaths{Walk::Rows, true},
-                            SpanPaths{Walk::Columns, true}, SpanPaths{Walk::Auto, true}}) {
+    for (SpanPaths paths : {SpanPaths{Walk::Rows, false}, SpanPaths{Walk::Columns, false},
+                            SpanPaths{Walk::Rows, true}, SpanPaths{Walk::Columns, true}, SpanPaths{Walk::Auto, true},
+                            SpanPaths{Walk::Auto, true, true}}) {
       const auto epis = render(type, paths);
       ASSERT_EQ(epis.size(), reference.size());
       for (const auto& [at, epi] : reference)
         ASSERT_EQ(epis.at(at).bytes, epi.bytes) << "type " << int(type) << ", walk " << int(paths.walk)
-                                                << ", fast " << paths.fastDiffuse << ", scanline " << at.second;
+                                                << ", fast " << paths.fastDiffuse << ", baseline "
+                                                << paths.baselineIsa << ", scanline " << at.second;
     }
   }
 }
@@ -127,8 +130,9 @@ TEST(SpanRasterizer, VectorSlicesFillTheSameBytesOnEveryPath) {
             ->rasterize(slices.vertices, slices.table, cam, 0, sink, stats);
         return sink.epis;
       };
-      const auto reference = render({Walk::Rows, false});
-      for (SpanPaths paths : {SpanPaths{Walk::Rows, true}, SpanPaths{Walk::Columns, true}, SpanPaths{Walk::Auto, true}})
+      const auto reference = render({Walk::Rows, false, true});
+      for (SpanPaths paths : {SpanPaths{Walk::Rows, true}, SpanPaths{Walk::Columns, true}, SpanPaths{Walk::Auto, true},
+                              SpanPaths{Walk::Auto, true, true}})
         for (const auto& [at, epi] : render(paths))
           ASSERT_EQ(epi.bytes, reference.at(at).bytes) << "coalesce " << coalesce << ", type " << int(type)
                                                        << ", walk " << int(paths.walk) << ", scanline " << at.second;
