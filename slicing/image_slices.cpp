@@ -237,8 +237,7 @@ class LayerSlicer {
   // (bunny 160x120: 32.2 -> 32.3 dB).
   bool outlineEnd(const PixelOutline& o, const float* depth, int i, int dir, bool behind, double& end,
                   float& d) const {
-    const int next = i + dir;
-    if (next < 0 || next >= cam_.width() || depth[next] != 0.0f || o.right < 0.0f) return false;
+    if (!outlineRead(depth, cam_.width(), i, dir) || o.right < 0.0f) return false;
     float at = dir < 0 ? o.leftDepth : o.rightDepth;
     if (behind) {
       at += kBehindOutline * (d - at);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mvr/baselines/source_layers.h"
 #include "mvr/parallel.h"
 
 namespace mvr {
@@ -52,7 +53,7 @@ std::vector<uint8_t> outlinePixels(const std::vector<float>& depth, int width, i
     const float* d = depth.data() + size_t(j) * width;
     uint8_t* m = marked.data() + size_t(j) * width;
     for (int i = 0; i < width; ++i)
-      m[i] = d[i] != 0.0f && ((i > 0 && d[i - 1] == 0.0f) || (i + 1 < width && d[i + 1] == 0.0f));
+      m[i] = d[i] != 0.0f && (outlineRead(d, width, i, -1) || outlineRead(d, width, i, +1));
   }
   return marked;
 }

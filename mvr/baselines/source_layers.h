@@ -29,6 +29,15 @@ struct PixelOutline {
   float left = -1.0f, leftDepth = 0.0f, right = -1.0f, rightDepth = 0.0f;
 };
 
+// Whether a slicer reads the outline of pixel i of a row of the nearest
+// layer's depths toward dir (-1 left, +1 right): where its neighbour that
+// way lies in the image and is empty (LayerSlicer::outlineEnd; the GPU
+// slicer's GLSL copy is held to it by GpuImageSlicerTest).
+inline bool outlineRead(const float* depthRow, int width, int i, int dir) {
+  const int next = i + dir;
+  return next >= 0 && next < width && depthRow[next] == 0.0f;
+}
+
 struct SourceLayer {
   glm::dvec2 eye{0.0};        // camera x, y on the camera plane
   int layer = 0;              // 0 is the nearest
@@ -41,7 +50,7 @@ struct SourceLayer {
   // The nearest layer's outline within its pixels, per pixel, where the
   // renderer samples it finer (makeSourceLayerRenderer's outlineSamples);
   // empty otherwise and for the layers behind. Only the pixels a slicer
-  // reads have one (covered beside an empty pixel: outlinePixels in
+  // reads have one (covered beside an empty pixel, outlineRead: outlinePixels in
   // mvr/baselines/outline_triangles.h); the others hold PixelOutline{}.
   std::vector<PixelOutline> outline;
 };
