@@ -5,13 +5,16 @@
 // default scene and over hand-made layers for the edge cases.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "mvr/baselines/outline_triangles.h"
 #include "mvr/baselines/source_layers.h"
 #include "mvr/io/scene_io.h"
 #include "slicing/gpu/gpu_image_slicer.h"
+#include "slicing/gpu/gpu_source_visibility.h"
 #include "slicing/image_slices.h"
+#include "slicing/source_visibility.h"
 #include "tests/support/gl_fixture.h"
 
 namespace mvr {
@@ -142,7 +145,7 @@ TEST_F(GpuImageSlicerTest, TheStoreKeepsTheLayersTheReadBackPeelKeeps) {
 // Hand-made layers: textures uploaded, then appended as a renderer would.
 class HandLayers {
  public:
-  HandLayers(int w, int h) : w_(w), h_(h) { store.reset(w, h, 4); }
+  HandLayers(int w, int h) : w_(w), h_(h) { store.reset(w, h, 8); }
   void add(const SourceLayer& layer) {
     gl::Texture color(GL_TEXTURE_2D), depth(GL_TEXTURE_2D);
     gl::TextureStorage2D(color.id(), 1, GL_RGBA32F, w_, h_);
@@ -206,6 +209,81 @@ TEST_F(GpuImageSlicerTest, HandMadeLayersAndEdgeCases) {
   const GpuImageSlices empty = slicer.build(none, cam, {});
   EXPECT_EQ(empty.table.sliceCount(), 0u);
   EXPECT_EQ(empty.table.offsets().size(), size_t(cam.height()) + 1);
+}
+
+// Visibility on the store (GpuVisibility) against hideInvisible, its host
+// oracle, on copies of the same layers: in every layer behind a nearest
+// the same pixels dropped (the depths bit for bit) and the same counts;
+// the nearest layers untouched. Returns the pixels dropped.
+long expectSameVisibility(std::vector<SourceLayer> host, DeviceLayers& device, const ShearingCamera& cam,
+                          float overlap, const std::string& label) {
+  GpuVisibility visibility;
+  const std::vector<LayerVisibility> counts = visibility.hide(device, cam, overlap);
+  const size_t pixels = device.pixelsPerLayer();
+  const auto depths = test::download<float>(device.depthBuffer(), pixels * host.size());
+  std::vector<glm::dvec2> eyes;
+  for (const SourceLayer& l : host) eyes.push_back(l.eye);
+  const std::vector<int> front = nearestLayerOf(eyes);
+  EXPECT_EQ(counts.size(), host.size()) << label;
+  long hidden = 0;
+  for (size_t k = 0; k < host.size() && k < counts.size(); ++k) {
+    const long covered = long(std::count_if(host[k].depth.begin(), host[k].depth.end(), [](float d) { return d > 0.0f; }));
+    const long kept = front[k] == int(k) ? 0 : hideInvisible(host[size_t(front[k])], host[k], cam, overlap);
+    EXPECT_EQ(counts[k].covered, front[k] == int(k) ? 0 : covered) << label << " layer " << k;
+    EXPECT_EQ(counts[k].kept, kept) << label << " layer " << k;
+    if (front[k] != int(k)) hidden += covered - kept;
+    EXPECT_TRUE(std::equal(host[k].depth.begin(), host[k].depth.end(), depths.begin() + ptrdiff_t(k * pixels)))
+        << label << " layer " << k;
+  }
+  return hidden;
+}
+
+// Rendered layers of the cup (deep: its inside behind the rim) from the
+// middle of the track, where the front hides most, and an end; and
+// hand-made ones whose random holes and depth steps hide some back pixels
+// and open others.
+TEST_F(GpuImageSlicerTest, VisibilityDropsWhatTheHostDrops) {
+  const Scene scene = loadScene(test::assetPath("default.json"));
+  const ShearingCamera cam(*scene.camera, 120, 90, 9);
+  const double track = cam.spec().trackRight - cam.spec().trackLeft;
+  auto sources = makeSourceLayerRenderer(scene);
+  for (float overlap : {0.0f, 0.1f, 0.25f}) {
+    std::vector<SourceLayer> host;
+    DeviceLayers device;
+    device.reset(cam.width(), cam.height(), 8);
+    RenderStats stats;
+    for (double x : {cam.viewX(4), cam.viewX(0)}) {
+      for (SourceLayer& l : sources->render(cam, {x, 0.0}, 4, track, stats)) host.push_back(std::move(l));
+      sources->render(cam, {x, 0.0}, 4, track, stats, device);
+    }
+    ASSERT_EQ(device.count(), int(host.size()));
+    ASSERT_GT(device.count(), 2);
+    const long hidden = expectSameVisibility(host, device, cam, overlap, "rendered, overlap " + std::to_string(overlap));
+    // With no overlap every depth step is a crack that could open.
+    if (overlap > 0.0f) {
+      EXPECT_GT(hidden, 100) << overlap;
+    }
+  }
+  CameraSpec spec;
+  spec.distance = 4, spec.planeWidth = 2, spec.nearDistance = 1, spec.farDistance = 8;
+  spec.trackLeft = -1, spec.trackRight = 1;
+  const ShearingCamera hand(spec, 37, 5, 4);
+  HandLayers layers(hand.width(), hand.height());
+  // Walls at one depth with random holes, and random pixels behind them.
+  auto flat = [&](SourceLayer l, double Z) {
+    for (float& d : l.depth)
+      if (d > 0.0f) d = float(hand.project({0.0, 0.0, Z}, 0).z);
+    return l;
+  };
+  layers.add(flat(handLayer(hand, -1.0, 1, 0.02f), 0.2));
+  layers.add(flat(handLayer(hand, -1.0, 5, 0.3f), -0.2));
+  layers.add(handLayer(hand, 1.0, 2, 0.1f));  // sloped and stepped: cracks
+  layers.add(handLayer(hand, 1.0, 6, 0.0f));
+  // A whole wall: every back pixel but those within reach of the edges
+  // hidden.
+  layers.add(flat(handLayer(hand, 0.0, 7, 0.0f), 0.2));
+  layers.add(flat(handLayer(hand, 0.0, 8, 0.0f), -0.2));
+  EXPECT_GT(expectSameVisibility(layers.host, layers.store, hand, 0.25f, "hand-made"), 0);
 }
 
 }  // namespace
