@@ -11,6 +11,7 @@
 #include "mvr/parallel.h"
 #include "shading/shading_plan.h"
 #include "slicing/gpu/gpu_image_slicer.h"
+#include "slicing/gpu/gpu_source_visibility.h"
 #include "slicing/image_slices.h"
 #include "slicing/source_visibility.h"
 
@@ -97,10 +98,13 @@ class InterpRenderer final : public Renderer {
     const EpiShading shading{.sliceVectors = true, .sliceHighlights = splits_ > 0};
     rasterizer_ = makeRasterizer(options.mode, type, shading, options.builder);
     // Layers stay on the GPU when nothing needs their pixels on the host:
-    // no hole counting, visibility filter, split highlights or blending.
-    if (rasterizer_->readsDeviceTable() && options_.acquire != Acquire::Hierarchical &&
-        !options_.visibility && splits_ == 0 && options_.blend == Blend::None)
+    // no hole counting, split highlights or blending (visibility has its
+    // compute passes).
+    if (rasterizer_->readsDeviceTable() && options_.acquire != Acquire::Hierarchical && splits_ == 0 &&
+        options_.blend == Blend::None) {
       gpuSlicer_.emplace();
+      if (options_.visibility) gpuVisibility_.emplace();
+    }
   }
 
   std::string name() const override { return "interp"; }
@@ -341,31 +345,31 @@ class InterpRenderer final : public Renderer {
       int view, layer;  // layer -1: the source saw nothing
     };
     std::vector<PassThrough> passing;
-    int layersA = 0;  // the first source's layers, first in the store
-    for (size_t k = 0; k < xs.size(); ++k) {
-      const double x = xs[k];
+    std::vector<int> first, layers;  // per source: its first layer in the store, and how many it keeps
+    for (const double x : xs) {
       stats.counters["source_views"] += 1;
-      const int first = store_.count();
+      first.push_back(store_.count());
       gl::GpuClock::mark("acquire");
-      const int added =
-          sources_->render(sourceCamera(cam), {x, cam.rowY(row)}, options_.maxLayers, trackWidth(cam), stats, store_);
-      if (const int v = passesThrough() ? viewAt(cam, x) : -1; v >= 0) passing.push_back({v, added > 0 ? first : -1});
-      if (k == 0) layersA = store_.count();
+      layers.push_back(
+          sources_->render(sourceCamera(cam), {x, cam.rowY(row)}, options_.maxLayers, trackWidth(cam), stats, store_));
+      if (const int v = passesThrough() ? viewAt(cam, x) : -1; v >= 0)
+        passing.push_back({v, layers.back() > 0 ? first.back() : -1});
     }
-    stats.counters["layers"] += double(store_.count());
+    if (gpuVisibility_) hideOnGpu(cam, first, layers, stats);
+    for (const int n : layers) stats.counters["layers"] += double(n);
     // Dual: each half of the track from its near source's layers and the
     // far source's nearest (renderIntervals); the store's other layers
     // stay outlines to meet. Center: one source, drawn whole.
-    const std::vector<PieceLayers> parts =
-        pieceLayers(0, cam.views() - 1, layersA, store_.count() - layersA, halves());
+    const int layersB = layers.size() > 1 ? layers[1] : 0;
+    const std::vector<PieceLayers> parts = pieceLayers(0, cam.views() - 1, layers[0], layersB, halves());
     std::vector<GpuImageSlices> slices;
     {
       ScopedStage s(stats.times, "slicing");
       gl::GpuClock::mark("image_slicing");
       for (const PieceLayers& p : parts) {
         std::vector<uint8_t> keep(size_t(store_.count()), 0);
-        std::fill_n(keep.begin(), p.fromA, uint8_t(1));
-        std::fill_n(keep.begin() + layersA, p.fromB, uint8_t(1));
+        std::fill_n(keep.begin() + first[0], p.fromA, uint8_t(1));
+        if (p.fromB > 0) std::fill_n(keep.begin() + first[1], p.fromB, uint8_t(1));
         const ShearingCamera sub = parts.size() == 1 ? cam : intervalCamera(cam, p.first, p.last, cam.share().scanlines);
         slices.push_back(gpuSlicer_->build(store_, sub, {options_.overlap, options_.coalesce}, keep));
       }
@@ -388,6 +392,22 @@ class InterpRenderer final : public Renderer {
       rasterizer_->rasterize(slices[size_t(k)].vertices, slices[size_t(k)].table,
                              intervalCamera(cam, p.first, p.last, scanlines), row, pieceSink, stats);
     });
+  }
+
+  // The visibility filter on the store, as render()'s filter on the host:
+  // a source keeps its layers up to the first that the nearest hides
+  // whole (that one and those behind it go), the hidden pixels of the
+  // others dropped in place.
+  void hideOnGpu(const ShearingCamera& cam, const std::vector<int>& first, std::vector<int>& layers,
+                 RenderStats& stats) {
+    ScopedStage s(stats.times, "visibility");
+    const std::vector<LayerVisibility> seen = gpuVisibility_->hide(store_, cam, options_.overlap);
+    for (size_t source = 0; source < layers.size(); ++source)
+      for (int k = 1; k < layers[source]; ++k) {
+        const LayerVisibility& v = seen[size_t(first[source] + k)];
+        stats.counters["hidden_pixels"] += double(v.covered - v.kept);
+        if (v.kept == 0) layers[source] = k;
+      }
   }
 
   bool halves() const { return options_.halves && options_.blend == Blend::None; }
@@ -484,6 +504,7 @@ class InterpRenderer final : public Renderer {
   std::unique_ptr<SourceLayerRenderer> sources_;
   std::unique_ptr<EpiRasterizer> rasterizer_;
   std::optional<GpuImageSlicer> gpuSlicer_;  // when layers stay on the GPU
+  std::optional<GpuVisibility> gpuVisibility_;  // with them, for the visibility filter
   DeviceLayers store_;
   std::vector<Image> assembled_;  // a band's EPIs of all views (assemble), kept for the next
 };

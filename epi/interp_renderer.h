@@ -33,7 +33,7 @@ struct InterpOptions {
   PstMode mode = PstMode::Quad;  // exact for image slices in every mode
   // GL modes: where image slices and PSTs are built. On the GPU the source
   // layers stay in GPU memory (center and dual acquisition without
-  // visibility or splits; the rest slice on the CPU, PSTs still pulled).
+  // splits or blending; the rest slice on the CPU, PSTs still pulled).
   PstBuilder builder = PstBuilder::Auto;
   float overlap = 0.25f;    // pixels: neighbours join within 2x this drift (ImageSliceOptions)
   float coalesce = 0.0f;    // pixels a coalesced run may move a pixel; 0: off

@@ -511,8 +511,9 @@ TEST_F(InterpTest, CoalescingCutsSlicesAndKeepsTheSourceViewAndQuality) {
 // draws what the CPU-sliced, CPU-built geometry draws: at least 99.9% of
 // pixels identical, PSNR at least 45 dB, in every mode, with and without
 // coalesced runs (vectors longer than a texel, with their MIP chains).
-// Hierarchical acquisition counts holes on the host: it slices there and
-// still pulls its PSTs.
+// The visibility filter runs as compute passes there too (the same layers
+// and hidden pixels). Hierarchical acquisition counts holes on the host:
+// it slices there and still pulls its PSTs.
 TEST_F(InterpTest, GpuSlicingAndPstsMatchTheCpuPath) {
   Scene scene = loadScene(test::assetPath("default.json"));
   const ShearingCamera cam(*scene.camera, 96, 72, 7);
@@ -520,27 +521,35 @@ TEST_F(InterpTest, GpuSlicingAndPstsMatchTheCpuPath) {
     Acquire acquire;
     PstMode mode;
     float coalesce;
+    bool visibility = false;
   };
   std::vector<Case> cases;
   for (PstMode mode : {PstMode::Quad, PstMode::Strip, PstMode::Exact})
     for (float coalesce : {0.0f, 1.0f}) cases.push_back({Acquire::Dual, mode, coalesce});
   cases.push_back({Acquire::Center, PstMode::Quad, 1.0f});
+  cases.push_back({Acquire::Center, PstMode::Quad, 0.0f, true});
+  cases.push_back({Acquire::Dual, PstMode::Strip, 1.0f, true});
   cases.push_back({Acquire::Hierarchical, PstMode::Quad, 0.0f});
   for (const Case& c : cases) {
-    InterpOptions options{.acquire = c.acquire, .mode = c.mode, .coalesce = c.coalesce};
+    InterpOptions options{.acquire = c.acquire, .mode = c.mode, .coalesce = c.coalesce, .visibility = c.visibility};
     options.builder = PstBuilder::Gpu;
     RenderStats gpuStats, cpuStats;
     const auto gpu = test::renderViews(*makeInterpRenderer(scene, PixelType::U8, options), cam, gpuStats);
     options.builder = PstBuilder::Cpu;
     const auto cpu = test::renderViews(*makeInterpRenderer(scene, PixelType::U8, options), cam, cpuStats);
     const std::string label = std::string(acquireName(c.acquire)) + " " + pstModeName(c.mode) + " coalesce " +
-                              std::to_string(c.coalesce);
+                              std::to_string(c.coalesce) + (c.visibility ? " visibility" : "");
     EXPECT_EQ(gpuStats.notes["pst_builder"], "gpu") << label;
     EXPECT_EQ(cpuStats.notes["pst_builder"], "cpu") << label;
     EXPECT_EQ(gpuStats.notes["image_slicer"], c.acquire == Acquire::Hierarchical ? "cpu" : "gpu") << label;
     EXPECT_EQ(cpuStats.notes["image_slicer"], "cpu") << label;
     EXPECT_EQ(gpuStats.counters["slices"], cpuStats.counters["slices"]) << label;
     EXPECT_EQ(gpuStats.counters["slice_pixels"], cpuStats.counters["slice_pixels"]) << label;
+    EXPECT_EQ(gpuStats.counters["layers"], cpuStats.counters["layers"]) << label;
+    EXPECT_EQ(gpuStats.counters["hidden_pixels"], cpuStats.counters["hidden_pixels"]) << label;
+    if (c.visibility) {
+      EXPECT_GT(gpuStats.counters["hidden_pixels"], 0) << label;
+    }
     const auto d = test::compareViews(cpu, gpu);
     EXPECT_GE(d.minIdentical, 0.999) << label;
     EXPECT_GE(d.minPsnr, 45.0) << label;
