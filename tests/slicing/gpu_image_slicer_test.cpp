@@ -286,5 +286,46 @@ TEST_F(GpuImageSlicerTest, VisibilityDropsWhatTheHostDrops) {
   EXPECT_GT(expectSameVisibility(layers.host, layers.store, hand, 0.25f, "hand-made"), 0);
 }
 
+// Hole counts on the store (GpuVisibility::holes) against countHoles, its
+// host oracle: the same count for the layers of both sources and of one,
+// one layer a source (holes behind the rim) and four, in views between
+// the sources, with and without overlap.
+TEST_F(GpuImageSlicerTest, HoleCountsAreTheHosts) {
+  const Scene scene = loadScene(test::assetPath("default.json"));
+  const ShearingCamera cam(*scene.camera, 120, 90, 9);
+  const double track = cam.spec().trackRight - cam.spec().trackLeft;
+  auto sources = makeSourceLayerRenderer(scene);
+  GpuVisibility visibility;
+  long total = 0;
+  for (int maxLayers : {1, 4}) {
+    std::vector<SourceLayer> host;
+    DeviceLayers device;
+    device.reset(cam.width(), cam.height(), 8);
+    RenderStats stats;
+    for (double x : {cam.viewX(0), cam.viewX(8)}) {
+      for (SourceLayer& l : sources->render(cam, {x, 0.0}, maxLayers, track, stats)) host.push_back(std::move(l));
+      sources->render(cam, {x, 0.0}, maxLayers, track, stats, device);
+    }
+    ASSERT_EQ(device.count(), int(host.size()));
+    for (bool both : {true, false}) {
+      std::vector<const SourceLayer*> used;
+      std::vector<uint8_t> use;
+      for (const SourceLayer& l : host) {
+        use.push_back(both || l.eye.x == cam.viewX(0));
+        if (use.back()) used.push_back(&l);
+      }
+      for (int view : {2, 4, 7})
+        for (float overlap : {0.0f, 0.25f}) {
+          const long expected = countHoles(used, cam, cam.viewX(view), overlap);
+          EXPECT_EQ(visibility.holes(device, use, cam, cam.viewX(view), overlap), expected)
+              << maxLayers << " layers, " << (both ? "both sources" : "one") << ", view " << view << ", overlap "
+              << overlap;
+          total += expected;
+        }
+    }
+  }
+  EXPECT_GT(total, 100) << "the cup should leave holes between its ends";
+}
+
 }  // namespace
 }  // namespace mvr
