@@ -98,12 +98,11 @@ class InterpRenderer final : public Renderer {
     const EpiShading shading{.sliceVectors = true, .sliceHighlights = splits_ > 0};
     rasterizer_ = makeRasterizer(options.mode, type, shading, options.builder);
     // Layers stay on the GPU when nothing needs their pixels on the host:
-    // no hole counting, split highlights or blending (visibility has its
-    // compute passes).
-    if (rasterizer_->readsDeviceTable() && options_.acquire != Acquire::Hierarchical && splits_ == 0 &&
-        options_.blend == Blend::None) {
+    // no split highlights or blending (visibility and hole counts have
+    // their compute passes).
+    if (rasterizer_->readsDeviceTable() && splits_ == 0 && options_.blend == Blend::None) {
       gpuSlicer_.emplace();
-      if (options_.visibility) gpuVisibility_.emplace();
+      if (options_.visibility || options_.acquire == Acquire::Hierarchical) gpuVisibility_.emplace();
     }
   }
 
@@ -339,39 +338,45 @@ class InterpRenderer final : public Renderer {
   // Source views in GPU memory, sliced there: only the EPIs and the slice
   // table's offsets come back.
   void renderOnGpu(const ShearingCamera& cam, int row, FrameSink& sink, RenderStats& stats) {
+    const bool refine = options_.acquire == Acquire::Hierarchical;
     const std::vector<double> xs = fixedSources(cam);
-    store_.reset(cam.width(), cam.height(), int(xs.size()) * options_.maxLayers);
-    struct PassThrough {
-      int view, layer;  // layer -1: the source saw nothing
-    };
-    std::vector<PassThrough> passing;
-    std::vector<int> first, layers;  // per source: its first layer in the store, and how many it keeps
-    for (const double x : xs) {
-      stats.counters["source_views"] += 1;
-      first.push_back(store_.count());
-      gl::GpuClock::mark("acquire");
-      layers.push_back(
-          sources_->render(sourceCamera(cam), {x, cam.rowY(row)}, options_.maxLayers, trackWidth(cam), stats, store_));
-      if (const int v = passesThrough() ? viewAt(cam, x) : -1; v >= 0)
-        passing.push_back({v, layers.back() > 0 ? first.back() : -1});
+    store_.reset(cam.width(), cam.height(), (refine ? options_.budget : int(xs.size())) * options_.maxLayers);
+    std::vector<StoredSource> sources;
+    for (const double x : xs) sources.push_back(storeSource(cam, row, x, stats));
+    if (refine && sources.size() == 2) refineOnGpu(cam, row, sources, stats);
+    std::sort(sources.begin(), sources.end(), [](const StoredSource& a, const StoredSource& b) { return a.x < b.x; });
+    for (const StoredSource& source : sources) stats.counters["layers"] += double(source.layers);
+    // Between each two neighbouring sources, each half of the interval
+    // from its near source's layers and the far source's nearest
+    // (renderIntervals); the store's other layers stay outlines to meet.
+    // Center: one source, drawn whole.
+    std::vector<GpuPiece> pieces;
+    if (sources.size() == 1) pieces.push_back({{0, cam.views() - 1, sources[0].layers, 0}, 0, 0});
+    for (size_t k = 0; k + 1 < sources.size(); ++k) {
+      const int a = viewAt(cam, sources[k].x), b = viewAt(cam, sources[k + 1].x);
+      if (a < 0 || b <= a) fail("interp", "a source's eye is not a view of the set");
+      for (const PieceLayers& p : pieceLayers(a, b, sources[k].layers, sources[k + 1].layers, halves()))
+        pieces.push_back({p, sources[k].first, sources[k + 1].first});
     }
-    if (gpuVisibility_) hideOnGpu(cam, first, layers, stats);
-    for (const int n : layers) stats.counters["layers"] += double(n);
-    // Dual: each half of the track from its near source's layers and the
-    // far source's nearest (renderIntervals); the store's other layers
-    // stay outlines to meet. Center: one source, drawn whole.
-    const int layersB = layers.size() > 1 ? layers[1] : 0;
-    const std::vector<PieceLayers> parts = pieceLayers(0, cam.views() - 1, layers[0], layersB, halves());
+    const bool whole = pieces.size() == 1 && pieces[0].views.first == 0 && pieces[0].views.last == cam.views() - 1;
     std::vector<GpuImageSlices> slices;
     {
       ScopedStage s(stats.times, "slicing");
       gl::GpuClock::mark("image_slicing");
-      for (const PieceLayers& p : parts) {
+      for (const GpuPiece& piece : pieces) {
+        const PieceLayers& p = piece.views;
         std::vector<uint8_t> keep(size_t(store_.count()), 0);
-        std::fill_n(keep.begin() + first[0], p.fromA, uint8_t(1));
-        if (p.fromB > 0) std::fill_n(keep.begin() + first[1], p.fromB, uint8_t(1));
-        const ShearingCamera sub = parts.size() == 1 ? cam : intervalCamera(cam, p.first, p.last, cam.share().scanlines);
-        slices.push_back(gpuSlicer_->build(store_, sub, {options_.overlap, options_.coalesce}, keep));
+        std::fill_n(keep.begin() + piece.firstA, p.fromA, uint8_t(1));
+        std::fill_n(keep.begin() + piece.firstB, p.fromB, uint8_t(1));
+        // The near source's layers, then the far one's, as renderIntervals
+        // lists them (sources added later lie after both in the store).
+        std::vector<int> order;
+        for (int k = 0; k < p.fromA; ++k) order.push_back(piece.firstA + k);
+        for (int k = 0; k < p.fromB; ++k) order.push_back(piece.firstB + k);
+        for (int k = 0; k < store_.count(); ++k)
+          if (!keep[size_t(k)]) order.push_back(k);
+        const ShearingCamera sub = whole ? cam : intervalCamera(cam, p.first, p.last, cam.share().scanlines);
+        slices.push_back(gpuSlicer_->build(store_, sub, {options_.overlap, options_.coalesce}, keep, order));
       }
     }
     // Read once the slicer has waited on the GPU anyway: read between
@@ -379,35 +384,81 @@ class InterpRenderer final : public Renderer {
     std::vector<SourceView> views;
     {
       ScopedStage s(stats.times, "source_readback");
-      for (const PassThrough& p : passing)
-        views.push_back({p.view, p.layer >= 0 ? store_.readColor(p.layer)
-                                              : Image(cam.width(), cam.height(), PixelType::F32)});
+      for (const StoredSource& source : sources)
+        if (const int v = passesThrough() ? viewAt(cam, source.x) : -1; v >= 0)
+          views.push_back({v, source.layers > 0 ? store_.readColor(source.first)
+                                                : Image(cam.width(), cam.height(), PixelType::F32)});
     }
     for (const GpuImageSlices& piece : slices) countSlices(piece.table.sliceCount(), piece.pixels, stats);
     SourceViewSink out(sink, views);
-    if (slices.size() == 1) return rasterizer_->rasterize(slices[0].vertices, slices[0].table, cam, row, out, stats);
+    if (whole) return rasterizer_->rasterize(slices[0].vertices, slices[0].table, cam, row, out, stats);
+    if (pieces.front().views.first != 0 || pieces.back().views.last != cam.views() - 1)
+      fail("interp", "the source views do not reach both ends of the track");
     assemble(cam, row, int(slices.size()), out, [&](int k, IndexRange scanlines, std::vector<Image>& into) {
-      const PieceLayers& p = parts[size_t(k)];
+      const PieceLayers& p = pieces[size_t(k)].views;
       IntoViews pieceSink(into, scanlines.begin, p.first, cam.views());
       rasterizer_->rasterize(slices[size_t(k)].vertices, slices[size_t(k)].table,
                              intervalCamera(cam, p.first, p.last, scanlines), row, pieceSink, stats);
     });
   }
 
-  // The visibility filter on the store, as render()'s filter on the host:
-  // a source keeps its layers up to the first that the nearest hides
-  // whole (that one and those behind it go), the hidden pixels of the
-  // others dropped in place.
-  void hideOnGpu(const ShearingCamera& cam, const std::vector<int>& first, std::vector<int>& layers,
-                 RenderStats& stats) {
+  // A source view whose layers are in the store: from `first` on, the
+  // `layers` it keeps.
+  struct StoredSource {
+    double x;
+    int first, layers;
+  };
+  // A piece of an interval, and where its two sources' layers start.
+  struct GpuPiece {
+    PieceLayers views;
+    int firstA, firstB;
+  };
+
+  // One source's layers into the store, the visibility filter applied as
+  // render()'s filter does on the host: the source keeps its layers up to
+  // the first that the nearest hides whole (that one and those behind it
+  // go), the hidden pixels of the others dropped in place.
+  StoredSource storeSource(const ShearingCamera& cam, int row, double x, RenderStats& stats) {
+    stats.counters["source_views"] += 1;
+    StoredSource source{x, store_.count(), 0};
+    gl::GpuClock::mark("acquire");
+    source.layers =
+        sources_->render(sourceCamera(cam), {x, cam.rowY(row)}, options_.maxLayers, trackWidth(cam), stats, store_);
+    if (!options_.visibility || source.layers < 2) return source;
     ScopedStage s(stats.times, "visibility");
-    const std::vector<LayerVisibility> seen = gpuVisibility_->hide(store_, cam, options_.overlap);
-    for (size_t source = 0; source < layers.size(); ++source)
-      for (int k = 1; k < layers[source]; ++k) {
-        const LayerVisibility& v = seen[size_t(first[source] + k)];
-        stats.counters["hidden_pixels"] += double(v.covered - v.kept);
-        if (v.kept == 0) layers[source] = k;
+    const std::vector<LayerVisibility> seen = gpuVisibility_->hide(store_, cam, options_.overlap, source.first);
+    for (int k = 1; k < source.layers; ++k) {
+      const LayerVisibility& v = seen[size_t(source.first + k)];
+      stats.counters["hidden_pixels"] += double(v.covered - v.kept);
+      if (v.kept == 0) source.layers = k;
+    }
+    return source;
+  }
+
+  // refine() on the store: the holes two sources' layers leave halfway
+  // between them counted by compute passes, one count read back a check.
+  void refineOnGpu(const ShearingCamera& cam, int row, std::vector<StoredSource>& sources, RenderStats& stats) {
+    const double tolerance = options_.holeFraction * cam.width() * cam.height();
+    std::deque<std::pair<int, int>> todo{{0, cam.views() - 1}};  // view indices of two sources
+    while (!todo.empty() && int(sources.size()) < options_.budget) {
+      const auto [a, b] = todo.front();
+      todo.pop_front();
+      if (b - a < 2) continue;
+      const int m = (a + b) / 2;
+      std::vector<uint8_t> use(size_t(store_.count()), 0);
+      for (const StoredSource& s : sources)
+        if (s.x == cam.viewX(a) || s.x == cam.viewX(b)) std::fill_n(use.begin() + s.first, s.layers, uint8_t(1));
+      long holes = 0;
+      {
+        ScopedStage s(stats.times, "visibility");
+        holes = gpuVisibility_->holes(store_, use, cam, cam.viewX(m), options_.overlap);
       }
+      stats.counters["hole_checks"] += 1;
+      if (double(holes) <= tolerance) continue;
+      sources.push_back(storeSource(cam, row, cam.viewX(m), stats));
+      todo.emplace_back(a, m);
+      todo.emplace_back(m, b);
+    }
   }
 
   bool halves() const { return options_.halves && options_.blend == Blend::None; }
@@ -504,7 +555,7 @@ class InterpRenderer final : public Renderer {
   std::unique_ptr<SourceLayerRenderer> sources_;
   std::unique_ptr<EpiRasterizer> rasterizer_;
   std::optional<GpuImageSlicer> gpuSlicer_;  // when layers stay on the GPU
-  std::optional<GpuVisibility> gpuVisibility_;  // with them, for the visibility filter
+  std::optional<GpuVisibility> gpuVisibility_;  // with them: visibility, hole counts
   DeviceLayers store_;
   std::vector<Image> assembled_;  // a band's EPIs of all views (assemble), kept for the next
 };

@@ -347,14 +347,14 @@ std::vector<int> nearestLayerOf(const std::vector<glm::dvec2>& eyes) {
   return front;
 }
 
-std::vector<int> nearestOtherSource(const std::vector<glm::dvec2>& eyes) {
+std::vector<int> nearestOtherSource(const std::vector<glm::dvec2>& eyes, const std::vector<uint8_t>& candidates) {
   std::vector<int> other(eyes.size(), -1);
   const std::vector<int> nearestLayer = nearestLayerOf(eyes);
   for (size_t k = 0; k < eyes.size(); ++k) {
     double nearest = INFINITY;
     for (size_t m = 0; m < eyes.size(); ++m) {
       const double apart = glm::length(eyes[m] - eyes[k]);
-      const bool front = nearestLayer[m] == int(m);
+      const bool front = nearestLayer[m] == int(m) && (candidates.empty() || candidates[m]);
       if (front && apart > 0.0 && apart < nearest) nearest = apart, other[k] = int(m);
     }
   }

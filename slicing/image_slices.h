@@ -77,7 +77,9 @@ ImageSlices sliceSourceLayers(const std::vector<SourceLayer>& layers, const Shea
 // Per layer (eyes: each layer's source eye, a source's layers together,
 // front first), the index of the front layer of the nearest source at
 // another eye, or -1: whose outline its slices meet (meetSilhouettes).
-std::vector<int> nearestOtherSource(const std::vector<glm::dvec2>& eyes);
+// candidates: per layer, whether its source may be chosen, by its front
+// layer's flag (empty: all; a GPU store holds sources a slicing leaves out).
+std::vector<int> nearestOtherSource(const std::vector<glm::dvec2>& eyes, const std::vector<uint8_t>& candidates = {});
 
 // Per layer (as nearestOtherSource's eyes), the index of its source's
 // nearest layer: the first of the run of layers with its eye.

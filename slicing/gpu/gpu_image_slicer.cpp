@@ -28,6 +28,7 @@ layout(std430, binding = 3) buffer Flags { uint uFlags[]; };
 // other source (-1: none; LayerSlicer::meetOtherOutline).
 layout(std430, binding = 4) readonly buffer Layers { dvec4 uLayers[]; };
 layout(std430, binding = 13) readonly buffer Keep { int uKeep[]; };  // per layer: 1 if sliced
+layout(std430, binding = 14) readonly buffer Rank { int uRank[]; };  // per layer: its place in the table's order
 uniform int uWidth;
 uniform int uHeight;
 uniform int uLayerCount;
@@ -36,7 +37,7 @@ uniform int uLevels;  // of the depth mip, level 0 the pixels; 1: no coalescing
 const float kEmpty = 3.0e38;  // an empty pixel's block spans (-kEmpty, kEmpty)
 
 uint pixelIndex(int k, int j, int x) { return (uint(k) * uint(uHeight) + uint(j)) * uint(uWidth) + uint(x); }
-uint flagIndex(int k, int j, int x) { return (uint(j) * uint(uLayerCount) + uint(k)) * uint(uWidth) + uint(x); }
+uint flagIndex(int k, int j, int x) { return (uint(j) * uint(uLayerCount) + uint(uRank[k])) * uint(uWidth) + uint(x); }
 uint mipIndex(int k, int j, int l, int i) {
   int start = 0;
   for (int m = 1; m < l; ++m) start += uWidth >> m;
@@ -268,7 +269,8 @@ GpuImageSlicer::GpuImageSlicer()
       fill_(compute("image-slice-fill", kFill)) {}
 
 GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingCamera& cam,
-                                     const ImageSliceOptions& options, const std::vector<uint8_t>& keep) {
+                                     const ImageSliceOptions& options, const std::vector<uint8_t>& keep,
+                                     const std::vector<int>& order) {
   if (options.scene && options.splits > 0)
     fail("GpuImageSlicer", "split highlight tracks are built on the CPU");
   const int w = cam.width(), h = cam.height(), count = layers.count();
@@ -285,7 +287,10 @@ GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingC
   std::vector<glm::dvec4> perLayer(std::max(count, 1));
   std::vector<glm::dvec2> eyes;
   for (int k = 0; k < count; ++k) eyes.push_back(layers.eye(k));
-  const std::vector<int> other = nearestOtherSource(eyes);
+  // Outlines to meet: of the sources this slicing keeps (the store may
+  // hold others: hierarchical acquisition's, nearer to some of its layers).
+  if (!keep.empty() && int(keep.size()) != count) fail("GpuImageSlicer", "a keep flag per layer");
+  const std::vector<int> other = nearestOtherSource(eyes, keep);
   for (int k = 0; k < count; ++k) {
     const double x = layers.eye(k).x;
     const float tolerance = coalesce ? std::min(coalesceDepthRange(cam, x, options.coalesce),
@@ -299,10 +304,14 @@ GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingC
   std::vector<int32_t> outlineOf(std::max(count, 1), -1);
   for (int k = 0; k < count; ++k) outlineOf[size_t(k)] = layers.outlined(front[k]) ? front[k] : -1;
   const gl::Buffer outlinedInfo = gl::makeBuffer(outlineOf.data(), outlineOf.size());
-  if (!keep.empty() && int(keep.size()) != count) fail("GpuImageSlicer", "a keep flag per layer");
   std::vector<int32_t> kept(std::max(count, 1), 1);
   for (size_t k = 0; k < keep.size(); ++k) kept[k] = keep[k] ? 1 : 0;
   const gl::Buffer keepInfo = gl::makeBuffer(kept.data(), kept.size());
+  std::vector<int32_t> rank(std::max(count, 1), -1);
+  for (int k = 0; k < count; ++k) rank[size_t(order.empty() ? k : order[size_t(k)])] = k;
+  if (!order.empty() && (int(order.size()) != count || std::count(rank.begin(), rank.end(), -1) > (count == 0 ? 1 : 0)))
+    fail("GpuImageSlicer", "the order must name every layer once");
+  const gl::Buffer rankInfo = gl::makeBuffer(rank.data(), rank.size());
   const size_t pixels = layers.pixelsPerLayer() * size_t(count);
   if (pixels > flagsSize_) {
     flagsSize_ = pixels;
@@ -328,6 +337,7 @@ GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingC
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, flags_.id());
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, layerInfo.id());
     gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, keepInfo.id());
+    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 14, rankInfo.id());
   };
   auto overPixels = [&](int width) {
     gl::DispatchCompute(groups(size_t(width)), uint32_t(h), uint32_t(count));

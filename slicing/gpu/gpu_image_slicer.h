@@ -46,9 +46,12 @@ class GpuImageSlicer {
   // CPU); throws mvr::Error if set. With coalescing off, the vectors index
   // the layers' colour buffer itself, which must outlive the draws.
   // keep: per layer of the store, whether its pixels become slices (the
-  // others still serve as outlines to meet); empty: all.
+  // others still serve as outlines to meet); empty: all. order: the
+  // store's layers in the order a scanline's slices follow (every layer
+  // once; empty: the store's), as the host slices its list of layers in
+  // order: the rasterizers keep the first of equal depths.
   GpuImageSlices build(const DeviceLayers& layers, const ShearingCamera& cam, const ImageSliceOptions& options,
-                       const std::vector<uint8_t>& keep = {});
+                       const std::vector<uint8_t>& keep = {}, const std::vector<int>& order = {});
 
  private:
   gl::Program mip_, flag_, fill_;

@@ -511,17 +511,18 @@ TEST_F(InterpTest, CoalescingCutsSlicesAndKeepsTheSourceViewAndQuality) {
 // draws what the CPU-sliced, CPU-built geometry draws: at least 99.9% of
 // pixels identical, PSNR at least 45 dB, in every mode, with and without
 // coalesced runs (vectors longer than a texel, with their MIP chains).
-// The visibility filter runs as compute passes there too (the same layers
-// and hidden pixels). Hierarchical acquisition counts holes on the host:
-// it slices there and still pulls its PSTs.
+// The visibility filter and hierarchical acquisition's hole counts run as
+// compute passes there too: the same layers, hidden pixels, hole checks
+// and source views.
 TEST_F(InterpTest, GpuSlicingAndPstsMatchTheCpuPath) {
   Scene scene = loadScene(test::assetPath("default.json"));
-  const ShearingCamera cam(*scene.camera, 96, 72, 7);
+  const ShearingCamera small(*scene.camera, 96, 72, 7), large(*scene.camera, 120, 90, 9);
   struct Case {
     Acquire acquire;
     PstMode mode;
     float coalesce;
     bool visibility = false;
+    int maxLayers = 4;  // hierarchical: fewer, and larger views, so that the ends leave holes
   };
   std::vector<Case> cases;
   for (PstMode mode : {PstMode::Quad, PstMode::Strip, PstMode::Exact})
@@ -529,9 +530,13 @@ TEST_F(InterpTest, GpuSlicingAndPstsMatchTheCpuPath) {
   cases.push_back({Acquire::Center, PstMode::Quad, 1.0f});
   cases.push_back({Acquire::Center, PstMode::Quad, 0.0f, true});
   cases.push_back({Acquire::Dual, PstMode::Strip, 1.0f, true});
-  cases.push_back({Acquire::Hierarchical, PstMode::Quad, 0.0f});
+  cases.push_back({Acquire::Hierarchical, PstMode::Quad, 0.0f, false, 1});
+  cases.push_back({Acquire::Hierarchical, PstMode::Strip, 1.0f, true, 2});
   for (const Case& c : cases) {
-    InterpOptions options{.acquire = c.acquire, .mode = c.mode, .coalesce = c.coalesce, .visibility = c.visibility};
+    InterpOptions options{.acquire = c.acquire, .maxLayers = c.maxLayers, .mode = c.mode, .coalesce = c.coalesce,
+                          .visibility = c.visibility};
+    const ShearingCamera& cam = c.acquire == Acquire::Hierarchical ? large : small;
+    options.holeFraction = 0.0;  // hierarchical: a source wherever a hole is left
     options.builder = PstBuilder::Gpu;
     RenderStats gpuStats, cpuStats;
     const auto gpu = test::renderViews(*makeInterpRenderer(scene, PixelType::U8, options), cam, gpuStats);
@@ -541,12 +546,17 @@ TEST_F(InterpTest, GpuSlicingAndPstsMatchTheCpuPath) {
                               std::to_string(c.coalesce) + (c.visibility ? " visibility" : "");
     EXPECT_EQ(gpuStats.notes["pst_builder"], "gpu") << label;
     EXPECT_EQ(cpuStats.notes["pst_builder"], "cpu") << label;
-    EXPECT_EQ(gpuStats.notes["image_slicer"], c.acquire == Acquire::Hierarchical ? "cpu" : "gpu") << label;
+    EXPECT_EQ(gpuStats.notes["image_slicer"], "gpu") << label;
     EXPECT_EQ(cpuStats.notes["image_slicer"], "cpu") << label;
     EXPECT_EQ(gpuStats.counters["slices"], cpuStats.counters["slices"]) << label;
     EXPECT_EQ(gpuStats.counters["slice_pixels"], cpuStats.counters["slice_pixels"]) << label;
     EXPECT_EQ(gpuStats.counters["layers"], cpuStats.counters["layers"]) << label;
     EXPECT_EQ(gpuStats.counters["hidden_pixels"], cpuStats.counters["hidden_pixels"]) << label;
+    EXPECT_EQ(gpuStats.counters["hole_checks"], cpuStats.counters["hole_checks"]) << label;
+    EXPECT_EQ(gpuStats.counters["source_views"], cpuStats.counters["source_views"]) << label;
+    if (c.acquire == Acquire::Hierarchical) {
+      EXPECT_GT(gpuStats.counters["source_views"], 2) << label;
+    }
     if (c.visibility) {
       EXPECT_GT(gpuStats.counters["hidden_pixels"], 0) << label;
     }

@@ -21,11 +21,13 @@ namespace mvr {
 namespace {
 
 // Slices the same layers both ways and compares them slot by slot.
+// order: the store's layers in the host list's order (empty: the same).
 void expectSameSlices(const std::vector<SourceLayer>& host, const DeviceLayers& device,
-                      const ShearingCamera& cam, const ImageSliceOptions& options, const std::string& label) {
+                      const ShearingCamera& cam, const ImageSliceOptions& options, const std::string& label,
+                      const std::vector<int>& order = {}) {
   const ImageSlices cpu = sliceSourceLayers(host, cam, 0, options);
   GpuImageSlicer slicer;
-  const GpuImageSlices gpu = slicer.build(device, cam, options);
+  const GpuImageSlices gpu = slicer.build(device, cam, options, {}, order);
   const SliceTable table = gpu.table.download();
   ASSERT_EQ(table.sliceCount(), cpu.table.sliceCount()) << label;
   ASSERT_TRUE(std::equal(table.offsets().begin(), table.offsets().end(), cpu.table.offsets().begin())) << label;
@@ -111,6 +113,15 @@ TEST_F(GpuImageSlicerTest, RenderedLayersSliceAsOnTheCpu) {
       for (float overlap : {0.0f, 0.25f})
         expectSameSlices(host, device, cam, {overlap, coalesce},
                          label + "coalesce " + std::to_string(coalesce) + " overlap " + std::to_string(overlap));
+    // The second source first: a scanline's slices follow the order given
+    // (interp's pieces list their near source first, wherever the store
+    // holds it).
+    std::vector<SourceLayer> swapped;
+    std::vector<int> order;
+    for (int pass = 0; pass < 2; ++pass)
+      for (size_t k = 0; k < host.size(); ++k)
+        if ((host[k].eye.x == cam.viewX(0)) == (pass == 1)) swapped.push_back(host[k]), order.push_back(int(k));
+    expectSameSlices(swapped, device, cam, {0.25f, 0.0f}, label + "second source first", order);
   }
 }
 
