@@ -32,8 +32,8 @@ struct InterpOptions {
   int maxLayers = 4;        // depth-peeled layers per source view
   PstMode mode = PstMode::Quad;  // exact for image slices in every mode
   // GL modes: where image slices and PSTs are built. On the GPU the source
-  // layers stay in GPU memory (center and dual acquisition without
-  // splits or blending; the rest slice on the CPU, PSTs still pulled).
+  // layers stay in GPU memory (without splits or blending; those slice on
+  // the CPU, PSTs still pulled).
   PstBuilder builder = PstBuilder::Auto;
   float overlap = 0.25f;    // pixels: neighbours join within 2x this drift (ImageSliceOptions)
   float coalesce = 0.0f;    // pixels a coalesced run may move a pixel; 0: off
