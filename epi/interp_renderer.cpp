@@ -7,6 +7,7 @@
 
 #include "mvr/baselines/source_layers.h"
 #include "mvr/error.h"
+#include "mvr/gl/gl_api.h"
 #include "mvr/gl/gpu_clock.h"
 #include "mvr/parallel.h"
 #include "shading/shading_plan.h"
@@ -98,11 +99,16 @@ class InterpRenderer final : public Renderer {
     const EpiShading shading{.sliceVectors = true, .sliceHighlights = splits_ > 0};
     rasterizer_ = makeRasterizer(options.mode, type, shading, options.builder);
     // Layers stay on the GPU when nothing needs their pixels on the host:
-    // no split highlights or blending (visibility and hole counts have
-    // their compute passes).
-    if (rasterizer_->readsDeviceTable() && splits_ == 0 && options_.blend == Blend::None) {
+    // no split highlights or blending. Visibility and hole counts have
+    // compute passes, run where a GPU runs them (or by name): on llvmpipe
+    // the host's are faster (teacup 320x240 x 100, hierarchical:2:c1:spans:
+    // 0.33 s against 0.40).
+    const bool judged = options_.visibility || options_.acquire == Acquire::Hierarchical;
+    const bool judgeOnGpu = options_.builder == PstBuilder::Gpu ||
+                            (options_.builder == PstBuilder::Auto && !gl::rendersOnCpu());
+    if (rasterizer_->readsDeviceTable() && splits_ == 0 && options_.blend == Blend::None && (!judged || judgeOnGpu)) {
       gpuSlicer_.emplace();
-      if (options_.visibility || options_.acquire == Acquire::Hierarchical) gpuVisibility_.emplace();
+      if (judged) gpuVisibility_.emplace();
     }
   }
 

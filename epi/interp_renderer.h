@@ -33,7 +33,8 @@ struct InterpOptions {
   PstMode mode = PstMode::Quad;  // exact for image slices in every mode
   // GL modes: where image slices and PSTs are built. On the GPU the source
   // layers stay in GPU memory (without splits or blending; those slice on
-  // the CPU, PSTs still pulled).
+  // the CPU, PSTs still pulled); with visibility or hierarchical
+  // acquisition only where GL runs on a GPU, or with Gpu named.
   PstBuilder builder = PstBuilder::Auto;
   float overlap = 0.25f;    // pixels: neighbours join within 2x this drift (ImageSliceOptions)
   float coalesce = 0.0f;    // pixels a coalesced run may move a pixel; 0: off
