@@ -444,27 +444,15 @@ class InterpRenderer final : public Renderer {
   // refine() on the store: the holes two sources' layers leave halfway
   // between them counted by compute passes, one count read back a check.
   void refineOnGpu(const ShearingCamera& cam, int row, std::vector<StoredSource>& sources, RenderStats& stats) {
-    const double tolerance = options_.holeFraction * cam.width() * cam.height();
-    std::deque<std::pair<int, int>> todo{{0, cam.views() - 1}};  // view indices of two sources
-    while (!todo.empty() && int(sources.size()) < options_.budget) {
-      const auto [a, b] = todo.front();
-      todo.pop_front();
-      if (b - a < 2) continue;
-      const int m = (a + b) / 2;
-      std::vector<uint8_t> use(size_t(store_.count()), 0);
-      for (const StoredSource& s : sources)
-        if (s.x == cam.viewX(a) || s.x == cam.viewX(b)) std::fill_n(use.begin() + s.first, s.layers, uint8_t(1));
-      long holes = 0;
-      {
-        ScopedStage s(stats.times, "visibility");
-        holes = gpuVisibility_->holes(store_, use, cam, cam.viewX(m), options_.overlap);
-      }
-      stats.counters["hole_checks"] += 1;
-      if (double(holes) <= tolerance) continue;
-      sources.push_back(storeSource(cam, row, cam.viewX(m), stats));
-      todo.emplace_back(a, m);
-      todo.emplace_back(m, b);
-    }
+    refineTrack(
+        cam, sources, stats,
+        [&](int a, int b, int m) {
+          std::vector<uint8_t> use(size_t(store_.count()), 0);
+          for (const StoredSource& s : sources)
+            if (s.x == cam.viewX(a) || s.x == cam.viewX(b)) std::fill_n(use.begin() + s.first, s.layers, uint8_t(1));
+          return gpuVisibility_->holes(store_, use, cam, cam.viewX(m), options_.overlap);
+        },
+        [&](int m) { return storeSource(cam, row, cam.viewX(m), stats); });
   }
 
   bool halves() const { return options_.halves && options_.blend == Blend::None; }
@@ -511,9 +499,25 @@ class InterpRenderer final : public Renderer {
     return sources;
   }
 
-  // Breadth first over the track, so that a spent budget leaves the added
-  // views spread evenly.
   void refine(const ShearingCamera& cam, int row, std::vector<Source>& sources, RenderStats& stats) {
+    refineTrack(
+        cam, sources, stats,
+        [&](int a, int b, int m) {
+          std::vector<const SourceLayer*> near;
+          for (const Source& s : sources)
+            if (s.x == cam.viewX(a) || s.x == cam.viewX(b))
+              for (const SourceLayer& l : s.layers) near.push_back(&l);
+          return countHoles(near, cam, cam.viewX(m), options_.overlap);
+        },
+        [&](int m) { return render(cam, row, cam.viewX(m), stats); });
+  }
+
+  // Breadth first over the track, so that a spent budget leaves the added
+  // views spread evenly: the view halfway between two sources becomes one
+  // where holes(a, b, m), the holes the sources at views a and b leave in
+  // view m, exceed the tolerance; add(m) renders it.
+  template <class S, class Holes, class Add>
+  void refineTrack(const ShearingCamera& cam, std::vector<S>& sources, RenderStats& stats, Holes&& holes, Add&& add) {
     const double tolerance = options_.holeFraction * cam.width() * cam.height();
     std::deque<std::pair<int, int>> todo{{0, cam.views() - 1}};  // view indices of two sources
     while (!todo.empty() && int(sources.size()) < options_.budget) {
@@ -521,18 +525,14 @@ class InterpRenderer final : public Renderer {
       todo.pop_front();
       if (b - a < 2) continue;
       const int m = (a + b) / 2;
-      std::vector<const SourceLayer*> near;
-      for (const Source& s : sources)
-        if (s.x == cam.viewX(a) || s.x == cam.viewX(b))
-          for (const SourceLayer& l : s.layers) near.push_back(&l);
-      long holes = 0;
+      long count = 0;
       {
         ScopedStage s(stats.times, "visibility");
-        holes = countHoles(near, cam, cam.viewX(m), options_.overlap);
+        count = holes(a, b, m);
       }
       stats.counters["hole_checks"] += 1;
-      if (double(holes) <= tolerance) continue;
-      sources.push_back(render(cam, row, cam.viewX(m), stats));
+      if (double(count) <= tolerance) continue;
+      sources.push_back(add(m));
       todo.emplace_back(a, m);
       todo.emplace_back(m, b);
     }

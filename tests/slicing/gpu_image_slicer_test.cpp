@@ -59,6 +59,23 @@ void expectSameSlices(const std::vector<SourceLayer>& host, const DeviceLayers& 
   }
 }
 
+// The same layers from two source eyes, read back (host) and kept in a
+// store (device).
+struct BothLayers {
+  BothLayers(SourceLayerRenderer& sources, const ShearingCamera& cam, std::initializer_list<double> eyes,
+             int maxLayers) {
+    const double track = cam.spec().trackRight - cam.spec().trackLeft;
+    device.reset(cam.width(), cam.height(), 8);
+    RenderStats stats;
+    for (double x : eyes) {
+      for (SourceLayer& l : sources.render(cam, {x, 0.0}, maxLayers, track, stats)) host.push_back(std::move(l));
+      sources.render(cam, {x, 0.0}, maxLayers, track, stats, device);
+    }
+  }
+  std::vector<SourceLayer> host;
+  DeviceLayers device;
+};
+
 class GpuImageSlicerTest : public test::GlTest {};
 
 // With and without the nearest layers' finer outlines (4 samples a pixel:
@@ -67,17 +84,11 @@ class GpuImageSlicerTest : public test::GlTest {};
 TEST_F(GpuImageSlicerTest, RenderedLayersSliceAsOnTheCpu) {
   const Scene scene = loadScene(test::assetPath("default.json"));
   const ShearingCamera cam(*scene.camera, 88, 60, 9);  // 88: not a power of two
-  const double track = cam.spec().trackRight - cam.spec().trackLeft;
   for (int samples : {1, 4}) {
     auto sources = makeSourceLayerRenderer(scene, false, samples);
-    std::vector<SourceLayer> host;
-    DeviceLayers device;
-    device.reset(cam.width(), cam.height(), 8);
-    RenderStats stats;
-    for (double x : {cam.viewX(0), cam.viewX(8)}) {
-      for (SourceLayer& l : sources->render(cam, {x, 0.0}, 4, track, stats)) host.push_back(std::move(l));
-      sources->render(cam, {x, 0.0}, 4, track, stats, device);
-    }
+    BothLayers both(*sources, cam, {cam.viewX(0), cam.viewX(8)}, 4);
+    const std::vector<SourceLayer>& host = both.host;
+    const DeviceLayers& device = both.device;
     ASSERT_EQ(device.count(), int(host.size()));
     ASSERT_GE(device.count(), 4);
     const std::string label = std::to_string(samples) + " samples a pixel, ";
@@ -256,17 +267,11 @@ long expectSameVisibility(std::vector<SourceLayer> host, DeviceLayers& device, c
 TEST_F(GpuImageSlicerTest, VisibilityDropsWhatTheHostDrops) {
   const Scene scene = loadScene(test::assetPath("default.json"));
   const ShearingCamera cam(*scene.camera, 120, 90, 9);
-  const double track = cam.spec().trackRight - cam.spec().trackLeft;
   auto sources = makeSourceLayerRenderer(scene);
   for (float overlap : {0.0f, 0.1f, 0.25f}) {
-    std::vector<SourceLayer> host;
-    DeviceLayers device;
-    device.reset(cam.width(), cam.height(), 8);
-    RenderStats stats;
-    for (double x : {cam.viewX(4), cam.viewX(0)}) {
-      for (SourceLayer& l : sources->render(cam, {x, 0.0}, 4, track, stats)) host.push_back(std::move(l));
-      sources->render(cam, {x, 0.0}, 4, track, stats, device);
-    }
+    BothLayers both(*sources, cam, {cam.viewX(4), cam.viewX(0)}, 4);
+    const std::vector<SourceLayer>& host = both.host;
+    DeviceLayers& device = both.device;
     ASSERT_EQ(device.count(), int(host.size()));
     ASSERT_GT(device.count(), 2);
     const long hidden = expectSameVisibility(host, device, cam, overlap, "rendered, overlap " + std::to_string(overlap));
@@ -304,19 +309,13 @@ TEST_F(GpuImageSlicerTest, VisibilityDropsWhatTheHostDrops) {
 TEST_F(GpuImageSlicerTest, HoleCountsAreTheHosts) {
   const Scene scene = loadScene(test::assetPath("default.json"));
   const ShearingCamera cam(*scene.camera, 120, 90, 9);
-  const double track = cam.spec().trackRight - cam.spec().trackLeft;
   auto sources = makeSourceLayerRenderer(scene);
   GpuVisibility visibility;
   long total = 0;
   for (int maxLayers : {1, 4}) {
-    std::vector<SourceLayer> host;
-    DeviceLayers device;
-    device.reset(cam.width(), cam.height(), 8);
-    RenderStats stats;
-    for (double x : {cam.viewX(0), cam.viewX(8)}) {
-      for (SourceLayer& l : sources->render(cam, {x, 0.0}, maxLayers, track, stats)) host.push_back(std::move(l));
-      sources->render(cam, {x, 0.0}, maxLayers, track, stats, device);
-    }
+    BothLayers both(*sources, cam, {cam.viewX(0), cam.viewX(8)}, maxLayers);
+    const std::vector<SourceLayer>& host = both.host;
+    const DeviceLayers& device = both.device;
     ASSERT_EQ(device.count(), int(host.size()));
     for (bool both : {true, false}) {
       std::vector<const SourceLayer*> used;
