@@ -97,6 +97,10 @@ void interpOption(const std::string& token, InterpOptions& o, const char* where)
 
 // One warp option token, checked by validate(WarpOptions).
 void warpOption(const std::string& token, WarpOptions& o, const char* where) {
+  if (token == "cpu" || token == "gl") {
+    o.cpu = token == "cpu";
+    return;
+  }
   char* end = nullptr;
   const char* text = token.c_str();
   const char key = token.size() > 1 ? token[0] : '\0';

@@ -9,6 +9,7 @@
 
 #include "epi/epi_rasterizer.h"
 #include "epi/diffuse_spans.h"
+#include "epi/epi_batch.h"
 #include "epi/pst.h"
 #include "mvr/color.h"
 #include "mvr/error.h"
@@ -43,34 +44,11 @@ class SpanRasterizer final : public EpiRasterizer {
     const IndexRange lines = cam.share().scanlines;
     eye0_ = glm::vec3(cam.eye(0, row));
     eyeStep_ = glm::vec3(cam.eye(1, row) - cam.eye(0, row));
-    // Workers fill EPIs up to a window ahead while the caller hands them
-    // on in order (a sink's copies would otherwise leave the workers
-    // idle); no batch barrier, so a dense scanline holds up nobody. The
-    // window's EPIs are allocated once and reused: fresh multi-megabyte
-    // images per scanline cost page faults that serialise on the kernel's
-    // memory lock; so they are kept for the next row and the next render
-    // (a full-parallax grid's rows, a split job's shares): at 1920x1080 x
-    // 1000 views a fresh set cost 0.27 s a call.
-    const int window = std::max(1, std::min(lines.size(), 2 * threadCount()));
-    const bool fits = !ring_.empty() && ring_[0].width == cam.width() && ring_[0].height == cam.views();
-    if (!fits) ring_.clear();
-    ring_.resize(std::max(ring_.size(), size_t(window)), Image(cam.width(), cam.views(), type_));
     ScopedStage s(stats.times, "raster");  // with the hand-over beside it
-    // EPIs the sink lends memory for are filled there and not handed on.
-    std::vector<uint8_t*> memory(size_t(lines.size()));
-    for (int j = lines.begin; j < lines.end; ++j)
-      memory[size_t(j - lines.begin)] = sink.epiMemory(row, j, cam.width(), cam.views(), type_);
-    parallelOrdered(
-        lines.begin, lines.end, window,
-        [&](int j) {
-          thread_local std::vector<float> depth;  // a worker's scratch, reused across EPIs
-          uint8_t* lent = memory[size_t(j - lines.begin)];
-          Image& own = ring_[size_t(j - lines.begin) % window];
-          fillEpi(v, table, cam, j, lent ? PixelRows(lent, cam.width(), cam.views(), type_) : PixelRows(own), depth);
-        },
-        [&](int j) {
-          if (!memory[size_t(j - lines.begin)]) sink.putEpiInPlace(row, j, ring_[size_t(j - lines.begin) % window]);
-        });
+    fillEpisInOrder(sink, row, lines, cam.width(), cam.views(), type_, ring_, [&](int j, const PixelRows& epi) {
+      thread_local std::vector<float> depth;  // a worker's scratch, reused across EPIs
+      fillEpi(v, table, cam, j, epi, depth);
+    });
   }
 
  private:

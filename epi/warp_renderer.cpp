@@ -5,7 +5,9 @@
 #include <limits>
 #include <string>
 
+#include "epi/epi_batch.h"
 #include "epi/gpu/depth_warp.h"
+#include "epi/warp_spans.h"
 #include "mvr/baselines/source_layers.h"
 #include "mvr/baselines/view_loop.h"
 #include "mvr/error.h"
@@ -38,7 +40,7 @@ class WarpRenderer final : public Renderer {
   WarpRenderer(const Scene* scene, std::vector<RgbdView> captured, PixelType type, const WarpOptions& options)
       : options_((validate(options), options)),
         type_(type),
-        warp_(options.tau, options.penalty),
+        warp_(options.cpu ? nullptr : std::make_unique<DepthWarp>(options.tau, options.penalty)),
         sources_(scene ? makeSourceLayerRenderer(*scene) : nullptr) {
     // A captured reference serves the views between it and the others.
     for (const RgbdView& view : captured) {
@@ -48,12 +50,14 @@ class WarpRenderer final : public Renderer {
       captured_.push_back({WarpReference::upload(view, options_.tau, options_.flatness, baseline)});
     }
     if (!scene && captured_.empty()) fail("warp", "no references");
+    if (!scene && options_.cpu) fail("warp", "the CPU warp takes scene sources only");
   }
 
   std::string name() const override { return "warp"; }
-  FrameOrder order() const override { return FrameOrder::View; }
+  FrameOrder order() const override { return options_.cpu ? FrameOrder::Epi : FrameOrder::View; }
 
   void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
+    if (options_.cpu) return renderEpis(cam, sink, stats);
     RenderTarget target(cam.width(), cam.height(), type_);
     int loadedRow = -1;
     std::vector<Reference> rowSources;
@@ -67,7 +71,7 @@ class WarpRenderer final : public Renderer {
       const glm::dvec3 eye = cam.eye(view, row);
       const auto [a, b] = nearestPair(refs, eye);
       ScopedStage s(stats.times, "warp");
-      warp_.render(refs[a].gpu, b < 0 ? nullptr : &refs[b].gpu, cameraOf(cam, view, row), target);
+      warp_->render(refs[a].gpu, b < 0 ? nullptr : &refs[b].gpu, cameraOf(cam, view, row), target);
     });
     stats.notes["acquire"] = sources_ ? acquireName(options_.acquire) : "captured";
   }
@@ -99,33 +103,62 @@ class WarpRenderer final : public Renderer {
     std::vector<Reference> refs;
     refs.push_back(source(cam, row, cam.viewX(0), stats));
     if (n > 1) refs.push_back(source(cam, row, cam.viewX(n - 1), stats));
-    if (options_.acquire == Acquire::Hierarchical && n > 2) refine(cam, row, refs, stats);
+    if (options_.acquire == Acquire::Hierarchical && n > 2)
+      refine(
+          cam,
+          [&](int a, int b, int m) {
+            return warp_->holes(refs[size_t(a)].gpu, refs[size_t(b)].gpu, cameraOf(cam, m, row), cam.width(),
+                                cam.height());
+          },
+          [&](int m) { refs.push_back(source(cam, row, cam.viewX(m), stats)); }, stats);
     return refs;
   }
 
-  // Breadth first over the track, as interp's hierarchical acquisition.
-  void refine(const ShearingCamera& cam, int row, std::vector<Reference>& refs, RenderStats& stats) {
+  // The CPU's EPIs: each row's sources, then its scanlines on the pool.
+  void renderEpis(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) {
+    const RenderShare& share = cam.share();
+    for (int row = share.rows.begin; row < share.rows.end; ++row) {
+      WarpSpans spans(cam, row, type_, options_.tau, options_.penalty);
+      {
+        ScopedStage s(stats.times, "sources");
+        auto add = [&](int view) { spans.add(sourceView(cam, row, cam.viewX(view), stats), cam.viewX(view)); };
+        add(0);
+        if (cam.views() > 1) add(cam.views() - 1);
+        if (options_.acquire == Acquire::Hierarchical && cam.views() > 2)
+          refine(cam, [&](int a, int b, int m) { return spans.holes(a, b, m); }, add, stats);
+      }
+      ScopedStage s(stats.times, "warp");
+      fillEpisInOrder(sink, row, share.scanlines, cam.width(), cam.views(), type_, ring_,
+                      [&](int j, const PixelRows& epi) { spans.fillEpi(j, epi); });
+    }
+    stats.notes["acquire"] = acquireName(options_.acquire);
+    stats.notes["warp"] = "cpu";
+  }
+
+  // Breadth first over the track, as interp's hierarchical acquisition:
+  // holes(a, b, view) counts the holes sources a and b leave in a view,
+  // add(view) appends a source there.
+  template <class Holes, class Add>
+  void refine(const ShearingCamera& cam, Holes&& holes, Add&& add, RenderStats& stats) {
     const double tolerance = options_.holeFraction * cam.width() * cam.height();
-    std::deque<std::pair<int, int>> todo{{0, 1}};  // indices into refs and their views
+    std::deque<std::pair<int, int>> todo{{0, 1}};  // indices of sources and their views
     std::vector<int> viewOf{0, cam.views() - 1};
-    while (!todo.empty() && int(refs.size()) < options_.budget) {
+    while (!todo.empty() && int(viewOf.size()) < options_.budget) {
       const auto [a, b] = todo.front();
       todo.pop_front();
-      if (viewOf[b] - viewOf[a] < 2) continue;
-      const int m = (viewOf[a] + viewOf[b]) / 2;
+      if (viewOf[size_t(b)] - viewOf[size_t(a)] < 2) continue;
+      const int m = (viewOf[size_t(a)] + viewOf[size_t(b)]) / 2;
       stats.counters["hole_checks"] += 1;
-      if (double(warp_.holes(refs[a].gpu, refs[b].gpu, cameraOf(cam, m, row), cam.width(), cam.height())) <=
-          tolerance)
-        continue;
-      refs.push_back(source(cam, row, cam.viewX(m), stats));
+      if (double(holes(a, b, m)) <= tolerance) continue;
+      add(m);
       viewOf.push_back(m);
-      todo.emplace_back(a, int(refs.size()) - 1);
-      todo.emplace_back(int(refs.size()) - 1, b);
+      todo.emplace_back(a, int(viewOf.size()) - 1);
+      todo.emplace_back(int(viewOf.size()) - 1, b);
     }
   }
 
   // One source view: the deferred pipeline's nearest layer as an RGB-D image.
-  Reference source(const ShearingCamera& cam, int row, double x, RenderStats& stats) {
+  RgbdView sourceView(const ShearingCamera& cam, int row, double x, RenderStats& stats) {
     stats.counters["source_views"] += 1;
     const double y = cam.rowY(row);
     std::vector<SourceLayer> layers = sources_->render(cam, {x, y}, 1, 0.0, stats);
@@ -140,6 +173,13 @@ class WarpRenderer final : public Renderer {
       for (size_t k = 0; k < view.depth.values.size(); ++k)
         view.depth.values[k] = cameraDepth(cam.spec(), layers[0].depth[k]);
     }
+    return view;
+  }
+
+  // A source uploaded for the GL warp.
+  Reference source(const ShearingCamera& cam, int row, double x, RenderStats& stats) {
+    const RgbdView view = sourceView(cam, row, x, stats);
+    const double y = cam.rowY(row);
     // Both references of a view are warped to it: any view may be drawn
     // from a source, as far as the track's far corners.
     double baseline = 0.0;
@@ -154,9 +194,10 @@ class WarpRenderer final : public Renderer {
 
   WarpOptions options_;
   PixelType type_;
-  DepthWarp warp_;
+  std::unique_ptr<DepthWarp> warp_;  // the GL warp, or null (cpu)
   std::unique_ptr<SourceLayerRenderer> sources_;  // scene sources, or null
   std::vector<Reference> captured_;
+  std::vector<Image> ring_;  // the CPU's EPIs being filled and handed on (fillEpisInOrder)
 };
 
 }  // namespace

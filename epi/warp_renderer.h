@@ -34,6 +34,9 @@ struct WarpOptions {
   // quad. 0: only planes merge. Measured (docs/BENCHMARKS.md).
   float flatness = 0.15f;
   int budget = 9;         // hierarchical: source views per row at most
+  // The CPU's EPIs (epi/warp_spans.h: exact segments, EPI order) instead
+  // of GL's views; scene sources only.
+  bool cpu = false;
   double holeFraction = 1e-3;
 };
 

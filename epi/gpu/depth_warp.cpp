@@ -8,6 +8,7 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include "epi/warp_spans.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
 
@@ -190,30 +191,6 @@ gl::Texture texture2D(GLenum format, int w, int h, GLenum filter) {
 
 void setMatrix(const gl::Program& p, const char* name, const glm::dmat4& m) { gl::setUniform(p, name, glm::mat4(m)); }
 
-// Per pixel its occlusion label: 1 where a neighbour (4-connected, inside
-// the image) has no sample or a depth more than tau of the nearer away;
-// and the silhouette pixels: samples with an empty 8-neighbour.
-void labelPixels(const DepthImage& d, float tau, std::vector<float>& labels, std::vector<uint32_t>& silhouettes) {
-  const int w = d.width, h = d.height;
-  labels.assign(size_t(w) * h, 0.0f);
-  auto inside = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h; };
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const float z = d.at(x, y);
-      bool jump = false, edge = false;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          if ((dx == 0 && dy == 0) || !inside(x + dx, y + dy)) continue;
-          const float n = d.at(x + dx, y + dy);
-          const bool empty = !(n > 0.0f);
-          edge = edge || empty;
-          if (dx == 0 || dy == 0) jump = jump || empty || std::abs(n - z) > tau * std::min(z, n);
-        }
-      labels[size_t(y) * w + x] = jump ? 1.0f : 0.0f;
-      if (z > 0.0f && edge) silhouettes.push_back(uint32_t(y * w + x));
-    }
-}
-
 // The grid (DepthWarp::ensureGrid): (W + 2) x (H + 2) vertices, vertex
 // (i, j) at pixel centre (i - 1/2, j - 1/2) clamped to the image, fetching
 // the pixel it lies in.
@@ -367,13 +344,7 @@ Splats makeSplats(const std::vector<uint32_t>& pixels, int width) {
 
 float warpWeight(float theta0, float theta1, float z0, float z1, float occ0, float occ1, float tau, float a) {
   const float s = theta0 + theta1 > 0.0f ? theta0 / (theta0 + theta1) : 0.5f;
-  const float wAng = 0.5f + 0.5f * std::cos(glm::pi<float>() * s);
-  const float closer0 = z0 - z1 < -tau * z0 ? 1.0f : 0.0f;
-  const float closer1 = z1 - z0 < -tau * z1 ? 1.0f : 0.0f;
-  const float phi0 = std::min(1.0f, occ0 * std::pow(a * s, 4.0f));
-  const float phi1 = std::min(1.0f, occ1 * std::pow(a * (1.0f - s), 4.0f));
-  const float w = std::min(1.0f, phi1 + (1.0f - phi0) * std::clamp(wAng + phi0 * closer0 - phi1 * closer1, 0.0f, 1.0f));
-  return std::clamp(w, 0.0f, 1.0f);
+  return compositeWeight(s, std::cos(glm::pi<float>() * s), z0, z1, occ0, occ1, tau, a);
 }
 
 WarpReference WarpReference::upload(const RgbdView& view, float tau, float flatness, double baseline) {

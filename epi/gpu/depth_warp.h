@@ -49,6 +49,8 @@
 //             - phi_j closer_j, 0, 1)) (eq. 5-3), clamped to [0, 1];
 //   colour  = w_i c_i + (1 - w_i) c_j. Where one reference has no sample,
 //   the other alone; where neither, nothing (alpha 0).
+#include <algorithm>
+
 #include "mvr/gl/gl_handles.h"
 #include "mvr/gl/render_target.h"
 #include "mvr/rgbd_view.h"
@@ -59,6 +61,18 @@ namespace mvr {
 // (above): theta the angles at the surface point, z their virtual depths,
 // occ their occlusion labels. The composite pass computes the same in GLSL.
 float warpWeight(float theta0, float theta1, float z0, float z1, float occ0, float occ1, float tau, float a);
+// The same from s = theta0 / (theta0 + theta1) and cos(pi s), for the CPU
+// warp (epi/warp_spans.h), which computes both faster.
+inline float compositeWeight(float s, float cosPiS, float z0, float z1, float occ0, float occ1, float tau, float a) {
+  const float wAng = 0.5f + 0.5f * cosPiS;
+  const float closer0 = z0 - z1 < -tau * z0 ? 1.0f : 0.0f;
+  const float closer1 = z1 - z0 < -tau * z1 ? 1.0f : 0.0f;
+  const float p0 = a * s, p1 = a * (1.0f - s);
+  const float phi0 = std::min(1.0f, occ0 * (p0 * p0) * (p0 * p0));
+  const float phi1 = std::min(1.0f, occ1 * (p1 * p1) * (p1 * p1));
+  const float w = std::min(1.0f, phi1 + (1.0f - phi0) * std::clamp(wAng + phi0 * closer0 - phi1 * closer1, 0.0f, 1.0f));
+  return std::clamp(w, 0.0f, 1.0f);
+}
 
 // A reference resident on the GPU.
 struct WarpReference {

@@ -1,0 +1,310 @@
+#include "epi/warp_spans.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+
+#include "epi/gpu/depth_warp.h"
+#include "mvr/color.h"
+#include "mvr/error.h"
+#include "mvr/parallel.h"
+
+namespace mvr {
+
+void labelPixels(const DepthImage& d, float tau, std::vector<float>& labels, std::vector<uint32_t>& silhouettes) {
+  const int w = d.width, h = d.height;
+  labels.assign(size_t(w) * h, 0.0f);
+  auto inside = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h; };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float z = d.at(x, y);
+      bool jump = false, edge = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          if ((dx == 0 && dy == 0) || !inside(x + dx, y + dy)) continue;
+          const float n = d.at(x + dx, y + dy);
+          const bool empty = !(n > 0.0f);
+          edge = edge || empty;
+          if (dx == 0 || dy == 0) jump = jump || empty || std::abs(n - z) > tau * std::min(z, n);
+        }
+      labels[size_t(y) * w + x] = jump ? 1.0f : 0.0f;
+      if (z > 0.0f && edge) silhouettes.push_back(uint32_t(y * w + x));
+    }
+}
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+// atan2(y, x) for y >= 0, within 1e-5 of it: the odd minimax polynomial
+// of atan on [0, 1], folded by atan(r) = pi/2 - atan(1/r) and pi - ...
+float atan2Upper(float y, float x) {
+  const float ax = std::abs(x), hi = std::max(ax, y), lo = std::min(ax, y);
+  const float r = hi > 0.0f ? lo / hi : 0.0f, r2 = r * r;
+  float a = r * (0.99997726f +
+                 r2 * (-0.33262347f + r2 * (0.19354346f + r2 * (-0.11643287f + r2 * (0.05265332f + r2 * -0.01172120f)))));
+  if (y > ax) a = 0.5f * kPi - a;
+  return x < 0.0f ? kPi - a : a;
+}
+
+// cos(pi s) for s in [0, 1], within 4e-6: -sin(pi (s - 1/2)) by its
+// Taylor polynomial to the ninth power on [-pi/2, pi/2].
+float cosPi(float s) {
+  const float x = kPi * (s - 0.5f), x2 = x * x;
+  return -x * (1.0f + x2 * (-1.0f / 6 + x2 * (1.0f / 120 + x2 * (-1.0f / 5040 + x2 * (1.0f / 362880)))));
+}
+
+void encodePixel(PixelType type, const Srgb8Encoder& srgb, const float* rgb, uint8_t* out) {
+  if (type == PixelType::F32) {
+    const float rgba[4] = {rgb[0], rgb[1], rgb[2], 1.0f};
+    std::memcpy(out, rgba, sizeof rgba);
+    return;
+  }
+  for (int c = 0; c < 3; ++c)
+    out[c] = type == PixelType::Srgb8 ? srgb(rgb[c]) : uint8_t(std::lrint(std::clamp(rgb[c], 0.0f, 1.0f) * 255.0f));
+  out[3] = 255;
+}
+
+}  // namespace
+
+// One reference's scanline as points that move along it: its pixel
+// centres with samples, and where the first or last pixel has one, the
+// image's edge (the GL grid's border ring: x 0 and W, that pixel's values).
+struct WarpSpans::Row {
+  enum : uint8_t { kNone, kSurface, kSheet };
+  std::vector<float> x0, slope, inv, rgb, occ;
+  std::vector<uint8_t> next;   // the segment to the next point
+  std::vector<uint8_t> splat;  // a silhouette pixel: also its own footprint
+  std::vector<float> far;      // a sheet's farther end's camera z
+  const float* depth = nullptr;  // the reference's camera z along the scanline
+};
+
+struct WarpSpans::Line {
+  std::vector<float> inv, rgb;  // 1 / camera z (0: nothing drawn), colour
+  std::vector<uint8_t> occ;
+  explicit Line(int w) : inv(size_t(w)), rgb(3 * size_t(w)), occ(size_t(w)) {}
+};
+
+WarpSpans::WarpSpans(const ShearingCamera& cam, int row, PixelType type, float tau, float a)
+    : cam_(cam), row_(row), type_(type), tau_(tau), a_(a) {
+  perUnit_ = cam.width() / cam.planeWidth();
+  focal_ = perUnit_ * cam.spec().distance;
+}
+
+int WarpSpans::add(RgbdView view, double x) {
+  if (view.color.type != PixelType::F32 || view.color.width != cam_.width() || view.color.height != cam_.height() ||
+      view.depth.width != cam_.width() || view.depth.height != cam_.height())
+    fail("warp", "a reference is not a float image of the camera's size");
+  Reference r{std::move(view), x, {}, {}};
+  std::vector<uint32_t> silhouettes;
+  labelPixels(r.view.depth, tau_, r.labels, silhouettes);
+  r.silhouette.assign(r.labels.size(), 0);
+  for (const uint32_t p : silhouettes) r.silhouette[p] = 1;
+  refs_.push_back(std::move(r));
+  return int(refs_.size()) - 1;
+}
+
+std::pair<int, int> WarpSpans::pairOf(int view) const {
+  const double eye = cam_.viewX(view);
+  auto distance = [&](int k) { return std::abs(refs_[size_t(k)].x - eye); };
+  int a = 0;
+  for (int k = 1; k < int(refs_.size()); ++k)
+    if (distance(k) < distance(a)) a = k;
+  const double xa = refs_[size_t(a)].x;
+  if (std::abs(eye - xa) <= 1e-9 * (1.0 + std::abs(xa))) return {a, -1};
+  int b = -1;
+  for (int k = 0; k < int(refs_.size()); ++k)
+    if (k != a && (refs_[size_t(k)].x - xa) * (eye - xa) > 0.0 && (b < 0 || distance(k) < distance(b))) b = k;
+  return {a, b};
+}
+
+WarpSpans::Row WarpSpans::rowOf(int ref, int j) const {
+  const Reference& reference = refs_[size_t(ref)];
+  const RgbdView& v = reference.view;
+  const int w = cam_.width();
+  const size_t base = size_t(j) * w;
+  const float* depth = v.depth.values.data() + base;
+  const float* color = reinterpret_cast<const float*>(v.color.bytes.data()) + 4 * base;
+  Row r;
+  r.depth = depth;
+  auto point = [&](float x, int i, bool splat) {
+    const float inv = 1.0f / depth[i];
+    r.x0.push_back(x);
+    r.slope.push_back(float(perUnit_ - focal_ * double(inv)));
+    r.inv.push_back(inv);
+    r.rgb.insert(r.rgb.end(), color + 4 * i, color + 4 * i + 3);
+    r.occ.push_back(reference.labels[base + size_t(i)]);
+    r.splat.push_back(splat);
+    r.next.push_back(Row::kNone);
+    r.far.push_back(0.0f);
+  };
+  for (int i = 0; i < w; ++i) {
+    if (!(depth[i] > 0.0f)) continue;
+    if (i == 0) {
+      point(0.0f, 0, false);
+      r.next.back() = Row::kSurface;
+    }
+    point(float(i) + 0.5f, i, reference.silhouette[base + size_t(i)] != 0);
+    if (i + 1 < w && depth[i + 1] > 0.0f) {
+      const float nearZ = std::min(depth[i], depth[i + 1]), farZ = std::max(depth[i], depth[i + 1]);
+      const bool sheet = farZ - nearZ > tau_ * nearZ;  // GridTriangles' jump
+      r.next.back() = sheet ? Row::kSheet : Row::kSurface;
+      r.far.back() = farZ;
+    } else if (i + 1 == w) {
+      r.next.back() = Row::kSurface;
+      point(float(w), i, false);
+    }
+  }
+  return r;
+}
+
+// One reference's scanline (at camera x refX) in the view at camera x
+// eyeX: its segments and footprints filled with a depth test, its sheets'
+// fragments dropped where the other reference (at camera x otherX) sees
+// through them (kWarpFragment's SHEET test, along the one row it takes
+// place on here).
+void WarpSpans::warp(const Row& r, double refX, const Row* other, double otherX, double eyeX, Line& out) const {
+  const int w = cam_.width();
+  std::fill(out.inv.begin(), out.inv.end(), 0.0f);
+  const size_t n = r.x0.size();
+  if (!n) return;
+  const float t = float(eyeX - refX);
+  thread_local std::vector<float> x;
+  x.resize(n);
+  for (size_t k = 0; k < n; ++k) x[k] = r.x0[k] + t * r.slope[k];
+  auto store = [&](int p, float inv, const float* rgb, float occ) {
+    out.inv[size_t(p)] = inv;
+    std::copy_n(rgb, 3, &out.rgb[3 * size_t(p)]);
+    out.occ[size_t(p)] = occ > 0.5f;
+  };
+  // Pixels whose centres lie in [lo, hi).
+  auto pixels = [w](float lo, float hi) {
+    return std::pair(std::max(0, int(std::ceil(lo - 0.5f))), std::min(w, int(std::ceil(hi - 0.5f))));
+  };
+  const float toOther = float(otherX - eyeX);
+  for (size_t k = 0; k + 1 < n; ++k) {
+    if (r.next[k] == Row::kNone) continue;
+    const float xa = x[k], xb = x[k + 1];
+    if (!(xa != xb)) continue;
+    const auto [p0, p1] = pixels(std::min(xa, xb), std::max(xa, xb));
+    const float* ca = &r.rgb[3 * k];
+    const float* cb = &r.rgb[3 * k + 3];
+    const bool sheet = r.next[k] == Row::kSheet && other;
+    for (int p = p0; p < p1; ++p) {
+      const float s = (float(p) + 0.5f - xa) / (xb - xa);
+      const float inv = r.inv[k] + s * (r.inv[k + 1] - r.inv[k]);
+      if (!(inv > out.inv[size_t(p)])) continue;
+      if (sheet && seenThrough(*other, float(p) + 0.5f, inv, 1.0f / r.far[k], toOther)) continue;
+      // Colour is linear in the window position (both views divide by the
+      // same camera z); the label perspective-correct, as GL interpolates it.
+      const float rgb[3] = {ca[0] + s * (cb[0] - ca[0]), ca[1] + s * (cb[1] - ca[1]), ca[2] + s * (cb[2] - ca[2])};
+      const float lambda = s * r.inv[k + 1] / inv;
+      store(p, inv, rgb, r.occ[k] + lambda * (r.occ[k + 1] - r.occ[k]));
+    }
+  }
+  for (size_t k = 0; k < n; ++k) {
+    if (!r.splat[k]) continue;
+    const auto [p0, p1] = pixels(x[k] - 0.5f, x[k] + 0.5f);
+    for (int p = p0; p < p1; ++p)
+      if (r.inv[k] > out.inv[size_t(p)]) store(p, r.inv[k], &r.rgb[3 * k], r.occ[k]);
+  }
+}
+
+// A sheet's fragment at pixel centre x and 1/z inv stands for a surface on
+// the view's ray between it and 1/z invFar. The other reference, toOther
+// from the eye along the track, sees that stretch along its own scanline:
+// it is empty where at every pixel it crosses that reference sees nothing
+// or a surface beyond the ray's point.
+bool WarpSpans::seenThrough(const Row& other, float x, float inv, float invFar, float toOther) const {
+  if (toOther == 0.0f) return false;
+  invFar = std::min(invFar, inv);
+  const int w = cam_.width();
+  const float unit = float(perUnit_), focal = float(focal_);
+  auto at = [&](float i) { return x + toOther * (unit - focal * i); };  // the point of 1/z i, in the other reference
+  const float from = at(inv), to = at(invFar);
+  const int steps = int(std::min(std::ceil(std::abs(to - from)), float(w + cam_.height())));
+  for (int k = 0; k <= steps; ++k) {
+    const float u = steps > 0 ? from + (to - from) * (float(k) / float(steps)) : from;
+    const float i = std::clamp((unit - (u - x) / toOther) / focal, invFar, inv);
+    const float px = std::floor(at(i));
+    if (px < 0.0f || px >= float(w)) return false;
+    const float seen = other.depth[int(px)];
+    if (seen > 0.0f && seen < (1.0f + tau_) / i) return false;
+  }
+  return true;
+}
+
+// View `view`'s scanline from the two lines (l1 null: l0 alone), encoded.
+void WarpSpans::composite(const Line& l0, const Line* l1, int j, int view, int a, int b, uint8_t* out) const {
+  const int w = cam_.width();
+  const size_t bytes = 4 * Image::channelBytes(type_);
+  const Srgb8Encoder srgb;
+  const glm::dmat3 K = cam_.intrinsics(view, row_);
+  const float fx = float(K[0][0]), cx = float(K[2][0]), fy = float(K[1][1]), cy = float(K[2][1]);
+  const float yRatio = (float(j) + 0.5f - cy) / fy;  // camera y / z along the scanline
+  const double eye = cam_.viewX(view);
+  const float baseA = float(refs_[size_t(a)].x - eye), baseB = b < 0 ? 0.0f : float(refs_[size_t(b)].x - eye);
+  std::memset(out, 0, size_t(w) * bytes);
+  for (int p = 0; p < w; ++p) {
+    const bool seen0 = l0.inv[size_t(p)] > 0.0f, seen1 = l1 && l1->inv[size_t(p)] > 0.0f;
+    if (!seen0 && !seen1) continue;
+    if (!seen1 || !seen0) {
+      encodePixel(type_, srgb, seen0 ? &l0.rgb[3 * size_t(p)] : &l1->rgb[3 * size_t(p)], out + size_t(p) * bytes);
+      continue;
+    }
+    const float z0 = 1.0f / l0.inv[size_t(p)], z1 = 1.0f / l1->inv[size_t(p)], z = std::min(z0, z1);
+    // The surface point in the plane of the track and the point: h its
+    // distance from the track, u its foot's offset from the eye; the
+    // angle at it between the eye and a reference base along the track.
+    const float h = z * std::sqrt(1.0f + yRatio * yRatio), u = (float(p) + 0.5f - cx) * z / fx;
+    auto angle = [&](float base) { return atan2Upper(std::abs(base) * h, h * h + (base - u) * -u); };
+    const float t0 = angle(baseA), t1 = angle(baseB);
+    const float s = t0 + t1 > 0.0f ? t0 / (t0 + t1) : 0.5f;
+    const float wgt = compositeWeight(s, cosPi(s), z0, z1, float(l0.occ[size_t(p)]), float(l1->occ[size_t(p)]), tau_, a_);
+    const float* c0 = &l0.rgb[3 * size_t(p)];
+    const float* c1 = &l1->rgb[3 * size_t(p)];
+    const float rgb[3] = {c1[0] + wgt * (c0[0] - c1[0]), c1[1] + wgt * (c0[1] - c1[1]), c1[2] + wgt * (c0[2] - c1[2])};
+    encodePixel(type_, srgb, rgb, out + size_t(p) * bytes);
+  }
+}
+
+void WarpSpans::fillEpi(int j, const PixelRows& epi) const {
+  if (epi.width != cam_.width() || epi.height != cam_.views() || epi.type != type_)
+    fail("warp", "EPI memory of the wrong shape");
+  std::vector<Row> rows;
+  for (int k = 0; k < int(refs_.size()); ++k) rows.push_back(rowOf(k, j));
+  Line l0(cam_.width()), l1(cam_.width());
+  for (int view = 0; view < cam_.views(); ++view) {
+    const auto [a, b] = pairOf(view);
+    const double eye = cam_.viewX(view);
+    const double xa = refs_[size_t(a)].x, xb = b < 0 ? xa : refs_[size_t(b)].x;
+    warp(rows[size_t(a)], xa, b < 0 ? nullptr : &rows[size_t(b)], xb, eye, l0);
+    if (b >= 0) warp(rows[size_t(b)], xb, &rows[size_t(a)], xa, eye, l1);
+    composite(l0, b < 0 ? nullptr : &l1, j, view, a, b, epi.row(view));
+  }
+}
+
+long WarpSpans::holes(int a, int b, int view) const {
+  const int h = cam_.height();
+  const double eye = cam_.viewX(view);
+  std::atomic<long> count{0};
+  constexpr int kBand = 16;
+  parallelFor(0, (h + kBand - 1) / kBand, [&](int band) {
+    Line l0(cam_.width()), l1(cam_.width());
+    long local = 0;
+    for (int j = band * kBand; j < std::min(h, (band + 1) * kBand); ++j) {
+      // As DepthWarp::holes: each reference warped alone, sheets untested.
+      warp(rowOf(a, j), refs_[size_t(a)].x, nullptr, 0.0, eye, l0);
+      warp(rowOf(b, j), refs_[size_t(b)].x, nullptr, 0.0, eye, l1);
+      for (size_t p = 0; p < l0.inv.size(); ++p) {
+        const bool seen0 = l0.inv[p] > 0.0f, seen1 = l1.inv[p] > 0.0f;
+        local += (seen0 || seen1) && (!seen0 || l0.occ[p]) && (!seen1 || l1.occ[p]);
+      }
+    }
+    count += local;
+  });
+  return count;
+}
+
+}  // namespace mvr
