@@ -4,7 +4,9 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 
+#include "epi/diffuse_spans.h"
 #include "epi/gpu/depth_warp.h"
 #include "mvr/color.h"
 #include "mvr/error.h"
@@ -36,35 +38,44 @@ void labelPixels(const DepthImage& d, float tau, std::vector<float>& labels, std
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
+using spans::F4;  // epi/diffuse_spans.h: four lanes, each IEEE single precision
+
+inline F4 abs4(F4 v) { return v < 0.0f ? -v : v; }
+inline F4 min4(F4 a, F4 b) { return a < b ? a : b; }
+inline F4 max4(F4 a, F4 b) { return a < b ? b : a; }
 
 // atan2(y, x) for y >= 0, within 1e-5 of it: the odd minimax polynomial
 // of atan on [0, 1], folded by atan(r) = pi/2 - atan(1/r) and pi - ...
-float atan2Upper(float y, float x) {
-  const float ax = std::abs(x), hi = std::max(ax, y), lo = std::min(ax, y);
-  const float r = hi > 0.0f ? lo / hi : 0.0f, r2 = r * r;
-  float a = r * (0.99997726f +
-                 r2 * (-0.33262347f + r2 * (0.19354346f + r2 * (-0.11643287f + r2 * (0.05265332f + r2 * -0.01172120f)))));
-  if (y > ax) a = 0.5f * kPi - a;
+inline F4 atan2Upper(F4 y, F4 x) {
+  const F4 ax = abs4(x), hi = max4(ax, y), lo = min4(ax, y);
+  const F4 r = lo / max4(hi, F4{} + 1e-30f), r2 = r * r;
+  F4 a = r * (0.99997726f +
+              r2 * (-0.33262347f + r2 * (0.19354346f + r2 * (-0.11643287f + r2 * (0.05265332f + r2 * -0.01172120f)))));
+  a = y > ax ? 0.5f * kPi - a : a;
   return x < 0.0f ? kPi - a : a;
 }
 
 // cos(pi s) for s in [0, 1], within 4e-6: -sin(pi (s - 1/2)) by its
 // Taylor polynomial to the ninth power on [-pi/2, pi/2].
-float cosPi(float s) {
-  const float x = kPi * (s - 0.5f), x2 = x * x;
+inline F4 cosPi(F4 s) {
+  const F4 x = kPi * (s - 0.5f), x2 = x * x;
   return -x * (1.0f + x2 * (-1.0f / 6 + x2 * (1.0f / 120 + x2 * (-1.0f / 5040 + x2 * (1.0f / 362880)))));
 }
 
-void encodePixel(PixelType type, const Srgb8Encoder& srgb, const float* rgb, uint8_t* out) {
-  if (type == PixelType::F32) {
+template <PixelType T>
+inline void encodePixel(const Srgb8Encoder& srgb, const float* rgb, uint8_t* out) {
+  if constexpr (T == PixelType::F32) {
     const float rgba[4] = {rgb[0], rgb[1], rgb[2], 1.0f};
     std::memcpy(out, rgba, sizeof rgba);
-    return;
+  } else {
+    for (int c = 0; c < 3; ++c)
+      out[c] = T == PixelType::Srgb8 ? srgb(rgb[c]) : uint8_t(std::lrint(std::clamp(rgb[c], 0.0f, 1.0f) * 255.0f));
+    out[3] = 255;
   }
-  for (int c = 0; c < 3; ++c)
-    out[c] = type == PixelType::Srgb8 ? srgb(rgb[c]) : uint8_t(std::lrint(std::clamp(rgb[c], 0.0f, 1.0f) * 255.0f));
-  out[3] = 255;
 }
+
+template <PixelType T>
+using TypeTag = std::integral_constant<PixelType, T>;
 
 }  // namespace
 
@@ -83,6 +94,7 @@ struct WarpSpans::Row {
 struct WarpSpans::Line {
   std::vector<float> inv, rgb;  // 1 / camera z (0: nothing drawn), colour
   std::vector<uint8_t> occ;
+  int lo = 0, hi = 0;  // the pixels drawn lie in [lo, hi)
   explicit Line(int w) : inv(size_t(w)), rgb(3 * size_t(w)), occ(size_t(w)) {}
 };
 
@@ -166,7 +178,8 @@ WarpSpans::Row WarpSpans::rowOf(int ref, int j) const {
 // place on here).
 void WarpSpans::warp(const Row& r, double refX, const Row* other, double otherX, double eyeX, Line& out) const {
   const int w = cam_.width();
-  std::fill(out.inv.begin(), out.inv.end(), 0.0f);
+  if (out.hi > out.lo) std::fill(out.inv.begin() + out.lo, out.inv.begin() + out.hi, 0.0f);
+  out.lo = w, out.hi = 0;
   const size_t n = r.x0.size();
   if (!n) return;
   const float t = float(eyeX - refX);
@@ -177,6 +190,7 @@ void WarpSpans::warp(const Row& r, double refX, const Row* other, double otherX,
     out.inv[size_t(p)] = inv;
     std::copy_n(rgb, 3, &out.rgb[3 * size_t(p)]);
     out.occ[size_t(p)] = occ > 0.5f;
+    out.lo = std::min(out.lo, p), out.hi = std::max(out.hi, p + 1);
   };
   // Pixels whose centres lie in [lo, hi).
   auto pixels = [w](float lo, float hi) {
@@ -239,33 +253,62 @@ bool WarpSpans::seenThrough(const Row& other, float x, float inv, float invFar, 
 void WarpSpans::composite(const Line& l0, const Line* l1, int j, int view, int a, int b, uint8_t* out) const {
   const int w = cam_.width();
   const size_t bytes = 4 * Image::channelBytes(type_);
-  const Srgb8Encoder srgb;
+  std::memset(out, 0, size_t(w) * bytes);
   const glm::dmat3 K = cam_.intrinsics(view, row_);
   const float fx = float(K[0][0]), cx = float(K[2][0]), fy = float(K[1][1]), cy = float(K[2][1]);
   const float yRatio = (float(j) + 0.5f - cy) / fy;  // camera y / z along the scanline
   const double eye = cam_.viewX(view);
   const float baseA = float(refs_[size_t(a)].x - eye), baseB = b < 0 ? 0.0f : float(refs_[size_t(b)].x - eye);
-  std::memset(out, 0, size_t(w) * bytes);
-  for (int p = 0; p < w; ++p) {
-    const bool seen0 = l0.inv[size_t(p)] > 0.0f, seen1 = l1 && l1->inv[size_t(p)] > 0.0f;
-    if (!seen0 && !seen1) continue;
-    if (!seen1 || !seen0) {
-      encodePixel(type_, srgb, seen0 ? &l0.rgb[3 * size_t(p)] : &l1->rgb[3 * size_t(p)], out + size_t(p) * bytes);
-      continue;
+  const int lo = l1 ? std::min(l0.lo, l1->lo) : l0.lo, hi = l1 ? std::max(l0.hi, l1->hi) : l0.hi;
+  // Per pixel the angle ratio s = theta0 / (theta0 + theta1) at the
+  // nearer surface point and cos(pi s), four at a time: the surface point
+  // in the plane of the track and the point, h its distance from the
+  // track, u its foot's offset from the eye; the angle at it between the
+  // eye and a reference `base` along the track.
+  thread_local std::vector<float> ratio, cosine;
+  ratio.resize(size_t(w) + 4), cosine.resize(size_t(w) + 4);
+  if (l1) {
+    const float hPerZ = std::sqrt(1.0f + yRatio * yRatio);
+    for (int p = lo & ~3; p < hi; p += 4) {
+      F4 inv, x;
+      for (int k = 0; k < 4; ++k) {
+        const size_t q = size_t(std::min(p + k, w - 1));
+        inv[k] = std::max({l0.inv[q], l1->inv[q], 1e-30f});
+        x[k] = float(p + k) + 0.5f;
+      }
+      const F4 z = 1.0f / inv, h = z * hPerZ, u = (x - cx) * z / fx;
+      auto angle = [&](float base) { return atan2Upper(std::abs(base) * h, h * h + (base - u) * -u); };
+      const F4 t0 = angle(baseA), t1 = angle(baseB), sum = t0 + t1;
+      const F4 s = sum > 0.0f ? t0 / max4(sum, F4{} + 1e-30f) : F4{} + 0.5f;
+      const F4 c = cosPi(s);
+      std::memcpy(&ratio[size_t(p)], &s, sizeof s);
+      std::memcpy(&cosine[size_t(p)], &c, sizeof c);
     }
-    const float z0 = 1.0f / l0.inv[size_t(p)], z1 = 1.0f / l1->inv[size_t(p)], z = std::min(z0, z1);
-    // The surface point in the plane of the track and the point: h its
-    // distance from the track, u its foot's offset from the eye; the
-    // angle at it between the eye and a reference base along the track.
-    const float h = z * std::sqrt(1.0f + yRatio * yRatio), u = (float(p) + 0.5f - cx) * z / fx;
-    auto angle = [&](float base) { return atan2Upper(std::abs(base) * h, h * h + (base - u) * -u); };
-    const float t0 = angle(baseA), t1 = angle(baseB);
-    const float s = t0 + t1 > 0.0f ? t0 / (t0 + t1) : 0.5f;
-    const float wgt = compositeWeight(s, cosPi(s), z0, z1, float(l0.occ[size_t(p)]), float(l1->occ[size_t(p)]), tau_, a_);
-    const float* c0 = &l0.rgb[3 * size_t(p)];
-    const float* c1 = &l1->rgb[3 * size_t(p)];
-    const float rgb[3] = {c1[0] + wgt * (c0[0] - c1[0]), c1[1] + wgt * (c0[1] - c1[1]), c1[2] + wgt * (c0[2] - c1[2])};
-    encodePixel(type_, srgb, rgb, out + size_t(p) * bytes);
+  }
+  const Srgb8Encoder srgb;
+  auto run = [&](auto type) {
+    constexpr PixelType T = decltype(type)::value;
+    for (int p = lo; p < hi; ++p) {
+      const bool seen0 = l0.inv[size_t(p)] > 0.0f, seen1 = l1 && l1->inv[size_t(p)] > 0.0f;
+      if (!seen0 && !seen1) continue;
+      if (!seen1 || !seen0) {
+        encodePixel<T>(srgb, seen0 ? &l0.rgb[3 * size_t(p)] : &l1->rgb[3 * size_t(p)], out + size_t(p) * bytes);
+        continue;
+      }
+      const float z0 = 1.0f / l0.inv[size_t(p)], z1 = 1.0f / l1->inv[size_t(p)];
+      const float wgt = compositeWeight(ratio[size_t(p)], cosine[size_t(p)], z0, z1, float(l0.occ[size_t(p)]),
+                                        float(l1->occ[size_t(p)]), tau_, a_);
+      const float* c0 = &l0.rgb[3 * size_t(p)];
+      const float* c1 = &l1->rgb[3 * size_t(p)];
+      const float rgb[3] = {c1[0] + wgt * (c0[0] - c1[0]), c1[1] + wgt * (c0[1] - c1[1]),
+                            c1[2] + wgt * (c0[2] - c1[2])};
+      encodePixel<T>(srgb, rgb, out + size_t(p) * bytes);
+    }
+  };
+  switch (type_) {
+    case PixelType::U8: return run(TypeTag<PixelType::U8>{});
+    case PixelType::Srgb8: return run(TypeTag<PixelType::Srgb8>{});
+    case PixelType::F32: return run(TypeTag<PixelType::F32>{});
   }
 }
 
