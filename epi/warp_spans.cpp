@@ -315,6 +315,7 @@ void WarpSpans::composite(const Line& l0, const Line* l1, int j, int view, int a
 void WarpSpans::fillEpi(int j, const PixelRows& epi) const {
   if (epi.width != cam_.width() || epi.height != cam_.views() || epi.type != type_)
     fail("warp", "EPI memory of the wrong shape");
+  if (refs_.empty()) fail("warp", "no references");
   std::vector<Row> rows;
   for (int k = 0; k < int(refs_.size()); ++k) rows.push_back(rowOf(k, j));
   Line l0(cam_.width()), l1(cam_.width());
