@@ -49,6 +49,10 @@ void BackendFlags::add(CLI::App& app) {
                      "PX pixels in the farthest view (0: only planes merge)")
           ->type_name("PX")
           ->capture_default_str(),
+      app.add_option("--warp-path", warpPath_,
+                     "warp: by GL, the seed's grid mesh (gl), or on the CPU, EPI by EPI, exactly (cpu; scene "
+                     "sources only); auto (default): cpu where GL renders on the CPU (llvmpipe), else gl")
+          ->type_name(choices(kWarpPathNames)),
   };
   interpOptions_ = {
       app.add_option("--max-layers", interp.maxLayers, "interp: depth-peeled layers per source view")
@@ -130,6 +134,7 @@ BackendOptions BackendFlags::resolve() const {
   if (o.backend == Backend::Warp) {
     if (!acquire_.empty()) o.warp.acquire = parseAcquire(acquire_);
     if (budgetOption_->count()) o.warp.budget = o.interp.budget;
+    if (!warpPath_.empty()) o.warp.path = parseName(kWarpPathNames, warpPath_, "--warp-path", "path");
     validate(o.warp);
   }
   return o;

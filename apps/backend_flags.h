@@ -26,7 +26,7 @@ class BackendFlags {
 
  private:
   BackendOptions options_;
-  std::string backend_ = "mvr", acquire_, texture_, builder_, blend_;
+  std::string backend_ = "mvr", acquire_, texture_, builder_, blend_, warpPath_;
   std::optional<std::string> pst_;
   bool wholeIntervals_ = false;
   bool layerPasses_ = false;

@@ -380,8 +380,9 @@ int runBench(int argc, char** argv) {
                  "the image-based back end with L layers, coalescing T pixels, visibility, a budget "
                  "of B source views, K highlight splits, overlap P pixels, outlines sampled S "
                  "columns a pixel, every interval drawn whole, a pass of the mesh per layer, "
-                 "blending none, track or angular; warp[:ACQUIRE][:tT][:aA][:bB][:fF] is depth-image "
-                 "warping with tau T, penalty A, a budget of B references, flatness F pixels")
+                 "blending none, track or angular; warp[:ACQUIRE][:tT][:aA][:bB][:fF][:gl|:cpu] "
+                 "is depth-image warping with tau T, penalty A, a budget of B references, flatness F "
+                 "pixels, by GL or on the CPU (default: the CPU where GL renders on the CPU)")
       ->type_name("LIST")->capture_default_str();
   bool linear = false;
   app.add_flag("--linear", linear, "render 8-bit linear values (default: sRGB-encoded, as mvr render writes)");

@@ -98,7 +98,7 @@ void interpOption(const std::string& token, InterpOptions& o, const char* where)
 // One warp option token, checked by validate(WarpOptions).
 void warpOption(const std::string& token, WarpOptions& o, const char* where) {
   if (token == "cpu" || token == "gl") {
-    o.cpu = token == "cpu";
+    o.path = token == "cpu" ? WarpPath::Cpu : WarpPath::Gl;
     return;
   }
   char* end = nullptr;

@@ -11,6 +11,7 @@
 #include "mvr/baselines/source_layers.h"
 #include "mvr/baselines/view_loop.h"
 #include "mvr/error.h"
+#include "mvr/gl/gl_api.h"
 
 namespace mvr {
 
@@ -38,10 +39,11 @@ float cameraDepth(const CameraSpec& s, float window) {
 class WarpRenderer final : public Renderer {
  public:
   WarpRenderer(const Scene* scene, std::vector<RgbdView> captured, PixelType type, const WarpOptions& options)
-      : options_((validate(options), options)),
+      : options_(resolved(options, scene != nullptr)),
         type_(type),
-        warp_(options.cpu ? nullptr : std::make_unique<DepthWarp>(options.tau, options.penalty)),
+        warp_(options_.path == WarpPath::Cpu ? nullptr : std::make_unique<DepthWarp>(options.tau, options.penalty)),
         sources_(scene ? makeSourceLayerRenderer(*scene) : nullptr) {
+    if (!scene && options_.path == WarpPath::Cpu) fail("warp", "the CPU warp takes scene sources only");
     // A captured reference serves the views between it and the others.
     for (const RgbdView& view : captured) {
       double baseline = 0.0;
@@ -50,14 +52,13 @@ class WarpRenderer final : public Renderer {
       captured_.push_back({WarpReference::upload(view, options_.tau, options_.flatness, baseline)});
     }
     if (!scene && captured_.empty()) fail("warp", "no references");
-    if (!scene && options_.cpu) fail("warp", "the CPU warp takes scene sources only");
   }
 
   std::string name() const override { return "warp"; }
-  FrameOrder order() const override { return options_.cpu ? FrameOrder::Epi : FrameOrder::View; }
+  FrameOrder order() const override { return options_.path == WarpPath::Cpu ? FrameOrder::Epi : FrameOrder::View; }
 
   void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
-    if (options_.cpu) return renderEpis(cam, sink, stats);
+    if (options_.path == WarpPath::Cpu) return renderEpis(cam, sink, stats);
     RenderTarget target(cam.width(), cam.height(), type_);
     int loadedRow = -1;
     std::vector<Reference> rowSources;
@@ -74,9 +75,17 @@ class WarpRenderer final : public Renderer {
       warp_->render(refs[a].gpu, b < 0 ? nullptr : &refs[b].gpu, cameraOf(cam, view, row), target);
     });
     stats.notes["acquire"] = sources_ ? acquireName(options_.acquire) : "captured";
+    stats.notes["warp"] = "gl";
   }
 
  private:
+  // Auto made Cpu or Gl (WarpOptions::path); validated.
+  static WarpOptions resolved(WarpOptions o, bool sceneSources) {
+    validate(o);
+    if (o.path == WarpPath::Auto) o.path = sceneSources && gl::rendersOnCpu() ? WarpPath::Cpu : WarpPath::Gl;
+    return o;
+  }
+
   static WarpCamera cameraOf(const ShearingCamera& cam, int view, int row) {
     return {cam.viewProjection(view, row),
             RgbdView::pixelToWorld(cam.intrinsics(view, row), cam.worldToCamera(view, row)), cam.eye(view, row)};
@@ -117,11 +126,23 @@ class WarpRenderer final : public Renderer {
   // The CPU's EPIs: each row's sources, then its scanlines on the pool.
   void renderEpis(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) {
     const RenderShare& share = cam.share();
+    // A share's scanlines need the sources' rows beside them too: the
+    // labels and silhouettes look one pixel up and down. Hierarchical
+    // acquisition counts holes over the whole view, so that every share
+    // of a split job picks the same sources.
+    RenderShare around = share;
+    around.scanlines = options_.acquire == Acquire::Hierarchical
+                           ? IndexRange{0, cam.height()}
+                           : IndexRange{std::max(0, share.scanlines.begin - 1),
+                                        std::min(cam.height(), share.scanlines.end + 1)};
+    const ShearingCamera sourceCam = cam.withShare(around);
     for (int row = share.rows.begin; row < share.rows.end; ++row) {
       WarpSpans spans(cam, row, type_, options_.tau, options_.penalty);
       {
         ScopedStage s(stats.times, "sources");
-        auto add = [&](int view) { spans.add(sourceView(cam, row, cam.viewX(view), stats), cam.viewX(view)); };
+        auto add = [&](int view) {
+          spans.add(sourceView(sourceCam, row, cam.viewX(view), stats), cam.viewX(view));
+        };
         add(0);
         if (cam.views() > 1) add(cam.views() - 1);
         if (options_.acquire == Acquire::Hierarchical && cam.views() > 2)

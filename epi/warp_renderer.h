@@ -7,11 +7,16 @@
 #include <vector>
 
 #include "epi/interp_renderer.h"
+#include "mvr/names.h"
 #include "mvr/renderer.h"
 #include "mvr/rgbd_view.h"
 #include "mvr/scene.h"
 
 namespace mvr {
+
+enum class WarpPath { Auto, Gl, Cpu };
+inline constexpr NameTable<WarpPath, 3> kWarpPathNames{
+    {{WarpPath::Auto, "auto"}, {WarpPath::Gl, "gl"}, {WarpPath::Cpu, "cpu"}}};
 
 struct WarpOptions {
   // dual: both ends of the track; hierarchical: then the view halfway
@@ -34,9 +39,12 @@ struct WarpOptions {
   // quad. 0: only planes merge. Measured (docs/BENCHMARKS.md).
   float flatness = 0.15f;
   int budget = 9;         // hierarchical: source views per row at most
-  // The CPU's EPIs (epi/warp_spans.h: exact segments, EPI order) instead
-  // of GL's views; scene sources only.
-  bool cpu = false;
+  // Where views are warped: by GL (the seed's grid mesh, view order) or on
+  // the CPU (epi/warp_spans.h: exact segments, EPI order; scene sources
+  // only). Auto: the CPU where GL itself renders on the CPU (llvmpipe) and
+  // the sources come from a scene, measured faster there at every size
+  // (docs/BENCHMARKS.md); else GL.
+  WarpPath path = WarpPath::Auto;
   double holeFraction = 1e-3;
 };
 

@@ -65,7 +65,8 @@ INSTANTIATE_TEST_SUITE_P(EveryBackend, RenderShareTest,
                          ::testing::Values("mvr:cpu", "mvr:spans", "mvr:quad", "mvr:strip", "mvr:exact",
                                            "mvr:strip:gpu-psts", "interp:dual", "interp:dual:track",
                                            "interp:dual:track:gpu-psts", "interp:dual:spans", "interp:hierarchical:1", "svr",
-                                           "svr-layered", "deferred", "warp:dual"),
+                                           "svr-layered", "deferred", "warp:dual:gl", "warp:dual:cpu",
+                                           "warp:hierarchical:cpu"),
                          [](const auto& info) {
                            std::string name = info.param;
                            for (char& c : name)

@@ -127,7 +127,7 @@ TEST_F(WarpOnTheCpu, MatchesTheGlWarpAndSvr) {
   for (const char* acquire : {"dual", "hierarchical:b5"}) {
     const std::string spec = std::string("warp:") + acquire;
     RenderStats glStats, cpuStats;
-    auto gl = makeRenderer(parseBackendSpec(spec), scene, PixelType::U8);
+    auto gl = makeRenderer(parseBackendSpec(spec + ":gl"), scene, PixelType::U8);
     auto cpu = makeRenderer(parseBackendSpec(spec + ":cpu"), scene, PixelType::U8);
     EXPECT_EQ(cpu->order(), FrameOrder::Epi);
     const test::CaptureSink a = test::renderViews(*gl, cam, glStats), b = test::renderViews(*cpu, cam, cpuStats);
@@ -147,9 +147,13 @@ TEST_F(WarpOnTheCpu, MatchesTheGlWarpAndSvr) {
 }
 
 TEST(WarpOnTheCpuOptions, TakesSceneSourcesOnly) {
-  EXPECT_TRUE(parseBackendSpec("warp:dual:cpu").warp.cpu);
-  EXPECT_FALSE(parseBackendSpec("warp:dual:cpu:gl").warp.cpu);
+  EXPECT_EQ(parseBackendSpec("warp:dual:cpu").warp.path, WarpPath::Cpu);
+  EXPECT_EQ(parseBackendSpec("warp:dual:cpu:gl").warp.path, WarpPath::Gl);
+  EXPECT_EQ(parseBackendSpec("warp:dual").warp.path, WarpPath::Auto);
   EXPECT_THROW(parseBackendSpec("warp:dual:cpus"), Error);
+  const ShearingCamera cam = smallCamera();
+  std::vector<RgbdView> captured{plane(cam, 0, 4.0f, [](int) { return glm::vec4(1); })};
+  EXPECT_THROW(makeWarpRenderer(std::move(captured), PixelType::U8, WarpOptions{.path = WarpPath::Cpu}), Error);
 }
 
 }  // namespace

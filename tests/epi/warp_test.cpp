@@ -182,15 +182,17 @@ TEST_F(Warp, SheetsTheOtherReferenceSeesThroughAreDropped) {
   const Scene scene = app::loadInputScene(path, false);
   const ShearingCamera cam(cameraFor(scene, 160, 120), 160, 120, 8);
   const test::CaptureSink svr = test::renderViews(*makeSvrRenderer(scene, PixelType::U8), cam);
-  const test::CaptureSink warp = test::renderViews(*makeRenderer(parseBackendSpec("warp:dual"), scene, PixelType::U8), cam);
-  for (int view = 1; view < 7; ++view) {
-    const Image &a = svr.views.at({0, view}), &b = warp.views.at({0, view});
-    int extras = 0;
-    for (int y = 0; y < a.height; ++y)
-      for (int x = 0; x < a.width; ++x) extras += a.linear(x, y).a == 0.0f && b.linear(x, y).a > 0.0f;
-    EXPECT_LE(extras, 100) << "view " << view;
+  for (const char* spec : {"warp:dual:gl", "warp:dual:cpu"}) {
+    const test::CaptureSink warp = test::renderViews(*makeRenderer(parseBackendSpec(spec), scene, PixelType::U8), cam);
+    for (int view = 1; view < 7; ++view) {
+      const Image &a = svr.views.at({0, view}), &b = warp.views.at({0, view});
+      int extras = 0;
+      for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) extras += a.linear(x, y).a == 0.0f && b.linear(x, y).a > 0.0f;
+      EXPECT_LE(extras, 100) << spec << " view " << view;
+    }
+    EXPECT_GE(test::compareViews(svr, warp).minPsnr, 26.0) << spec;
   }
-  EXPECT_GE(test::compareViews(svr, warp).minPsnr, 26.0);
 }
 
 // Flatness trades triangles for the surface's curvature inside a merged
@@ -203,7 +205,7 @@ TEST_F(Warp, FlatterGridsDrawFewerTriangles) {
   const ShearingCamera cam(*scene.camera, 128, 96, 9);
   const test::CaptureSink reference = test::renderViews(*makeSvrRenderer(scene, PixelType::U8), cam);
   double triangles[3] = {}, psnr[3] = {};
-  const char* specs[3] = {"warp:dual:f0", "warp:dual", "warp:dual:f1"};
+  const char* specs[3] = {"warp:dual:gl:f0", "warp:dual:gl", "warp:dual:gl:f1"};
   for (int k = 0; k < 3; ++k) {
     RenderStats stats;
     const test::CaptureSink views =
