@@ -182,46 +182,60 @@ void WarpSpans::warp(const Row& r, double refX, const Row* other, double otherX,
   out.lo = w, out.hi = 0;
   const size_t n = r.x0.size();
   if (!n) return;
+  // Each point's place in the view, and the first pixel whose centre lies
+  // at or right of it: a segment covers the pixels from its left end's to
+  // its right end's, [lo, hi) in centres.
   const float t = float(eyeX - refX);
   thread_local std::vector<float> x;
-  x.resize(n);
-  for (size_t k = 0; k < n; ++k) x[k] = r.x0[k] + t * r.slope[k];
-  auto store = [&](int p, float inv, const float* rgb, float occ) {
-    out.inv[size_t(p)] = inv;
-    std::copy_n(rgb, 3, &out.rgb[3 * size_t(p)]);
-    out.occ[size_t(p)] = occ > 0.5f;
-    out.lo = std::min(out.lo, p), out.hi = std::max(out.hi, p + 1);
-  };
-  // Pixels whose centres lie in [lo, hi).
-  auto pixels = [w](float lo, float hi) {
-    return std::pair(std::max(0, int(std::ceil(lo - 0.5f))), std::min(w, int(std::ceil(hi - 0.5f))));
-  };
+  thread_local std::vector<int> first;
+  x.resize(n), first.resize(n);
+  for (size_t k = 0; k < n; ++k) {
+    x[k] = r.x0[k] + t * r.slope[k];
+    first[k] = std::clamp(spans::ceilToInt(x[k] - 0.5f), 0, w);
+  }
+  float* const zbuffer = out.inv.data();
+  float* const color = out.rgb.data();
+  uint8_t* const label = out.occ.data();
+  const float* const inv = r.inv.data();
+  const float* const rgb = r.rgb.data();
+  const float* const occ = r.occ.data();
   const float toOther = float(otherX - eyeX);
   for (size_t k = 0; k + 1 < n; ++k) {
     if (r.next[k] == Row::kNone) continue;
-    const float xa = x[k], xb = x[k + 1];
-    if (!(xa != xb)) continue;
-    const auto [p0, p1] = pixels(std::min(xa, xb), std::max(xa, xb));
-    const float* ca = &r.rgb[3 * k];
-    const float* cb = &r.rgb[3 * k + 3];
+    const int p0 = std::min(first[k], first[k + 1]), p1 = std::max(first[k], first[k + 1]);
+    if (p0 >= p1) continue;
+    out.lo = std::min(out.lo, p0), out.hi = std::max(out.hi, p1);
+    const float xa = x[k], perPixel = 1.0f / (x[k + 1] - xa);
+    const float invA = inv[k], invStep = inv[k + 1] - inv[k];
+    const float* ca = rgb + 3 * k;
+    const float dc[3] = {ca[3] - ca[0], ca[4] - ca[1], ca[5] - ca[2]};
     const bool sheet = r.next[k] == Row::kSheet && other;
+    const bool oneLabel = occ[k] == occ[k + 1];
     for (int p = p0; p < p1; ++p) {
-      const float s = (float(p) + 0.5f - xa) / (xb - xa);
-      const float inv = r.inv[k] + s * (r.inv[k + 1] - r.inv[k]);
-      if (!(inv > out.inv[size_t(p)])) continue;
-      if (sheet && seenThrough(*other, float(p) + 0.5f, inv, 1.0f / r.far[k], toOther)) continue;
+      const float s = (float(p) + 0.5f - xa) * perPixel;
+      const float z = invA + s * invStep;
+      if (!(z > zbuffer[p])) continue;
+      if (sheet && seenThrough(*other, float(p) + 0.5f, z, 1.0f / r.far[k], toOther)) continue;
       // Colour is linear in the window position (both views divide by the
       // same camera z); the label perspective-correct, as GL interpolates it.
-      const float rgb[3] = {ca[0] + s * (cb[0] - ca[0]), ca[1] + s * (cb[1] - ca[1]), ca[2] + s * (cb[2] - ca[2])};
-      const float lambda = s * r.inv[k + 1] / inv;
-      store(p, inv, rgb, r.occ[k] + lambda * (r.occ[k + 1] - r.occ[k]));
+      zbuffer[p] = z;
+      float* c = color + 3 * size_t(p);
+      c[0] = ca[0] + s * dc[0], c[1] = ca[1] + s * dc[1], c[2] = ca[2] + s * dc[2];
+      const float lambda = s * inv[k + 1] / z;
+      label[p] = oneLabel ? occ[k] > 0.5f : occ[k] + lambda * (occ[k + 1] - occ[k]) > 0.5f;
     }
   }
   for (size_t k = 0; k < n; ++k) {
     if (!r.splat[k]) continue;
-    const auto [p0, p1] = pixels(x[k] - 0.5f, x[k] + 0.5f);
-    for (int p = p0; p < p1; ++p)
-      if (r.inv[k] > out.inv[size_t(p)]) store(p, r.inv[k], &r.rgb[3 * k], r.occ[k]);
+    // The pixels whose centres lie in [x - 1/2, x + 1/2).
+    const int p0 = std::max(0, spans::ceilToInt(x[k] - 1.0f)), p1 = std::min(w, spans::ceilToInt(x[k]));
+    for (int p = p0; p < p1; ++p) {
+      if (!(inv[k] > zbuffer[p])) continue;
+      zbuffer[p] = inv[k];
+      std::copy_n(rgb + 3 * k, 3, color + 3 * size_t(p));
+      label[p] = occ[k] > 0.5f;
+      out.lo = std::min(out.lo, p), out.hi = std::max(out.hi, p + 1);
+    }
   }
 }
 
