@@ -16,8 +16,9 @@
 // both its pixels have samples and sheeted where those two differ by more
 // than tau (the GL grid drops a cell that touches an empty pixel above or
 // below, and sheets a cell by its three corners); the composite's angles
-// come from atan2 and the weight's cosine from polynomials accurate to
-// 1e-6 (the GL composite's acos and cos in float).
+// come from atan2 of the point's distance from the track (the eyes lie on
+// one line) and it and the weight's cosine from polynomials within 1e-5
+// and 4e-6 (the GL composite: acos of 3D vectors and cos, in float).
 #include <vector>
 
 #include "mvr/camera.h"
