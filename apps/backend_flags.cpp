@@ -45,7 +45,7 @@ void BackendFlags::add(CLI::App& app) {
           ->type_name("A")
           ->capture_default_str(),
       app.add_option("--flatness", warp.flatness,
-                     "warp: merge a reference's grid cells into one quad where that moves no vertex more than "
+                     "warp by GL: merge a reference's grid cells into one quad where that moves no vertex more than "
                      "PX pixels in the farthest view (0: only planes merge)")
           ->type_name("PX")
           ->capture_default_str(),
