@@ -304,6 +304,7 @@ struct RenderFlags {
   std::string splitBy = "cost";  // under mpirun: scanline bands by estimated cost or by count
   MemoryFlags memory;
   std::string from;  // synthesize: the references' folder
+  std::string warpPath;  // synthesize: WarpOptions::path by name
   WarpOptions warp;
   CameraFlags camera;
   Supersampling aa;
@@ -387,10 +388,15 @@ struct RenderFlags {
         ->type_name("A")
         ->capture_default_str();
     app.add_option("--flatness", warp.flatness,
-                   "merge grid cells into one quad where that moves no vertex more than PX pixels in the "
-                   "farthest view (0: only planes merge)")
+                   "by GL: merge grid cells into one quad where that moves no vertex more than PX pixels in "
+                   "the farthest view (0: only planes merge)")
         ->type_name("PX")
         ->capture_default_str();
+    app.add_option("--warp-path", warpPath,
+                   "by GL, the seed's grid mesh (gl), or on the CPU, EPI by EPI, exactly (cpu: the references on "
+                   "the rows of views, as their own track puts them); auto (default): cpu where GL renders on "
+                   "the CPU (llvmpipe) and it can, else gl")
+        ->type_name(choices(kWarpPathNames));
   }
 
   void addStreamOwn(CLI::App& app) {
@@ -435,6 +441,7 @@ int runRender(int argc, char** argv, RenderCommand command) {
   BackendOptions choice = synthesize ? BackendOptions{.backend = Backend::Warp} : f.backend.resolve();
   f.camera.validate();
   if (synthesize) {
+    if (!f.warpPath.empty()) f.warp.path = parseName(kWarpPathNames, f.warpPath, "--warp-path", "path");
     validate(f.warp);
     if (f.depth) fail("--depth", "mvr synthesize writes colour only");
     if (!f.camera.focal.empty()) fail("--focal", "the references fix the display plane");
@@ -524,7 +531,7 @@ int runRender(int argc, char** argv, RenderCommand command) {
   // Anti-aliasing: the back end renders the samples, a sink filters them.
   const ShearingCamera renderCamera = f.aa.active() ? supersampledCamera(camera, f.aa) : camera;
   const size_t referenceCount = synthesize ? references->references.size() : 0;
-  auto renderer = synthesize ? makeWarpRenderer(std::move(references->references), type, f.warp)
+  auto renderer = synthesize ? makeWarpRenderer(std::move(references->references), type, f.warp, &renderCamera)
                              : makeRenderer(choice, scene, type);
   startup.add("renderer", phase.restart());
   // Frames held, decided before rendering starts: a reordering sink's row

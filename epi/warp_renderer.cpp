@@ -38,12 +38,19 @@ float cameraDepth(const CameraSpec& s, float window) {
 
 class WarpRenderer final : public Renderer {
  public:
-  WarpRenderer(const Scene* scene, std::vector<RgbdView> captured, PixelType type, const WarpOptions& options)
-      : options_(resolved(options, scene != nullptr)),
+  // track: the views a capture will be rendered as, if known (the CPU
+  // warp needs its references on their rows).
+  WarpRenderer(const Scene* scene, std::vector<RgbdView> captured, PixelType type, const WarpOptions& options,
+               const ShearingCamera* track)
+      : options_(resolved(options, scene ? gl::rendersOnCpu() : onRows(captured, track), scene != nullptr)),
         type_(type),
         warp_(options_.path == WarpPath::Cpu ? nullptr : std::make_unique<DepthWarp>(options.tau, options.penalty)),
         sources_(scene ? makeSourceLayerRenderer(*scene) : nullptr) {
-    if (!scene && options_.path == WarpPath::Cpu) fail("warp", "the CPU warp takes scene sources only");
+    if (!scene && captured.empty()) fail("warp", "no references");
+    if (options_.path == WarpPath::Cpu) {
+      for (RgbdView& view : captured) capturedViews_.push_back(std::make_shared<const RgbdView>(std::move(view)));
+      return;
+    }
     // A captured reference serves the views between it and the others.
     for (const RgbdView& view : captured) {
       double baseline = 0.0;
@@ -51,7 +58,6 @@ class WarpRenderer final : public Renderer {
         baseline = std::max(baseline, glm::length(other.center() - view.center()));
       captured_.push_back({WarpReference::upload(view, options_.tau, options_.flatness, baseline)});
     }
-    if (!scene && captured_.empty()) fail("warp", "no references");
   }
 
   std::string name() const override { return "warp"; }
@@ -79,11 +85,44 @@ class WarpRenderer final : public Renderer {
   }
 
  private:
-  // Auto made Cpu or Gl (WarpOptions::path); validated.
-  static WarpOptions resolved(WarpOptions o, bool sceneSources) {
+  // Auto made Cpu or Gl (WarpOptions::path); validated. cpuFits: the CPU
+  // warp can render these references and is the faster here.
+  static WarpOptions resolved(WarpOptions o, bool cpuFits, bool sceneSources) {
     validate(o);
-    if (o.path == WarpPath::Auto) o.path = sceneSources && gl::rendersOnCpu() ? WarpPath::Cpu : WarpPath::Gl;
+    if (o.path == WarpPath::Auto) o.path = cpuFits && gl::rendersOnCpu() ? WarpPath::Cpu : WarpPath::Gl;
+    if (o.path == WarpPath::Cpu && !sceneSources && !cpuFits)
+      fail("--warp-path", "cpu needs references on the rows of the views' track: the same camera, size and rows");
     return o;
+  }
+
+  // The references on row `row` of cam: each the view of cam's camera at
+  // its eye, on that row (K and V as cam's there), of cam's size.
+  static std::vector<int> onRow(const std::vector<const RgbdView*>& refs, const ShearingCamera& cam, int row) {
+    auto same = [](const auto& a, const auto& b, int n) {
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+          if (!(std::abs(a[i][j] - b[i][j]) <= 1e-6 * (1.0 + std::abs(b[i][j])))) return false;
+      return true;
+    };
+    std::vector<int> out;
+    for (int k = 0; k < int(refs.size()); ++k) {
+      const RgbdView& r = *refs[size_t(k)];
+      const double x = r.center().x, y = cam.rowY(row);
+      if (r.color.width == cam.width() && r.color.height == cam.height() && same(r.V, cam.worldToCameraAt(x, y), 4) &&
+          same(r.K, cam.intrinsicsAt(x, y), 3))
+        out.push_back(k);
+    }
+    return out;
+  }
+
+  // Whether every row of track has a reference on it.
+  static bool onRows(const std::vector<RgbdView>& refs, const ShearingCamera* track) {
+    if (!track || refs.empty()) return false;
+    std::vector<const RgbdView*> pointers;
+    for (const RgbdView& r : refs) pointers.push_back(&r);
+    for (int row = 0; row < track->rows(); ++row)
+      if (onRow(pointers, *track, row).empty()) return false;
+    return true;
   }
 
   static WarpCamera cameraOf(const ShearingCamera& cam, int view, int row) {
@@ -136,9 +175,15 @@ class WarpRenderer final : public Renderer {
                            : IndexRange{std::max(0, share.scanlines.begin - 1),
                                         std::min(cam.height(), share.scanlines.end + 1)};
     const ShearingCamera sourceCam = cam.withShare(around);
+    std::vector<const RgbdView*> captured;
+    for (const auto& view : capturedViews_) captured.push_back(view.get());
     for (int row = share.rows.begin; row < share.rows.end; ++row) {
       WarpSpans spans(cam, row, type_, options_.tau, options_.penalty);
-      {
+      if (!sources_) {
+        const std::vector<int> mine = onRow(captured, cam, row);
+        if (mine.empty()) fail("warp", "row " + std::to_string(row) + " of the views has no reference on it");
+        for (int k : mine) spans.add(capturedViews_[size_t(k)], captured[size_t(k)]->center().x);
+      } else {
         ScopedStage s(stats.times, "sources");
         auto add = [&](int view) {
           spans.add(sourceView(sourceCam, row, cam.viewX(view), stats), cam.viewX(view));
@@ -152,7 +197,7 @@ class WarpRenderer final : public Renderer {
       fillEpisInOrder(sink, row, share.scanlines, cam.width(), cam.views(), type_, ring_,
                       [&](int j, const PixelRows& epi) { spans.fillEpi(j, epi); });
     }
-    stats.notes["acquire"] = acquireName(options_.acquire);
+    stats.notes["acquire"] = sources_ ? acquireName(options_.acquire) : "captured";
     stats.notes["warp"] = "cpu";
   }
 
@@ -217,19 +262,20 @@ class WarpRenderer final : public Renderer {
   PixelType type_;
   std::unique_ptr<DepthWarp> warp_;  // the GL warp, or null (cpu)
   std::unique_ptr<SourceLayerRenderer> sources_;  // scene sources, or null
-  std::vector<Reference> captured_;
+  std::vector<Reference> captured_;                          // uploaded for the GL warp
+  std::vector<std::shared_ptr<const RgbdView>> capturedViews_;  // or kept for the CPU's
   std::vector<Image> ring_;  // the CPU's EPIs being filled and handed on (fillEpisInOrder)
 };
 
 }  // namespace
 
 std::unique_ptr<Renderer> makeWarpRenderer(const Scene& scene, PixelType type, const WarpOptions& options) {
-  return std::make_unique<WarpRenderer>(&scene, std::vector<RgbdView>{}, type, options);
+  return std::make_unique<WarpRenderer>(&scene, std::vector<RgbdView>{}, type, options, nullptr);
 }
 
 std::unique_ptr<Renderer> makeWarpRenderer(std::vector<RgbdView> references, PixelType type,
-                                           const WarpOptions& options) {
-  return std::make_unique<WarpRenderer>(nullptr, std::move(references), type, options);
+                                           const WarpOptions& options, const ShearingCamera* track) {
+  return std::make_unique<WarpRenderer>(nullptr, std::move(references), type, options, track);
 }
 
 }  // namespace mvr

@@ -40,10 +40,11 @@ struct WarpOptions {
   float flatness = 0.15f;
   int budget = 9;         // hierarchical: source views per row at most
   // Where views are warped: by GL (the seed's grid mesh, view order) or on
-  // the CPU (epi/warp_spans.h: exact segments, EPI order; scene sources
-  // only). Auto: the CPU where GL itself renders on the CPU (llvmpipe) and
-  // the sources come from a scene, measured faster there at every size
-  // (docs/BENCHMARKS.md); else GL.
+  // the CPU (epi/warp_spans.h: exact segments, EPI order; scene sources,
+  // or references on the rows of the track, makeWarpRenderer). Auto: the
+  // CPU where GL itself renders on the CPU (llvmpipe) and it can take the
+  // references, measured faster there at every size (docs/BENCHMARKS.md);
+  // else GL.
   WarpPath path = WarpPath::Auto;
   double holeFraction = 1e-3;
 };
@@ -53,8 +54,11 @@ void validate(const WarpOptions& options);
 
 // Needs a current GL context.
 std::unique_ptr<Renderer> makeWarpRenderer(const Scene& scene, PixelType type, const WarpOptions& options);
-// Views of a capture: every reference must have the same size.
+// Views of a capture: every reference must have the same size. track: the
+// views it will render, if known: where every row of them has references
+// on it (each the view of track's camera at its eye on that row, as our
+// sets and the HCI layout are), the CPU warp can take them.
 std::unique_ptr<Renderer> makeWarpRenderer(std::vector<RgbdView> references, PixelType type,
-                                           const WarpOptions& options);
+                                           const WarpOptions& options, const ShearingCamera* track = nullptr);
 
 }  // namespace mvr

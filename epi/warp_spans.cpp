@@ -104,13 +104,13 @@ WarpSpans::WarpSpans(const ShearingCamera& cam, int row, PixelType type, float t
   focal_ = perUnit_ * cam.spec().distance;
 }
 
-int WarpSpans::add(RgbdView view, double x) {
-  if (view.color.type != PixelType::F32 || view.color.width != cam_.width() || view.color.height != cam_.height() ||
-      view.depth.width != cam_.width() || view.depth.height != cam_.height())
+int WarpSpans::add(std::shared_ptr<const RgbdView> view, double x) {
+  if (view->color.type != PixelType::F32 || view->color.width != cam_.width() ||
+      view->color.height != cam_.height() || view->depth.width != cam_.width() || view->depth.height != cam_.height())
     fail("warp", "a reference is not a float image of the camera's size");
   Reference r{std::move(view), x, {}, {}};
   std::vector<uint32_t> silhouettes;
-  labelPixels(r.view.depth, tau_, r.labels, silhouettes);
+  labelPixels(r.view->depth, tau_, r.labels, silhouettes);
   r.silhouette.assign(r.labels.size(), 0);
   for (const uint32_t p : silhouettes) r.silhouette[p] = 1;
   refs_.push_back(std::move(r));
@@ -133,7 +133,7 @@ std::pair<int, int> WarpSpans::pairOf(int view) const {
 
 WarpSpans::Row WarpSpans::rowOf(int ref, int j) const {
   const Reference& reference = refs_[size_t(ref)];
-  const RgbdView& v = reference.view;
+  const RgbdView& v = *reference.view;
   const int w = cam_.width();
   const size_t base = size_t(j) * w;
   const float* depth = v.depth.values.data() + base;

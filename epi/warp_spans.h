@@ -19,6 +19,7 @@
 // come from atan2 of the point's distance from the track (the eyes lie on
 // one line) and it and the weight's cosine from polynomials within 1e-5
 // and 4e-6 (the GL composite: acos of 3D vectors and cos, in float).
+#include <memory>
 #include <vector>
 
 #include "mvr/camera.h"
@@ -40,7 +41,8 @@ class WarpSpans {
 
   // A reference on the row's track: colour (F32, linear) and camera z of
   // the camera's size, rendered at camera x on the row. Returns its index.
-  int add(RgbdView view, double x);
+  int add(std::shared_ptr<const RgbdView> view, double x);
+  int add(RgbdView view, double x) { return add(std::make_shared<const RgbdView>(std::move(view)), x); }
   int size() const { return int(refs_.size()); }
 
   // The EPI of scanline j: every view of the row, W x N pixels of epi's
@@ -66,7 +68,7 @@ class WarpSpans {
   const ShearingCamera& cam_;
   int row_;
   struct Reference {
-    RgbdView view;
+    std::shared_ptr<const RgbdView> view;
     double x = 0.0;
     std::vector<float> labels;
     std::vector<uint8_t> silhouette;  // per pixel: 1 where labelPixels found one

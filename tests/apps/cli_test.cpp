@@ -150,6 +150,7 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
                            "synthesize --out " + d.string(),
                            "synthesize --from /nonexistent --out " + d.string(),
                            "synthesize --from " + test::assetsDir() + " --tau 2 --out " + d.string(),
+                           "synthesize --from " + test::assetsDir() + " --warp-path fast --out " + d.string(),
                            "frobnicate"}) {
     Result r = run(args);
     EXPECT_NE(r.status, 0) << args;

@@ -146,11 +146,12 @@ TEST_F(WarpOnTheCpu, MatchesTheGlWarpAndSvr) {
   }
 }
 
-TEST(WarpOnTheCpuOptions, TakesSceneSourcesOnly) {
+TEST(WarpOnTheCpuOptions, NeedsSourcesItCanPlace) {
   EXPECT_EQ(parseBackendSpec("warp:dual:cpu").warp.path, WarpPath::Cpu);
   EXPECT_EQ(parseBackendSpec("warp:dual:cpu:gl").warp.path, WarpPath::Gl);
   EXPECT_EQ(parseBackendSpec("warp:dual").warp.path, WarpPath::Auto);
   EXPECT_THROW(parseBackendSpec("warp:dual:cpus"), Error);
+  // A capture without the track it is to render: the CPU cannot know its rows.
   const ShearingCamera cam = smallCamera();
   std::vector<RgbdView> captured{plane(cam, 0, 4.0f, [](int) { return glm::vec4(1); })};
   EXPECT_THROW(makeWarpRenderer(std::move(captured), PixelType::U8, WarpOptions{.path = WarpPath::Cpu}), Error);
