@@ -42,7 +42,7 @@ class WarpRenderer final : public Renderer {
   // warp needs its references on their rows).
   WarpRenderer(const Scene* scene, std::vector<RgbdView> captured, PixelType type, const WarpOptions& options,
                const ShearingCamera* track)
-      : options_(resolved(options, scene ? gl::rendersOnCpu() : onRows(captured, track), scene != nullptr)),
+      : options_(resolved(options, scene || onRows(captured, track))),
         type_(type),
         warp_(options_.path == WarpPath::Cpu ? nullptr : std::make_unique<DepthWarp>(options.tau, options.penalty)),
         sources_(scene ? makeSourceLayerRenderer(*scene) : nullptr) {
@@ -86,11 +86,12 @@ class WarpRenderer final : public Renderer {
 
  private:
   // Auto made Cpu or Gl (WarpOptions::path); validated. cpuFits: the CPU
-  // warp can render these references and is the faster here.
-  static WarpOptions resolved(WarpOptions o, bool cpuFits, bool sceneSources) {
+  // warp can take the references (scene sources, or a capture on the
+  // track's rows).
+  static WarpOptions resolved(WarpOptions o, bool cpuFits) {
     validate(o);
     if (o.path == WarpPath::Auto) o.path = cpuFits && gl::rendersOnCpu() ? WarpPath::Cpu : WarpPath::Gl;
-    if (o.path == WarpPath::Cpu && !sceneSources && !cpuFits)
+    if (o.path == WarpPath::Cpu && !cpuFits)
       fail("--warp-path", "cpu needs references on the rows of the views' track: the same camera, size and rows");
     return o;
   }
