@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <optional>
 
+#include "epi/track_refinement.h"
 #include "mvr/baselines/source_layers.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_api.h"
@@ -512,30 +512,18 @@ class InterpRenderer final : public Renderer {
         [&](int m) { return render(cam, row, cam.viewX(m), stats); });
   }
 
-  // Breadth first over the track, so that a spent budget leaves the added
-  // views spread evenly: the view halfway between two sources becomes one
-  // where holes(a, b, m), the holes the sources at views a and b leave in
-  // view m, exceed the tolerance; add(m) renders it.
+  // refineTrack (epi/track_refinement.h) with this back end's budget and
+  // tolerance, its hole counts timed as the visibility stage; add(m)
+  // returns the source at view m.
   template <class S, class Holes, class Add>
   void refineTrack(const ShearingCamera& cam, std::vector<S>& sources, RenderStats& stats, Holes&& holes, Add&& add) {
-    const double tolerance = options_.holeFraction * cam.width() * cam.height();
-    std::deque<std::pair<int, int>> todo{{0, cam.views() - 1}};  // view indices of two sources
-    while (!todo.empty() && int(sources.size()) < options_.budget) {
-      const auto [a, b] = todo.front();
-      todo.pop_front();
-      if (b - a < 2) continue;
-      const int m = (a + b) / 2;
-      long count = 0;
-      {
-        ScopedStage s(stats.times, "visibility");
-        count = holes(a, b, m);
-      }
-      stats.counters["hole_checks"] += 1;
-      if (double(count) <= tolerance) continue;
-      sources.push_back(add(m));
-      todo.emplace_back(a, m);
-      todo.emplace_back(m, b);
-    }
+    mvr::refineTrack(
+        cam, options_.holeFraction, options_.budget, int(sources.size()), stats,
+        [&](int a, int b, int m) {
+          ScopedStage s(stats.times, "visibility");
+          return holes(a, b, m);
+        },
+        [&](int m) { sources.push_back(add(m)); });
   }
 
   Source render(const ShearingCamera& cam, int row, double x, RenderStats& stats) {

@@ -1,12 +1,13 @@
 #include "epi/warp_renderer.h"
 
+#include <algorithm>
 #include <cmath>
-#include <deque>
 #include <limits>
 #include <string>
 
 #include "epi/epi_batch.h"
 #include "epi/gpu/depth_warp.h"
+#include "epi/track_refinement.h"
 #include "epi/warp_spans.h"
 #include "mvr/baselines/source_layers.h"
 #include "mvr/baselines/view_loop.h"
@@ -202,26 +203,21 @@ class WarpRenderer final : public Renderer {
     stats.notes["warp"] = "cpu";
   }
 
-  // Breadth first over the track, as interp's hierarchical acquisition:
-  // holes(a, b, view) counts the holes sources a and b leave in a view,
-  // add(view) appends a source there.
+  // refineTrack (epi/track_refinement.h) with this back end's budget and
+  // tolerance, the sources appended in the order their views come:
+  // holes(a, b, view) counts the holes sources a and b (indices) leave in
+  // a view, add(view) appends a source there.
   template <class Holes, class Add>
   void refine(const ShearingCamera& cam, Holes&& holes, Add&& add, RenderStats& stats) {
-    const double tolerance = options_.holeFraction * cam.width() * cam.height();
-    std::deque<std::pair<int, int>> todo{{0, 1}};  // indices of sources and their views
-    std::vector<int> viewOf{0, cam.views() - 1};
-    while (!todo.empty() && int(viewOf.size()) < options_.budget) {
-      const auto [a, b] = todo.front();
-      todo.pop_front();
-      if (viewOf[size_t(b)] - viewOf[size_t(a)] < 2) continue;
-      const int m = (viewOf[size_t(a)] + viewOf[size_t(b)]) / 2;
-      stats.counters["hole_checks"] += 1;
-      if (double(holes(a, b, m)) <= tolerance) continue;
-      add(m);
-      viewOf.push_back(m);
-      todo.emplace_back(a, int(viewOf.size()) - 1);
-      todo.emplace_back(int(viewOf.size()) - 1, b);
-    }
+    std::vector<int> viewOf{0, cam.views() - 1};  // each source's view
+    auto source = [&](int view) { return int(std::find(viewOf.begin(), viewOf.end(), view) - viewOf.begin()); };
+    refineTrack(
+        cam, options_.holeFraction, options_.budget, int(viewOf.size()), stats,
+        [&](int a, int b, int m) { return holes(source(a), source(b), m); },
+        [&](int m) {
+          add(m);
+          viewOf.push_back(m);
+        });
   }
 
   // One source view: the deferred pipeline's nearest layer as an RGB-D image.
