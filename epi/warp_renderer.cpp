@@ -77,7 +77,9 @@ class WarpRenderer final : public Renderer {
       }
       const std::vector<Reference>& refs = sources_ ? rowSources : captured_;
       const glm::dvec3 eye = cam.eye(view, row);
-      const auto [a, b] = nearestPair(refs, eye);
+      std::vector<glm::dvec3> centres;
+      for (const Reference& r : refs) centres.emplace_back(r.gpu.center);
+      const auto [a, b] = nearestPair(centres, eye);
       ScopedStage s(stats.times, "warp");
       warp_->render(refs[a].gpu, b < 0 ? nullptr : &refs[b].gpu, cameraOf(cam, view, row), target);
     });
@@ -130,22 +132,6 @@ class WarpRenderer final : public Renderer {
   static WarpCamera cameraOf(const ShearingCamera& cam, int view, int row) {
     return {cam.viewProjection(view, row),
             RgbdView::pixelToWorld(cam.intrinsics(view, row), cam.worldToCamera(view, row)), cam.eye(view, row)};
-  }
-
-  // The nearest reference, and the nearest of those beyond the eye from
-  // it (-1: none, or the eye is at the reference).
-  static std::pair<int, int> nearestPair(const std::vector<Reference>& refs, const glm::dvec3& eye) {
-    auto distance = [&](int k) { return glm::length(glm::dvec3(refs[k].gpu.center) - eye); };
-    int a = 0;
-    for (int k = 1; k < int(refs.size()); ++k)
-      if (distance(k) < distance(a)) a = k;
-    const glm::dvec3 ca(refs[a].gpu.center), toEye = eye - ca;
-    if (glm::length(toEye) <= 1e-9 * (1.0 + glm::length(ca))) return {a, -1};
-    int b = -1;
-    for (int k = 0; k < int(refs.size()); ++k)
-      if (k != a && glm::dot(glm::dvec3(refs[k].gpu.center) - ca, toEye) > 0.0 && (b < 0 || distance(k) < distance(b)))
-        b = k;
-    return {a, b};
   }
 
   std::vector<Reference> acquire(const ShearingCamera& cam, int row, RenderStats& stats) {

@@ -114,21 +114,13 @@ int WarpSpans::add(std::shared_ptr<const RgbdView> view, double x) {
   r.silhouette.assign(r.labels.size(), 0);
   for (const uint32_t p : silhouettes) r.silhouette[p] = 1;
   refs_.push_back(std::move(r));
+  centres_.emplace_back(x, 0.0, 0.0);
   return int(refs_.size()) - 1;
 }
 
 std::pair<int, int> WarpSpans::pairOf(int view) const {
-  const double eye = cam_.viewX(view);
-  auto distance = [&](int k) { return std::abs(refs_[size_t(k)].x - eye); };
-  int a = 0;
-  for (int k = 1; k < int(refs_.size()); ++k)
-    if (distance(k) < distance(a)) a = k;
-  const double xa = refs_[size_t(a)].x;
-  if (std::abs(eye - xa) <= 1e-9 * (1.0 + std::abs(xa))) return {a, -1};
-  int b = -1;
-  for (int k = 0; k < int(refs_.size()); ++k)
-    if (k != a && (refs_[size_t(k)].x - xa) * (eye - xa) > 0.0 && (b < 0 || distance(k) < distance(b))) b = k;
-  return {a, b};
+  // Centres along the track: distances and directions there are the 3D ones.
+  return nearestPair(centres_, glm::dvec3(cam_.viewX(view), 0.0, 0.0));
 }
 
 WarpSpans::Row WarpSpans::rowOf(int ref, int j) const {

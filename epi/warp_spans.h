@@ -43,7 +43,6 @@ class WarpSpans {
   // the camera's size, rendered at camera x on the row. Returns its index.
   int add(std::shared_ptr<const RgbdView> view, double x);
   int add(RgbdView view, double x) { return add(std::make_shared<const RgbdView>(std::move(view)), x); }
-  int size() const { return int(refs_.size()); }
 
   // The EPI of scanline j: every view of the row, W x N pixels of epi's
   // type, row i = view i; alpha 0 where neither reference covers.
@@ -53,8 +52,8 @@ class WarpSpans {
   // (DepthWarp::holes). Runs on the pool.
   long holes(int a, int b, int view) const;
 
-  // The two references a view is composited from (a nearest; b the
-  // nearest beyond the eye from a, -1 where none or the eye is at a).
+  // The two references a view is composited from (nearestPair,
+  // epi/gpu/depth_warp.h).
   std::pair<int, int> pairOf(int view) const;
 
  private:
@@ -74,6 +73,7 @@ class WarpSpans {
     std::vector<uint8_t> silhouette;  // per pixel: 1 where labelPixels found one
   };
   std::vector<Reference> refs_;
+  std::vector<glm::dvec3> centres_;  // (x, 0, 0) of each reference, for nearestPair
   PixelType type_;
   float tau_, a_;
   double perUnit_, focal_;  // pixels per unit of camera x at infinite depth: W / Wp; W D / Wp

@@ -347,6 +347,19 @@ float warpWeight(float theta0, float theta1, float z0, float z1, float occ0, flo
   return compositeWeight(s, std::cos(glm::pi<float>() * s), z0, z1, occ0, occ1, tau, a);
 }
 
+std::pair<int, int> nearestPair(const std::vector<glm::dvec3>& centres, const glm::dvec3& eye) {
+  auto distance = [&](int k) { return glm::length(centres[size_t(k)] - eye); };
+  int a = 0;
+  for (int k = 1; k < int(centres.size()); ++k)
+    if (distance(k) < distance(a)) a = k;
+  const glm::dvec3 ca = centres[size_t(a)], toEye = eye - ca;
+  if (glm::length(toEye) <= 1e-9 * (1.0 + glm::length(ca))) return {a, -1};
+  int b = -1;
+  for (int k = 0; k < int(centres.size()); ++k)
+    if (k != a && glm::dot(centres[size_t(k)] - ca, toEye) > 0.0 && (b < 0 || distance(k) < distance(b))) b = k;
+  return {a, b};
+}
+
 WarpReference WarpReference::upload(const RgbdView& view, float tau, float flatness, double baseline) {
   const int w = view.color.width, h = view.color.height;
   if (view.color.type != PixelType::F32) fail("RGB-D reference", "colour must be float");

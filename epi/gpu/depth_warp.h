@@ -50,6 +50,8 @@
 //   colour  = w_i c_i + (1 - w_i) c_j. Where one reference has no sample,
 //   the other alone; where neither, nothing (alpha 0).
 #include <algorithm>
+#include <utility>
+#include <vector>
 
 #include "mvr/gl/gl_handles.h"
 #include "mvr/gl/render_target.h"
@@ -73,6 +75,11 @@ inline float compositeWeight(float s, float cosPiS, float z0, float z1, float oc
   const float w = std::min(1.0f, phi1 + (1.0f - phi0) * std::clamp(wAng + phi0 * closer0 - phi1 * closer1, 0.0f, 1.0f));
   return std::clamp(w, 0.0f, 1.0f);
 }
+
+// The two references a view is composited from, by their centres: the
+// nearest, and the nearest of those beyond the eye from it (-1: none, or
+// the eye is at the nearest). On a track, the pair that brackets the view.
+std::pair<int, int> nearestPair(const std::vector<glm::dvec3>& centres, const glm::dvec3& eye);
 
 // A reference resident on the GPU.
 struct WarpReference {
