@@ -1,5 +1,6 @@
 #pragma once
-// PNG files written by our own encoder over zlib, not through the
+// PNG files written by our own encoder (zlib's deflate, or at level 1
+// our row coder, mvr/io/row_deflate.h), not through the
 // OpenImageIO module: a whole render writes PNGs by default, and loading
 // OpenImageIO's 260 libraries to write them cost 0.5 s of every render's
 // start-up (docs/BENCHMARKS.md). PNG is a few chunks around one deflate
@@ -12,9 +13,12 @@
 #include <utility>
 #include <vector>
 
+#include "mvr/io/row_deflate.h"
+
 namespace mvr {
 
-// What one file stores: RGBA of 8 or 16 bits per sample, zlib level 0..9,
+// What one file stores: RGBA of 8 or 16 bits per sample, level 0..9
+// (1: our row coder; else zlib's level),
 // tagged sRGB (sRGB, gAMA and cHRM chunks) or linear (gAMA 1.0), and
 // string metadata as tEXt chunks (keys of 1 to 79 Latin-1 characters).
 struct PngFormat {
@@ -49,7 +53,7 @@ class PngEncoder {
   // arrive (mvr/io/png_views.h), and a file's bytes depend on its pixels
   // alone, however they were fed. A segment starts from the last
   // kDictionaryRows rows of the one before as its history: a row's best
-  // match is mostly the row above. Measured at level 1 on the rendered
+  // match is mostly the row above. Measured with zlib's level 1 on the rendered
   // 143K teacup (docs/BENCHMARKS.md): a 640x480 view in 2.0 ms and 66.7
   // KB (libpng through OpenImageIO: 2.9 ms, 66.8 KB; no history: 74.6 KB;
   // 32 KiB of it: 3.7 ms, the history hashed again per segment); 1000
@@ -61,6 +65,7 @@ class PngEncoder {
  private:
   void stageRow(std::span<const uint8_t> row);
   void deflateSegment(bool last);
+  void zlibDeflate(std::span<const uint8_t> rows, bool last, std::vector<unsigned char>& chunk) const;
 
   PngFormat format_;
   std::vector<unsigned char>& out_;
@@ -73,12 +78,16 @@ class PngEncoder {
   std::vector<uint8_t> previous_, trial_;  // the adaptive filters' rows
   unsigned long adler_ = 0;                // the stream's checksum so far
   bool started_ = false;                   // the zlib header is out
+  RowDeflater rowDeflater_;                // level 1's coder, its bits carried from segment to segment
 };
 
-// Row filters: none at the fast levels, the adaptive choice (libpng's
-// heuristic: least sum of absolute values) from 4 on. Measured at level 1
-// on rendered 640x480 views (docs/BENCHMARKS.md): no filter encodes 2-3x
-// faster for files 2% smaller to 14% larger.
+// Level 1, the default: every row by the Up filter, deflated by our row
+// coder (mvr/io/row_deflate.h) instead of zlib.
+inline bool ownDeflate(int level) { return level == 1; }
+// zlib's levels: no filter at 2 and 3, the adaptive choice (libpng's
+// heuristic: least sum of absolute values) from 4 on. Measured with zlib
+// level 1 on rendered 640x480 views (docs/BENCHMARKS.md): no filter
+// encodes 2-3x faster for files 2% smaller to 14% larger.
 inline bool pngFilters(int level) { return level > 3; }
 
 }  // namespace mvr
