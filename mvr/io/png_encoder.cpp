@@ -184,7 +184,8 @@ PngEncoder::PngEncoder(const PngFormat& format, std::vector<unsigned char>& out)
 
 void PngEncoder::stageRow(std::span<const uint8_t> row) {
   // Not zero-filled: every byte is written before it is read.
-  if (!staged_) staged_ = std::make_unique_for_overwrite<uint8_t[]>((kDictionaryRows + size_t(segmentRows_)) * (rowBytes_ + 1));
+  if (!staged_)
+    staged_ = std::make_unique_for_overwrite<uint8_t[]>((kDictionaryRows + size_t(segmentRows_)) * (rowBytes_ + 1));
   uint8_t* out = staged_.get() + stagedEnd_;
   stagedEnd_ += rowBytes_ + 1;
   if (ownDeflate(format_.level)) {

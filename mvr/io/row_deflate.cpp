@@ -82,7 +82,8 @@ void codeLengths(std::span<uint32_t> freq, int maxBits, uint8_t* lengths) {
     if (freq[s]) order[used++] = s;
   for (int s = 0; used < 2; ++s)
     if (!freq[s]) freq[s] = 1, order[used++] = s;
-  std::sort(order.begin(), order.begin() + used, [&](int a, int b) { return freq[a] < freq[b] || (freq[a] == freq[b] && a < b); });
+  std::sort(order.begin(), order.begin() + used,
+            [&](int a, int b) { return freq[a] < freq[b] || (freq[a] == freq[b] && a < b); });
   // Two queues: leaves by weight, and merged nodes, made in weight order.
   std::array<uint64_t, kLiterals> weight;
   std::array<int, 2 * kLiterals> parent;
@@ -144,10 +145,6 @@ struct Code {
   }
 };
 
-// A token: a literal byte, or a match of `length` at distance d[which].
-constexpr uint32_t kMatch = 1u << 31;
-uint32_t matchToken(size_t length, int which) { return kMatch | uint32_t(length) << 1 | uint32_t(which); }
-
 // The code-length code's symbols for a run of lengths (3.2.7): 16 repeats
 // the previous length 3-6 times, 17 and 18 give 3-10 and 11-138 zeros.
 struct LengthSymbol {
@@ -191,25 +188,36 @@ struct BitSink {
   }
 };
 
-}  // namespace
-
-void RowDeflater::block(std::span<const uint8_t> data, size_t begin, size_t pixel, size_t row, bool last,
-                        std::vector<unsigned char>& out) {
-  if (row > kWindow) row = 0;
-  if (pixel > kWindow) pixel = 0;
-  const size_t distance[2] = {pixel, row};
-  thread_local std::vector<uint32_t> tokenStore;
-  tokenStore.resize(std::max(tokenStore.size(), data.size() - begin));
-  uint32_t* const tokens = tokenStore.data();
-  uint32_t* token = tokens;
+// A block's tokens: a literal byte, or a match of `length` at the first
+// or second distance, with the counts its Huffman codes are built from.
+constexpr uint32_t kMatch = 1u << 31;
+struct Tokens {
+  std::span<const uint32_t> tokens;
   std::array<uint32_t, kLiterals> litFreq{};
-  std::array<uint32_t, kDistances> distFreq{};
-  std::array<uint32_t, 2> uses{};
+  std::array<uint32_t, 2> uses{};  // matches at each distance
+};
+
+#ifdef __SSE2__
+// The positions 0..13 of x where three bytes equal those at back.
+unsigned threeByteStarts(__m128i x, const uint8_t* back) {
+  const __m128i y = _mm_loadu_si128(reinterpret_cast<const __m128i*>(back));
+  const unsigned eq = unsigned(_mm_movemask_epi8(_mm_cmpeq_epi8(x, y)));
+  return eq & eq >> 1 & eq >> 2 & 0x3fffu;
+}
+#endif
+
+// Greedy: at each byte the longer match of the two distances, if it is at
+// least three bytes, else a literal.
+void tokenize(std::span<const uint8_t> data, size_t begin, const size_t distance[2], Tokens& t) {
+  thread_local std::vector<uint32_t> store;
+  store.resize(std::max(store.size(), data.size() - begin));
+  uint32_t* const first = store.data();
+  uint32_t* token = first;
   // The literals of runs counted in four tables: a run of one value would
   // otherwise wait on its own count's increment each byte.
   std::array<std::array<uint32_t, 256>, 4> runFreq{};
   const uint8_t* p = data.data();
-  const size_t reach = std::max(pixel, row);
+  const size_t pixel = distance[0], row = distance[1], reach = std::max(pixel, row);
   for (size_t i = begin, end = data.size(); i < end;) {
 #ifdef __SSE2__
     // Literals 14 at a time: the first position where either distance
@@ -217,12 +225,7 @@ void RowDeflater::block(std::span<const uint8_t> data, size_t begin, size_t pixe
     // that a run of literals costs no mispredicted branch a byte.
     if (pixel && i >= reach && end - i >= 16) {
       const __m128i x = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + i));
-      auto starts = [&](size_t d) {
-        if (!d) return 0u;
-        const unsigned eq = unsigned(_mm_movemask_epi8(_mm_cmpeq_epi8(x, _mm_loadu_si128(reinterpret_cast<const __m128i*>(p + i - d)))));
-        return eq & eq >> 1 & eq >> 2 & 0x3fffu;
-      };
-      const unsigned found = starts(pixel) | starts(row);
+      const unsigned found = threeByteStarts(x, p + i - pixel) | (row ? threeByteStarts(x, p + i - row) : 0u);
       const size_t literals = found ? size_t(__builtin_ctz(found)) : 14;
       for (size_t k = 0; k < literals; ++k) *token++ = p[i + k], ++runFreq[k & 3][p[i + k]];
       i += literals;
@@ -236,70 +239,96 @@ void RowDeflater::block(std::span<const uint8_t> data, size_t begin, size_t pixe
     if (row && i >= row && best < max)
       if (const size_t len = matchLength(p + i, p + i - row, max); len > best) best = len, which = 1;
     if (best >= kMinMatch) {
-      *token++ = matchToken(best, which);
-      ++litFreq[257 + kLengthCode[best]];
-      ++uses[which];
+      *token++ = kMatch | uint32_t(best) << 1 | uint32_t(which);
+      ++t.litFreq[257 + kLengthCode[best]];
+      ++t.uses[which];
       i += best;
     } else {
       *token++ = p[i];
-      ++litFreq[p[i]];
+      ++t.litFreq[p[i]];
       ++i;
     }
   }
   for (const auto& counts : runFreq)
-    for (int v = 0; v < 256; ++v) litFreq[v] += counts[v];
-  ++litFreq[kEndOfBlock];
-  const int distanceCodes[2] = {distanceCode(std::max<size_t>(distance[0], 1)), distanceCode(std::max<size_t>(distance[1], 1))};
-  for (int w = 0; w < 2; ++w) distFreq[distanceCodes[w]] += uses[w];
+    for (int v = 0; v < 256; ++v) t.litFreq[v] += counts[v];
+  ++t.litFreq[kEndOfBlock];
+  t.tokens = std::span(first, token);
+}
 
-  Code lit, dist, lengthCode;
-  lit.build(litFreq, 15);
-  dist.build(std::span(distFreq), 15);
-  int nLit = kLiterals, nDist = kDistances;
-  while (nLit > 257 && !lit.length[nLit - 1]) --nLit;
-  while (nDist > 1 && !dist.length[nDist - 1]) --nDist;
-  std::array<uint8_t, kLiterals + kDistances> lengths;
-  std::copy_n(lit.length.begin(), nLit, lengths.begin());
-  std::copy_n(dist.length.begin(), nDist, lengths.begin() + nLit);
-  const std::vector<LengthSymbol>& symbols = lengthSymbols(lengths.data(), nLit + nDist);
-  std::array<uint32_t, kCodeLengths> lengthFreq{};
-  for (const LengthSymbol& s : symbols) ++lengthFreq[s.symbol];
-  lengthCode.build(lengthFreq, 7);
-  int nLength = kCodeLengths;
-  while (nLength > 4 && !lengthCode.length[kCodeLengthOrder[nLength - 1]]) --nLength;
+// A dynamic block's three codes (3.2.7): literals and lengths, distances,
+// and the code its code lengths are sent in.
+struct BlockCodes {
+  Code lit, dist, lengths;
+  int nLit = kLiterals, nDist = kDistances, nLength = kCodeLengths;
+  std::span<const LengthSymbol> symbols;
 
-  // At most 15 + 5 + 15 + 13 bits a token of at least one byte, and the
-  // header's few hundred bytes.
-  const size_t start = out.size();
-  out.resize(start + 2 * (data.size() - begin) + 1024);
-  BitSink sink{bits_, count_, out.data() + start};
-  sink.put(last ? 1 : 0, 1);
-  sink.put(2, 2);  // dynamic Huffman codes
-  sink.put(uint32_t(nLit - 257), 5);
-  sink.put(uint32_t(nDist - 1), 5);
-  sink.put(uint32_t(nLength - 4), 4);
-  for (int k = 0; k < nLength; ++k) sink.put(lengthCode.length[kCodeLengthOrder[k]], 3);
-  for (const LengthSymbol& s : symbols) {
-    sink.put(lengthCode.bits[s.symbol], lengthCode.length[s.symbol]);
-    if (s.symbol >= 16) sink.put(s.extra, s.symbol == 16 ? 2 : s.symbol == 17 ? 3 : 7);
+  BlockCodes(Tokens& t, std::array<uint32_t, kDistances>& distFreq) {
+    lit.build(t.litFreq, 15);
+    dist.build(distFreq, 15);
+    while (nLit > 257 && !lit.length[nLit - 1]) --nLit;
+    while (nDist > 1 && !dist.length[nDist - 1]) --nDist;
+    std::array<uint8_t, kLiterals + kDistances> all;
+    std::copy_n(lit.length.begin(), nLit, all.begin());
+    std::copy_n(dist.length.begin(), nDist, all.begin() + nLit);
+    symbols = lengthSymbols(all.data(), nLit + nDist);
+    std::array<uint32_t, kCodeLengths> freq{};
+    for (const LengthSymbol& s : symbols) ++freq[s.symbol];
+    lengths.build(freq, 7);
+    while (nLength > 4 && !lengths.length[kCodeLengthOrder[nLength - 1]]) --nLength;
   }
+
+  void writeHeader(BitSink& sink, bool last) const {
+    sink.put(last ? 1 : 0, 1);
+    sink.put(2, 2);  // dynamic Huffman codes
+    sink.put(uint32_t(nLit - 257), 5);
+    sink.put(uint32_t(nDist - 1), 5);
+    sink.put(uint32_t(nLength - 4), 4);
+    for (int k = 0; k < nLength; ++k) sink.put(lengths.length[kCodeLengthOrder[k]], 3);
+    for (const LengthSymbol& s : symbols) {
+      sink.put(lengths.bits[s.symbol], lengths.length[s.symbol]);
+      if (s.symbol >= 16) sink.put(s.extra, s.symbol == 16 ? 2 : s.symbol == 17 ? 3 : 7);
+    }
+  }
+};
+
+}  // namespace
+
+void RowDeflater::block(std::span<const uint8_t> data, size_t begin, size_t pixel, size_t row, bool last,
+                        std::vector<unsigned char>& out) {
+  const size_t distance[2] = {pixel <= kWindow ? pixel : 0, row <= kWindow ? row : 0};
+  Tokens t;
+  tokenize(data, begin, distance, t);
+  int distanceCodes[2];
+  std::array<uint32_t, kDistances> distFreq{};
+  for (int w = 0; w < 2; ++w) distFreq[distanceCodes[w] = distanceCode(std::max<size_t>(distance[w], 1))] += t.uses[w];
+  const BlockCodes codes(t, distFreq);
+
+  // At most 15 + 5 + 15 + 13 bits a token of at least one byte, the
+  // header's few hundred bytes and the sink's eight: into scratch memory
+  // that is not zero-filled for every block.
+  thread_local std::vector<unsigned char> scratch;
+  scratch.resize(std::max(scratch.size(), 2 * (data.size() - begin) + 1024));
+  BitSink sink{bits_, count_, scratch.data()};
+  codes.writeHeader(sink, last);
   uint32_t distBits[2], distLength[2];
   for (int w = 0; w < 2; ++w) {
     const int c = distanceCodes[w];
     // The code, then the extra bits above the code's base.
-    distBits[w] = dist.bits[c] | uint32_t(std::max<size_t>(distance[w], 1) - kDistanceBase[c]) << dist.length[c];
-    distLength[w] = dist.length[c] + kDistanceExtra[c];
+    const uint32_t extra = uint32_t(std::max<size_t>(distance[w], 1) - kDistanceBase[c]);
+    distBits[w] = codes.dist.bits[c] | extra << codes.dist.length[c];
+    distLength[w] = codes.dist.length[c] + kDistanceExtra[c];
   }
-  for (const uint32_t* at = tokens; at != token; ++at) {
-    const uint32_t t = *at;
-    if (!(t & kMatch)) {
-      sink.put(lit.bits[t], lit.length[t]);
+  const Code& lit = codes.lit;
+  for (const uint32_t token : t.tokens) {
+    if (!(token & kMatch)) {
+      sink.put(lit.bits[token], lit.length[token]);
       continue;
     }
-    const size_t len = (t & ~kMatch) >> 1;
-    const int which = int(t & 1u), c = kLengthCode[len];
-    sink.put(lit.bits[257 + c] | uint32_t(len - kLengthBase[c]) << lit.length[257 + c], lit.length[257 + c] + kLengthExtra[c]);
-    sink.put(distBits[which], int(distLength[which]));
+    const size_t len = (token & ~kMatch) >> 1;
+    const int c = kLengthCode[len], symbol = 257 + c;
+    const uint32_t extra = uint32_t(len - kLengthBase[c]);
+    sink.put(lit.bits[symbol] | extra << lit.length[symbol], lit.length[symbol] + kLengthExtra[c]);
+    sink.put(distBits[token & 1u], int(distLength[token & 1u]));
   }
   sink.put(lit.bits[kEndOfBlock], lit.length[kEndOfBlock]);
   // Whole bytes are out; the last block's final bits padded to a byte.
@@ -310,7 +339,7 @@ void RowDeflater::block(std::span<const uint8_t> data, size_t begin, size_t pixe
   }
   bits_ = sink.bits;
   count_ = sink.count;
-  out.resize(size_t(sink.at - out.data()));
+  out.insert(out.end(), scratch.data(), sink.at);
 }
 
 }  // namespace mvr
