@@ -11,6 +11,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -20,6 +21,7 @@
 #include "mvr/baselines/fragment_lists.h"
 #include "mvr/baselines/source_layers.h"
 #include "mvr/error.h"
+#include "mvr/gl/gl_api.h"
 #include "mvr/io/scene_io.h"
 #include "slicing/image_slices.h"
 #include "tests/support/meshes.h"
@@ -513,7 +515,11 @@ TEST_F(InterpTest, CoalescingCutsSlicesAndKeepsTheSourceViewAndQuality) {
 // coalesced runs (vectors longer than a texel, with their MIP chains).
 // The visibility filter and hierarchical acquisition's hole counts run as
 // compute passes there too: the same layers, hidden pixels, hole checks
-// and source views.
+// and source views. The filter decides a pixel from the track's parallax
+// in double precision, whose division GLSL promises no better than single
+// (gpu_image_slicer_test.cpp's expectSameDecisions): off llvmpipe, with
+// the filter on, hidden pixels and the slices they leave may differ by one
+// in a thousand.
 TEST_F(InterpTest, GpuSlicingAndPstsMatchTheCpuPath) {
   Scene scene = loadScene(test::assetPath("default.json"));
   const ShearingCamera small(*scene.camera, 96, 72, 7), large(*scene.camera, 120, 90, 9);
@@ -548,10 +554,14 @@ TEST_F(InterpTest, GpuSlicingAndPstsMatchTheCpuPath) {
     EXPECT_EQ(cpuStats.notes["pst_builder"], "cpu") << label;
     EXPECT_EQ(gpuStats.notes["image_slicer"], "gpu") << label;
     EXPECT_EQ(cpuStats.notes["image_slicer"], "cpu") << label;
-    EXPECT_EQ(gpuStats.counters["slices"], cpuStats.counters["slices"]) << label;
-    EXPECT_EQ(gpuStats.counters["slice_pixels"], cpuStats.counters["slice_pixels"]) << label;
+    for (const char* counter : {"slices", "slice_pixels", "hidden_pixels"}) {
+      const long got = long(gpuStats.counters[counter]), want = long(cpuStats.counters[counter]);
+      if (c.visibility && !gl::rendersOnCpu())
+        EXPECT_LE(std::abs(got - want), std::max<long>(2, want / 1000)) << label << " " << counter;
+      else
+        EXPECT_EQ(got, want) << label << " " << counter;
+    }
     EXPECT_EQ(gpuStats.counters["layers"], cpuStats.counters["layers"]) << label;
-    EXPECT_EQ(gpuStats.counters["hidden_pixels"], cpuStats.counters["hidden_pixels"]) << label;
     EXPECT_EQ(gpuStats.counters["hole_checks"], cpuStats.counters["hole_checks"]) << label;
     EXPECT_EQ(gpuStats.counters["source_views"], cpuStats.counters["source_views"]) << label;
     if (c.acquire == Acquire::Hierarchical) {

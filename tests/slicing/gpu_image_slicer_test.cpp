@@ -7,9 +7,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "mvr/baselines/outline_triangles.h"
 #include "mvr/baselines/source_layers.h"
+#include "mvr/gl/gl_api.h"
 #include "mvr/io/scene_io.h"
 #include "slicing/gpu/gpu_image_slicer.h"
 #include "slicing/gpu/gpu_source_visibility.h"
@@ -233,10 +235,26 @@ TEST_F(GpuImageSlicerTest, HandMadeLayersAndEdgeCases) {
   EXPECT_EQ(empty.table.offsets().size(), size_t(cam.height()) + 1);
 }
 
+// GLSL promises double-precision division no better than single precision
+// (GLSL 4.60, 4.7.1), and a GPU's double division is a reciprocal refined
+// by Newton steps; llvmpipe's is the CPU's, correctly rounded. Where a
+// pixel's place from the track's parallax lies within an ulp of a pixel
+// boundary, a GPU may decide it the other way. So: exactly the host's
+// decisions where GL runs on the CPU, and elsewhere all but one in a
+// thousand of `decisions` (at least 2).
+void expectSameDecisions(long got, long want, long decisions, const std::string& label) {
+  if (gl::rendersOnCpu()) {
+    EXPECT_EQ(got, want) << label;
+    return;
+  }
+  EXPECT_LE(std::abs(got - want), std::max<long>(2, decisions / 1000)) << label << ": " << got << " against " << want;
+}
+
 // Visibility on the store (GpuVisibility) against hideInvisible, its host
 // oracle, on copies of the same layers: in every layer behind a nearest
-// the same pixels dropped (the depths bit for bit) and the same counts;
-// the nearest layers untouched. Returns the pixels dropped.
+// the same pixels dropped (the depths bit for bit) and the same counts
+// (up to expectSameDecisions' allowance off llvmpipe); the nearest layers
+// untouched. Returns the pixels dropped.
 long expectSameVisibility(std::vector<SourceLayer> host, DeviceLayers& device, const ShearingCamera& cam,
                           float overlap, const std::string& label) {
   GpuVisibility visibility;
@@ -251,11 +269,13 @@ long expectSameVisibility(std::vector<SourceLayer> host, DeviceLayers& device, c
   for (size_t k = 0; k < host.size() && k < counts.size(); ++k) {
     const long covered = long(std::count_if(host[k].depth.begin(), host[k].depth.end(), [](float d) { return d > 0.0f; }));
     const long kept = front[k] == int(k) ? 0 : hideInvisible(host[size_t(front[k])], host[k], cam, overlap);
-    EXPECT_EQ(counts[k].covered, front[k] == int(k) ? 0 : covered) << label << " layer " << k;
-    EXPECT_EQ(counts[k].kept, kept) << label << " layer " << k;
+    const std::string layer = label + " layer " + std::to_string(k);
+    EXPECT_EQ(counts[k].covered, front[k] == int(k) ? 0 : covered) << layer;
+    expectSameDecisions(counts[k].kept, kept, covered, layer + ", pixels kept");
     if (front[k] != int(k)) hidden += covered - kept;
-    EXPECT_TRUE(std::equal(host[k].depth.begin(), host[k].depth.end(), depths.begin() + ptrdiff_t(k * pixels)))
-        << label << " layer " << k;
+    long differ = 0;
+    for (size_t i = 0; i < pixels; ++i) differ += host[k].depth[i] != depths[k * pixels + i];
+    expectSameDecisions(differ, 0, covered, layer + ", pixels whose depth differs");
   }
   return hidden;
 }
@@ -327,9 +347,10 @@ TEST_F(GpuImageSlicerTest, HoleCountsAreTheHosts) {
       for (int view : {2, 4, 7})
         for (float overlap : {0.0f, 0.25f}) {
           const long expected = countHoles(used, cam, cam.viewX(view), overlap);
-          EXPECT_EQ(visibility.holes(device, use, cam, cam.viewX(view), overlap), expected)
-              << maxLayers << " layers, " << (both ? "both sources" : "one") << ", view " << view << ", overlap "
-              << overlap;
+          expectSameDecisions(visibility.holes(device, use, cam, cam.viewX(view), overlap), expected,
+                              long(cam.width()) * cam.height(),
+                              std::to_string(maxLayers) + " layers, " + (both ? "both sources" : "one") +
+                                  ", view " + std::to_string(view) + ", overlap " + std::to_string(overlap));
           total += expected;
         }
     }
