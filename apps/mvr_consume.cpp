@@ -68,8 +68,11 @@ int consume(int argc, char** argv) {
                                                        mvr::EpisToPngViews::queueLength(writer.manifest(), reorder.budget)))
                                   : volume.emplace(writer, int(h.width), int(h.height), int(h.views), type, reorder);
   size_t frames = 0;
-  while (auto f = reader.next()) {  // in order, all of them, nothing after (or it throws)
-    views.putEpiInPlace(f->row, f->scanline, f->epi);
+  // In order, all of them, nothing after (or it throws); the sink leaves a
+  // written EPI's buffer in the frame for the next to be read into.
+  mvr::EpiStreamReader::Frame f{0, 0, mvr::Image()};
+  while (reader.next(f)) {
+    views.putEpiInPlace(f.row, f.scanline, f.epi);
     ++frames;
   }
   views.finish();

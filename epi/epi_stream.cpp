@@ -149,11 +149,17 @@ EpiStreamReader::EpiStreamReader(std::istream& in) : in_(in) {
 }
 
 std::optional<EpiStreamReader::Frame> EpiStreamReader::next() {
+  Frame f{0, 0, Image()};
+  if (!next(f)) return std::nullopt;
+  return f;
+}
+
+bool EpiStreamReader::next(Frame& f) {
   const size_t total = size_t(header_.height) * header_.rows;
   uint8_t tag[8];
   in_.read(reinterpret_cast<char*>(tag), 8);
   if (read_ == total) {  // complete: anything more is not this stream
-    if (in_.gcount() == 0 && in_.eof()) return std::nullopt;
+    if (in_.gcount() == 0 && in_.eof()) return false;
     fail("stream", "data after the last of " + std::to_string(total) + " EPIs");
   }
   if (in_.gcount() == 0 && in_.eof())
@@ -166,23 +172,26 @@ std::optional<EpiStreamReader::Frame> EpiStreamReader::next() {
                        " scanline " + std::to_string(getU32(tag + 4)) + ", expected row " +
                        std::to_string(row) + " scanline " + std::to_string(scanline));
   ++read_;
-  Frame f{int(getU32(tag)), int(getU32(tag + 4)), Image()};
+  f.row = int(getU32(tag));
+  f.scanline = int(getU32(tag + 4));
   f.epi.width = int(header_.width);
   f.epi.height = int(header_.views);
   f.epi.type = header_.pixelType();
   // In pieces, the buffer growing with the data that arrived: a hostile
   // header promising gigabytes must not allocate them before the stream
-  // shows it has them.
+  // shows it has them. A buffer of the right size is read into whole.
   constexpr size_t kPiece = size_t(16) << 20;
   const size_t bytes = header_.epiBytes();
+  const bool reuse = f.epi.bytes.size() == bytes;
+  if (!reuse) f.epi.bytes.clear();
   for (size_t have = 0; have < bytes;) {
-    const size_t piece = std::min(kPiece, bytes - have);
-    f.epi.bytes.resize(have + piece);
+    const size_t piece = reuse ? bytes : std::min(kPiece, bytes - have);
+    if (!reuse) f.epi.bytes.resize(have + piece);
     in_.read(reinterpret_cast<char*>(f.epi.bytes.data() + have), std::streamsize(piece));
     if (size_t(in_.gcount()) != piece) fail("stream", "truncated EPI data");
     have += piece;
   }
-  return f;
+  return true;
 }
 
 }  // namespace mvr

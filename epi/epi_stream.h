@@ -94,6 +94,10 @@ class EpiStreamReader {
   // Throws on a stream cut short, an EPI tagged out of order, or data
   // after the last EPI.
   std::optional<Frame> next();
+  // The same into `frame`, false after the last one: an EPI whose buffer
+  // already has the stream's size is read into it, with no allocation or
+  // zero-fill (a sink that takes EPIs in place leaves one there).
+  bool next(Frame& frame);
 
  private:
   std::istream& in_;

@@ -39,6 +39,41 @@ TEST(EpiStream, ReorderedStreamIsByteIdenticalToViewImages) {
   EXPECT_EQ(frames, 36);
 }
 
+// Frames read into one reused buffer (as mvr-consume reads them) hold what
+// fresh frames hold, and a cut stream still fails with the buffer at size.
+TEST(EpiStream, FramesReadIntoAReusedBufferAreTheFreshOnes) {
+  const EpiStreamHeader header{8, 5, 3, 2, 4, 1};
+  std::stringstream bytes;
+  {
+    EpiStreamWriter writer(bytes, header);
+    for (int row = 0; row < 2; ++row)
+      for (int j = 0; j < 5; ++j) {
+        Image epi(8, 3, PixelType::U8);
+        for (size_t b = 0; b < epi.bytes.size(); ++b) epi.bytes[b] = uint8_t(b * 5 + j * 17 + row * 101);
+        writer.putEpi(row, j, epi);
+      }
+  }
+  std::stringstream a(bytes.str()), b(bytes.str());
+  EpiStreamReader fresh(a), reused(b);
+  EpiStreamReader::Frame frame{0, 0, Image()};
+  int frames = 0;
+  while (auto f = fresh.next()) {
+    ASSERT_TRUE(reused.next(frame));
+    EXPECT_EQ(frame.row, f->row);
+    EXPECT_EQ(frame.scanline, f->scanline);
+    EXPECT_EQ(frame.epi.bytes, f->epi.bytes) << "EPI " << frames;
+    EXPECT_EQ(frame.epi.width, 8);
+    EXPECT_EQ(frame.epi.height, 3);
+    ++frames;
+  }
+  EXPECT_FALSE(reused.next(frame));
+  EXPECT_EQ(frames, 10);
+  std::stringstream cut(bytes.str().substr(0, bytes.str().size() - 7));
+  EpiStreamReader short_(cut);
+  for (int k = 0; k < 9; ++k) ASSERT_TRUE(short_.next(frame));
+  EXPECT_THROW(short_.next(frame), Error);
+}
+
 // The queue takes in-place EPIs' pixels and hands the producer a written
 // EPI's image back: the stream must hold every EPI as it was handed over,
 // and the producer must always get an image of its EPI's size and type.
