@@ -29,6 +29,7 @@
 #include "mvr/gl/gl_context.h"
 #include "mvr/io/fd_stream.h"
 #include "mvr/io/image_codec.h"
+#include "mvr/io/image_file.h"
 #include "mvr/io/image_set.h"
 #include "mvr/io/png_views.h"
 #include "mvr/io/rgbd_set.h"
@@ -493,7 +494,8 @@ int runRender(int argc, char** argv, RenderCommand command) {
   // unless it is pure computation like reading the scene. Started after
   // GL, a one-view render took 0.78-0.82 s against 0.69-0.70 s.
   startPool();
-  if (!streaming && (format != "png" || f.depth)) preloadImageCodec();
+  // Depth maps of the default codec are our own encoder's (mvr/io/exr_depth.h).
+  if (!streaming && (format != "png" || (f.depth && !ownsDepthCodec(f.codec)))) preloadImageCodec();
   // Where start-up time goes, in the manifest (issue 15).
   StageTimes startup;
   Stopwatch sinceStart;

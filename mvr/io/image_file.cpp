@@ -8,6 +8,7 @@
 #include "mvr/color.h"
 #include "mvr/error.h"
 #include "mvr/io/atomic_file.h"
+#include "mvr/io/exr_depth.h"
 #include "mvr/io/image_codec.h"
 #include "mvr/io/png_encoder.h"
 
@@ -126,7 +127,15 @@ void writeDepthImage(const DepthImage& depth, const std::string& path, const Ima
   const auto& allowed = codecs("exr");
   if (std::find(allowed.begin(), allowed.end(), exr.codec) == allowed.end()) exr.codec = "";
   thread_local std::vector<unsigned char> encoded;
-  if (std::string error = imageCodec().encodeDepth(depth, exr, encoded); !error.empty()) fail(path, error);
+  if (ownsDepthCodec(exr.codec)) {
+    try {
+      encodeDepthExr(depth, exr.codec != "none", encoded);
+    } catch (const Error& e) {
+      fail(path, e.what());
+    }
+  } else if (std::string error = imageCodec().encodeDepth(depth, exr, encoded); !error.empty()) {
+    fail(path, error);
+  }
   writeFileAtomically(path, std::as_bytes(std::span(encoded)));
 }
 

@@ -34,6 +34,9 @@ struct ImageEncoding {
 
 // "" for png, "zip" for tiff and exr.
 inline std::string defaultCodec(const std::string& format) { return format == "png" ? "" : "zip"; }
+// Depth maps of these codecs (the default zip, and none) are written by our
+// own encoder (mvr/io/exr_depth.h), with no OpenImageIO module loaded.
+inline bool ownsDepthCodec(const std::string& codec) { return codec.empty() || codec == "zip" || codec == "none"; }
 // 32 (float) for exr, 8 for png and tiff.
 inline int defaultBits(const std::string& format) { return format == "exr" ? 32 : 8; }
 // Throws mvr::Error naming the option (--bits, --codec, --compression)

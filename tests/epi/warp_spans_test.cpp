@@ -61,9 +61,13 @@ TEST(WarpSpans, APlaneMovesAlongItsTrack) {
     const glm::vec4 left = epi.pixel(p, 0), middle = epi.pixel(p, 1), right = epi.pixel(p, 2);
     EXPECT_FLOAT_EQ(middle.b, p / 16.0f) << p;
     EXPECT_FLOAT_EQ(left.a, p >= 8 ? 1.0f : 0.0f) << p;
-    if (p >= 8) EXPECT_NEAR(left.b, (p - 8) / 16.0f, 1e-6f) << p;
+    if (p >= 8) {
+      EXPECT_NEAR(left.b, (p - 8) / 16.0f, 1e-6f) << p;
+    }
     EXPECT_FLOAT_EQ(right.a, p < 8 ? 1.0f : 0.0f) << p;
-    if (p < 8) EXPECT_NEAR(right.b, (p + 8) / 16.0f, 1e-6f) << p;
+    if (p < 8) {
+      EXPECT_NEAR(right.b, (p + 8) / 16.0f, 1e-6f) << p;
+    }
   }
 }
 
