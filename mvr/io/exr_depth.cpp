@@ -69,8 +69,16 @@ void putHeader(std::vector<unsigned char>& out, int w, int h, bool zip) {
 void interleaveAndPredict(const unsigned char* raw, size_t n, std::vector<uint8_t>& out) {
   out.resize(n);
   const size_t half = (n + 1) / 2;
-  for (size_t i = 0; i < n; ++i) out[(i & 1) ? half + i / 2 : i / 2] = raw[i];
-  for (size_t i = n; i-- > 1;) out[i] = uint8_t(out[i] - out[i - 1] + 128);
+  uint8_t* even = out.data();
+  uint8_t* odd = out.data() + half;
+  for (size_t k = 0; k < n / 2; ++k) even[k] = raw[2 * k], odd[k] = raw[2 * k + 1];
+  if (n & 1) even[half - 1] = raw[n - 1];
+  uint8_t before = out[0];
+  for (size_t i = 1; i < n; ++i) {
+    const uint8_t v = out[i];
+    out[i] = uint8_t(v - before + 128);
+    before = v;
+  }
 }
 
 // A ZIP chunk's data: the prepared bytes as a zlib stream (RFC 1950: the
