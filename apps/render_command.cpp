@@ -119,18 +119,40 @@ int streamTo(Renderer& renderer, const ShearingCamera& cam, double imagePlaneZ, 
   return 0;
 }
 
-// Hands each view of the depth scene on as a depth map.
+// The depth pass's frames between the renderer and the maps: one float a
+// pixel in a 4-byte pixel type (mvr/depth.h's packDepth).
+constexpr PixelType kPackedDepth = PixelType::U8;
+
+// Hands each view of the depth pass on as a depth map, from views packed
+// one float a pixel (DepthPacker).
 class DepthSink final : public FrameSink {
  public:
-  DepthSink(ImageSetWriter& writer, const DepthColoring& coloring) : writer_(writer), coloring_(coloring) {}
-  void putView(int row, int view, const Image& image) override {
-    writer_.putDepth(row, view, depthFromColors(image, coloring_));
-  }
+  explicit DepthSink(ImageSetWriter& writer) : writer_(writer) {}
+  void putView(int row, int view, const Image& packed) override { writer_.putDepth(row, view, unpackDepth(packed)); }
   void putEpi(int, int, const Image&) override { fail("--depth", "the depth pass reorders EPIs into views"); }
 
  private:
   ImageSetWriter& writer_;
+};
+
+// The depth scene's frames, views or EPIs, packed into their depths
+// (mvr/depth.h) as they come, so that what reorders or exchanges them
+// moves 4 bytes a pixel instead of the float colour's 16.
+class DepthPacker final : public FrameSink {
+ public:
+  DepthPacker(FrameSink& inner, const DepthColoring& coloring) : inner_(inner), coloring_(coloring) {}
+  void putView(int row, int view, const Image& image) override { inner_.putView(row, view, pack(image)); }
+  void putEpi(int row, int scanline, const Image& epi) override { inner_.putEpi(row, scanline, pack(epi)); }
+  void finish() override { inner_.finish(); }
+
+ private:
+  const Image& pack(const Image& frame) {
+    packDepth(frame, coloring_, packed_);
+    return packed_;
+  }
+  FrameSink& inner_;
   DepthColoring coloring_;
+  Image packed_;
 };
 
 // Runs one phase of the job. In a split job (mpi not null) every rank
@@ -189,19 +211,20 @@ void renderDepth(const BackendOptions& choice, const Scene& scene, const Shearin
     depth = depthScene(scene, cam, coloring);
     renderer = makeRenderer(choice, depth, PixelType::F32);
   });
-  DepthSink depthSink(writer, coloring);
+  DepthSink depthSink(writer);
   std::optional<EpisToViews> reorderer;
   std::optional<SplitOutput> out;
   FrameSink* sink = &depthSink;
   if (split)
     sink = &out.emplace(*mpi, cam, *split,
-                        SplitOutputSpec{.rendered = renderer->order(), .type = PixelType::F32, .dir = dir,
+                        SplitOutputSpec{.rendered = renderer->order(), .type = kPackedDepth, .dir = dir,
                                         .reorder = reorder, .scratchName = ".mvr_split_depth"},
                         depthSink, nullptr)
                 .sink();
   else if (renderer->order() == FrameOrder::Epi)
-    sink = &reorderer.emplace(depthSink, cam.width(), cam.height(), cam.views(), PixelType::F32, reorder);
-  renderPhase(mpi, *renderer, rendersOf(cam, out ? &*out : nullptr, {}), *sink, long(cam.views()) * cam.rows(),
+    sink = &reorderer.emplace(depthSink, cam.width(), cam.height(), cam.views(), kPackedDepth, reorder);
+  DepthPacker packer(*sink, coloring);
+  renderPhase(mpi, *renderer, rendersOf(cam, out ? &*out : nullptr, {}), packer, long(cam.views()) * cam.rows(),
               renderer->name() + ", depth", stats);
   if (out) inPhase(mpi, [&] { out->assemble(); });
 }
@@ -563,11 +586,11 @@ int runRender(int argc, char** argv, RenderCommand command) {
                        EpisToPngViews::handles(setManifest, type) && pngFilesBudget > 0;
   const bool scratch = reorders && !pngRows && reorder.spills(rowBytes);
   // The depth pass reorders float frames where the back end renders EPIs.
-  const size_t depthRowBytes = size_t(width) * height * 16 * views;
+  const size_t depthViewBytes = size_t(width) * height * 4 * Image::channelBytes(kPackedDepth);
+  const size_t depthRowBytes = depthViewBytes * views;
   ReorderMemory depthReorder;
   const bool depthReorders = f.depth && renderer->order() == FrameOrder::Epi;
-  if (depthReorders)
-    depthReorder = f.memory.reorder(size_t(width) * height * 16, BoundedTasks::defaultLimit(), out);
+  if (depthReorders) depthReorder = f.memory.reorder(depthViewBytes, BoundedTasks::defaultLimit(), out);
   checkHeldFramesFit({.reorderBytes = std::max(reorders ? reorder.held(rowBytes) : 0,
                                                depthReorders ? depthReorder.held(depthRowBytes) : 0),
                       .quiltBytes = !streaming && !f.quilt.empty() && (!mpi || mpi->rank() == 0) ? rowBytes * rows : 0},

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "mvr/error.h"
@@ -40,12 +41,34 @@ Scene depthScene(const Scene& scene, const ShearingCamera& cam, DepthColoring& c
   return out;
 }
 
+namespace {
+
+void depthsOf(const Image& frame, const DepthColoring& coloring, float* depth) {
+  if (frame.type != PixelType::F32) fail("depth", "the depth scene must be rendered in float");
+  const float* px = reinterpret_cast<const float*>(frame.bytes.data());
+  const size_t n = size_t(frame.width) * frame.height;
+  for (size_t i = 0; i < n; ++i) depth[i] = px[4 * i + 3] > 0.5f ? coloring.depthOf(px[4 * i]) : 0.0f;
+}
+
+}  // namespace
+
 DepthImage depthFromColors(const Image& view, const DepthColoring& coloring) {
-  if (view.type != PixelType::F32) fail("depth", "the depth scene must be rendered in float");
   DepthImage depth(view.width, view.height);
-  const float* px = reinterpret_cast<const float*>(view.bytes.data());
-  for (size_t i = 0; i < depth.values.size(); ++i)
-    depth.values[i] = px[4 * i + 3] > 0.5f ? coloring.depthOf(px[4 * i]) : 0.0f;
+  depthsOf(view, coloring, depth.values.data());
+  return depth;
+}
+
+void packDepth(const Image& frame, const DepthColoring& coloring, Image& packed) {
+  static_assert(sizeof(float) == 4, "a packed pixel is one float");
+  if (packed.width != frame.width || packed.height != frame.height || packed.type != PixelType::U8)
+    packed = Image(frame.width, frame.height, PixelType::U8);
+  depthsOf(frame, coloring, reinterpret_cast<float*>(packed.bytes.data()));
+}
+
+DepthImage unpackDepth(const Image& packed) {
+  if (packed.type != PixelType::U8) fail("depth", "a packed depth map holds 4 bytes a pixel");
+  DepthImage depth(packed.width, packed.height);
+  std::memcpy(depth.values.data(), packed.bytes.data(), depth.values.size() * sizeof(float));
   return depth;
 }
 

@@ -35,4 +35,13 @@ Scene depthScene(const Scene& scene, const ShearingCamera& cam, DepthColoring& c
 // covered (alpha above one half), 0 where nothing is seen.
 DepthImage depthFromColors(const Image& view, const DepthColoring& coloring);
 
+// A frame of the depth scene (F32: a view or an EPI) as its depths, packed
+// one float a pixel into an image of type U8 (4 bytes a pixel) of the same
+// size: the reorderers and a split job's exchange only move pixels, so
+// depth goes through them at a quarter of the float colour's bytes, and
+// 0 (nothing seen) where they leave a pixel unwritten. `packed` is reused.
+void packDepth(const Image& frame, const DepthColoring& coloring, Image& packed);
+// A view packed so, as a depth map.
+DepthImage unpackDepth(const Image& packed);
+
 }  // namespace mvr

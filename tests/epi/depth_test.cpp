@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "epi/backend.h"
 #include "mvr/depth.h"
@@ -67,6 +68,29 @@ TEST(Depth, UncoveredPixelsAreZero) {
   EXPECT_FLOAT_EQ(d.at(0, 0), 4.0f);
   EXPECT_EQ(d.at(1, 0), 0.0f);
   EXPECT_THROW(depthFromColors(Image(1, 1, PixelType::U8), DepthColoring{}), Error);
+}
+
+// Frames packed one float a pixel (as the depth pass reorders them) hold
+// the depths depthFromColors gives, bit for bit: covered, half covered
+// (alpha 0.5 is not covered) and empty pixels; a reused packed image of
+// another size is resized.
+TEST(Depth, PackedFramesHoldTheDepthsBitForBit) {
+  Image frame(3, 2, PixelType::F32);
+  frame.setLinear(0, 0, glm::vec4(0.25f, 0.0f, 0.0f, 1.0f));
+  frame.setLinear(1, 0, glm::vec4(0.75f, 0.0f, 0.0f, 0.5f));
+  frame.setLinear(2, 1, glm::vec4(1.0f / 3.0f, 0.0f, 0.0f, 0.75f));
+  const DepthColoring coloring{1.5, 3.0};
+  Image packed(7, 7, PixelType::F32);
+  packDepth(frame, coloring, packed);
+  EXPECT_EQ(packed.type, PixelType::U8);
+  const DepthImage want = depthFromColors(frame, coloring), got = unpackDepth(packed);
+  ASSERT_EQ(got.width, 3);
+  ASSERT_EQ(got.height, 2);
+  EXPECT_EQ(0, std::memcmp(got.values.data(), want.values.data(), 6 * sizeof(float)));
+  EXPECT_FLOAT_EQ(got.at(0, 0), 2.25f);
+  EXPECT_EQ(got.at(1, 0), 0.0f);
+  EXPECT_GT(got.at(2, 1), 0.0f);
+  EXPECT_THROW(unpackDepth(frame), Error);
 }
 
 // A plane z = 0.3 x - 0.2 y - 0.5, larger than the view, seen from 5 eyes:
