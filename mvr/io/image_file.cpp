@@ -68,17 +68,19 @@ T quantise(float v) {
 }
 
 // One row of pixels as the PNG stores it: bytes as they are, or floats
-// quantised to 8 bits or to 16 bits big-endian.
-std::span<const uint8_t> pngRow(const Image& pixels, int y, int bits, std::vector<uint8_t>& room) {
+// (sRGB-encoded first where `encode`, alpha never) quantised to 8 bits or
+// to 16 bits big-endian.
+std::span<const uint8_t> pngRow(const Image& pixels, int y, int bits, bool encode, std::vector<uint8_t>& room) {
   if (isByteType(pixels.type)) return {pixels.row(y), pixels.rowBytes()};
   const float* v = reinterpret_cast<const float*>(pixels.row(y));
   const size_t n = size_t(pixels.width) * 4;
   room.resize(n * size_t(bits / 8));
   for (size_t i = 0; i < n; ++i) {
+    const float f = encode && i % 4 != 3 ? srgbEncode(v[i]) : v[i];
     if (bits == 8) {
-      room[i] = quantise<uint8_t>(v[i]);
+      room[i] = quantise<uint8_t>(f);
     } else {
-      const uint16_t q = quantise<uint16_t>(v[i]);
+      const uint16_t q = quantise<uint16_t>(f);
       room[2 * i] = uint8_t(q >> 8);
       room[2 * i + 1] = uint8_t(q);
     }
@@ -86,10 +88,11 @@ std::span<const uint8_t> pngRow(const Image& pixels, int y, int bits, std::vecto
   return room;
 }
 
-void encodePng(const Image& pixels, const ImageEncoding& e, bool srgb, std::vector<unsigned char>& out) {
+// encode: the pixels are linear floats the file stores sRGB-encoded.
+void encodePng(const Image& pixels, const ImageEncoding& e, bool srgb, bool encode, std::vector<unsigned char>& out) {
   PngEncoder png({pixels.width, pixels.height, e.bits, e.pngLevel, srgb, e.attributes}, out);
   std::vector<uint8_t> room;
-  for (int y = 0; y < pixels.height; ++y) png.addRow(pngRow(pixels, y, e.bits, room));
+  for (int y = 0; y < pixels.height; ++y) png.addRow(pngRow(pixels, y, e.bits, encode, room));
 }
 
 }  // namespace
@@ -102,8 +105,11 @@ void writeImage(const Image& image, const std::string& path, const ImageEncoding
   // else through float, encoded where the file says sRGB.
   const bool asStored = isByteType(image.type) && encoding.bits == 8 && format != "exr";
   const bool srgb = asStored ? image.type == PixelType::Srgb8 : encoding.srgb && format != "exr";
+  // Floats into PNG rows are encoded row by row (pngRow), with no float
+  // copy of the image.
+  const bool encodeRows = format == "png" && image.type == PixelType::F32 && srgb;
   Image converted;
-  if (!asStored && (image.type != PixelType::F32 || srgb)) converted = floatFor(image, srgb);
+  if (!asStored && !encodeRows && (image.type != PixelType::F32 || srgb)) converted = floatFor(image, srgb);
   const Image& pixels = converted.bytes.empty() ? image : converted;
   // Encoded in memory, then written by us: OpenImageIO's writers do not
   // report a failed write (a full disk gave a truncated file and success).
@@ -111,7 +117,7 @@ void writeImage(const Image& image, const std::string& path, const ImageEncoding
   thread_local std::vector<unsigned char> encoded;
   if (format == "png") {
     try {
-      encodePng(pixels, encoding, srgb, encoded);
+      encodePng(pixels, encoding, srgb, encodeRows, encoded);
     } catch (const Error& e) {
       fail(path, e.what());
     }
