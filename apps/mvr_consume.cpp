@@ -59,13 +59,13 @@ int consume(int argc, char** argv) {
   // 8-bit PNG views take their rows as the EPIs come (no volume; the
   // files' bytes within the budget, beyond it on their way to disk); the
   // rest is reassembled.
-  const size_t filesBudget = mvr::EpisToPngViews::filesBudget(writer.manifest(), reorder.budget);
+  const size_t filesBudget = mvr::EpisToPngViews::filesBudget(writer.manifest(), type, reorder.budget);
   const bool pngRows = mvr::EpisToPngViews::handles(writer.manifest(), type) && filesBudget > 0;
   if (!pngRows && reorder.spills(rowBytes)) mvr::app::checkScratchFits(rowBytes, reorder.scratchDir);
   std::optional<mvr::EpisToPngViews> rows;
   std::optional<mvr::EpisToViews> volume;
   mvr::FrameSink& views = pngRows ? static_cast<mvr::FrameSink&>(rows.emplace(writer, type, filesBudget,
-                                                       mvr::EpisToPngViews::queueLength(writer.manifest(), reorder.budget)))
+                                                       mvr::EpisToPngViews::queueLength(writer.manifest(), type, reorder.budget)))
                                   : volume.emplace(writer, int(h.width), int(h.height), int(h.views), type, reorder);
   size_t frames = 0;
   // In order, all of them, nothing after (or it throws); the sink leaves a

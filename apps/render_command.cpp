@@ -581,7 +581,7 @@ int runRender(int argc, char** argv, RenderCommand command) {
   const Manifest setManifest{.views = views, .rows = rows, .width = width, .height = height, .format = format,
                           .order = order, .bits = bits, .compression = f.compression, .codec = f.codec,
                           .srgb = !f.linear};
-  const size_t pngFilesBudget = EpisToPngViews::filesBudget(setManifest, reorder.budget);
+  const size_t pngFilesBudget = EpisToPngViews::filesBudget(setManifest, type, reorder.budget);
   const bool pngRows = reorders && !streaming && !mpi && order == "view" && !quiltLayout &&
                        EpisToPngViews::handles(setManifest, type) && pngFilesBudget > 0;
   const bool scratch = reorders && !pngRows && reorder.spills(rowBytes);
@@ -662,7 +662,7 @@ int runRender(int argc, char** argv, RenderCommand command) {
         // span back end renders on that pool, so a long queue only holds memory.
         const bool onPool = choice.hasPst() && choice.pst() == PstMode::Cpu;
         auto views = std::make_unique<EpisToPngViews>(
-            writer, type, pngFilesBudget, onPool ? 4 : EpisToPngViews::queueLength(setManifest, reorder.budget));
+            writer, type, pngFilesBudget, onPool ? 4 : EpisToPngViews::queueLength(setManifest, type, reorder.budget));
         pngViews = views.get();
         sink = chain.emplace_back(std::move(views)).get();
       } else {

@@ -60,32 +60,11 @@ Image floatFor(const Image& image, bool encode) {
   return out;
 }
 
-// A float sample as an integer file stores it: rounded, clamped (NaN to 0).
-template <typename T>
-T quantise(float v) {
-  constexpr float top = float(T(~T(0)));
-  return v >= 0.0f ? (v < 1.0f ? T(v * top + 0.5f) : T(~T(0))) : T(0);
-}
-
 // One row of pixels as the PNG stores it: bytes as they are, or floats
-// (sRGB-encoded first where `encode`, alpha never) quantised to 8 bits or
-// to 16 bits big-endian.
+// as pngSamples stores them.
 std::span<const uint8_t> pngRow(const Image& pixels, int y, int bits, bool encode, std::vector<uint8_t>& room) {
   if (isByteType(pixels.type)) return {pixels.row(y), pixels.rowBytes()};
-  const float* v = reinterpret_cast<const float*>(pixels.row(y));
-  const size_t n = size_t(pixels.width) * 4;
-  room.resize(n * size_t(bits / 8));
-  for (size_t i = 0; i < n; ++i) {
-    const float f = encode && i % 4 != 3 ? srgbEncode(v[i]) : v[i];
-    if (bits == 8) {
-      room[i] = quantise<uint8_t>(f);
-    } else {
-      const uint16_t q = quantise<uint16_t>(f);
-      room[2 * i] = uint8_t(q >> 8);
-      room[2 * i + 1] = uint8_t(q);
-    }
-  }
-  return room;
+  return pngSamples(reinterpret_cast<const float*>(pixels.row(y)), pixels.width, bits, encode, room);
 }
 
 // encode: the pixels are linear floats the file stores sRGB-encoded.

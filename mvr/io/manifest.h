@@ -19,7 +19,7 @@ class Manifest {
   std::string format = "png";  // png | exr | tiff
   std::string order = "view";  // view: view_* files; epi: epi_* files (rows are views)
   int bits = 8;                // per channel in the files (exr: 16 half or 32 float)
-  int compression = kDefaultPngCompression;  // png files: zlib level 0-9
+  int compression = kDefaultPngCompression;  // png files: level 0-9 (1 our row coder, 2-9 zlib)
   std::string codec;           // exr and tiff files: their codec ("": the format's default)
   // png and tiff files hold sRGB-encoded colour (else linear; exr always
   // linear). Recorded as color_encoding; a manifest without it is from

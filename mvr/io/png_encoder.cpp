@@ -12,6 +12,7 @@
 #include <emmintrin.h>
 #endif
 
+#include "mvr/color.h"
 #include "mvr/error.h"
 #include "mvr/io/adler32.h"
 #include "mvr/io/row_deflate.h"
@@ -263,6 +264,32 @@ void PngEncoder::deflateSegment(bool last) {
     used = chunk.size();
   }
   putChunk(out_, "IDAT", std::span(chunk.data(), used));
+}
+
+namespace {
+
+template <typename T>
+T quantise(float v) {
+  constexpr float top = float(T(~T(0)));
+  return v >= 0.0f ? (v < 1.0f ? T(v * top + 0.5f) : T(~T(0))) : T(0);
+}
+
+}  // namespace
+
+std::span<const uint8_t> pngSamples(const float* v, int width, int bits, bool encode, std::vector<uint8_t>& room) {
+  const size_t n = size_t(width) * 4;
+  room.resize(n * size_t(bits / 8));
+  for (size_t i = 0; i < n; ++i) {
+    const float f = encode && i % 4 != 3 ? srgbEncode(v[i]) : v[i];
+    if (bits == 8) {
+      room[i] = quantise<uint8_t>(f);
+    } else {
+      const uint16_t q = quantise<uint16_t>(f);
+      room[2 * i] = uint8_t(q >> 8);
+      room[2 * i + 1] = uint8_t(q);
+    }
+  }
+  return room;
 }
 
 void PngEncoder::addRow(std::span<const uint8_t> samples) {

@@ -81,6 +81,11 @@ class PngEncoder {
   RowDeflater rowDeflater_;                // level 1's coder, its bits carried from segment to segment
 };
 
+// A row of float RGBA pixels as a PNG of `bits` (8 or 16) stores it:
+// sRGB-encoded first where `encode` (alpha never), rounded, clamped (NaN
+// to 0), 16-bit values big-endian; into `room`, returned.
+std::span<const uint8_t> pngSamples(const float* rgba, int width, int bits, bool encode, std::vector<uint8_t>& room);
+
 // Level 1, the default: every row by the Up filter, deflated by our row
 // coder (mvr/io/row_deflate.h) instead of zlib.
 inline bool ownDeflate(int level) { return level == 1; }

@@ -10,30 +10,35 @@
 namespace mvr {
 
 bool EpisToPngViews::handles(const Manifest& manifest, PixelType type) {
-  return manifest.format == "png" && manifest.bits == 8 && isByteType(type);
+  return manifest.format == "png" && (type == PixelType::F32 || (manifest.bits == 8 && isByteType(type)));
 }
 
 namespace {
 
+// As writeImage writes a view: a byte image as stored, tagged by its type;
+// a float one in the set's bits, sRGB-encoded where the set says sRGB.
 PngFormat formatOf(const Manifest& m, PixelType type) {
-  // As writeImage writes a byte image: as stored, tagged by its type.
-  return {.width = m.width, .height = m.height, .bits = 8, .level = m.compression, .srgb = type == PixelType::Srgb8};
+  const bool bytes = isByteType(type);
+  return {.width = m.width, .height = m.height, .bits = bytes ? 8 : m.bits, .level = m.compression,
+          .srgb = bytes ? type == PixelType::Srgb8 : m.srgb};
+}
+
+size_t epiBytes(const Manifest& m, PixelType type) {
+  return size_t(m.width) * size_t(m.views) * 4 * Image::channelBytes(type);
 }
 
 }  // namespace
 
-int EpisToPngViews::queueLength(const Manifest& manifest, size_t budget) {
-  const size_t epi = size_t(manifest.width) * size_t(manifest.views) * 4;  // 8-bit RGBA
+int EpisToPngViews::queueLength(const Manifest& manifest, PixelType type, size_t budget) {
   const size_t bytes = std::min(size_t(128) << 20, budget / 8);
-  return int(std::clamp<size_t>(bytes / std::max<size_t>(epi, 1), 4, 64));
+  return int(std::clamp<size_t>(bytes / std::max<size_t>(epiBytes(manifest, type), 1), 4, 64));
 }
 
-size_t EpisToPngViews::filesBudget(const Manifest& manifest, size_t budget) {
+size_t EpisToPngViews::filesBudget(const Manifest& manifest, PixelType type, size_t budget) {
   const size_t views = size_t(manifest.views);
-  const size_t epi = size_t(manifest.width) * views * 4;  // 8-bit RGBA
   // The queue, an EPI being fed and one held back early.
-  const size_t queue = size_t(queueLength(manifest, budget) + 2) * epi;
-  const size_t encoders = views * PngEncoder::heldBytes(formatOf(manifest, PixelType::U8)) + queue;
+  const size_t queue = size_t(queueLength(manifest, type, budget) + 2) * epiBytes(manifest, type);
+  const size_t encoders = views * PngEncoder::heldBytes(formatOf(manifest, type)) + queue;
   // Less room than this makes for many small appends to every file.
   const size_t least = views * (size_t(16) << 10);
   return budget > encoders + least ? budget - encoders : 0;
@@ -43,7 +48,7 @@ EpisToPngViews::EpisToPngViews(ImageSetWriter& writer, PixelType type, size_t fi
     : writer_(writer), type_(type), views_(writer.manifest().views), filesBudget_(filesBudget),
       queueLength_(std::max(1, queueLength)) {
   const Manifest& m = writer.manifest();
-  if (!handles(m, type)) fail("PNG view sink", "needs byte images and 8-bit PNG files");
+  if (!handles(m, type)) fail("PNG view sink", "needs byte images and 8-bit PNG files, or float images");
   format_ = formatOf(m, type);
   files_.resize(size_t(views_));
   spilled_.assign(size_t(views_), 0);
@@ -72,9 +77,13 @@ void EpisToPngViews::startRow(int row) {
 // finished by it go to the writer, which writes them on its pool.
 void EpisToPngViews::feed(const Image& epi) {
   const int run = std::max(1, views_ / (8 * threadCount()));
+  const bool encode = type_ == PixelType::F32 && format_.srgb;
   parallelFor(0, (views_ + run - 1) / run, [&](int k) {
+    thread_local std::vector<uint8_t> room;  // a float row's samples
     for (int i = k * run; i < std::min(views_, (k + 1) * run); ++i)
-      encoders_[size_t(i)]->addRow({epi.row(i), epi.rowBytes()});
+      encoders_[size_t(i)]->addRow(
+          isByteType(type_) ? std::span<const uint8_t>(epi.row(i), epi.rowBytes())
+                            : pngSamples(reinterpret_cast<const float*>(epi.row(i)), epi.width, format_.bits, encode, room));
   });
   if (++fed_ < format_.height) {
     size_t held = 0;

@@ -16,8 +16,9 @@
 // empty.
 //
 // The files are byte for byte those ImageSetWriter::putView writes for
-// the same views. For byte images into 8-bit PNG files (handles()); other
-// encodings go through EpisToViews.
+// the same views. For byte images into 8-bit PNG files and float images
+// into 8- or 16-bit ones (handles()); other encodings go through
+// EpisToViews.
 #include <atomic>
 #include <cstdint>
 #include <deque>
@@ -37,19 +38,20 @@ namespace mvr {
 
 class EpisToPngViews final : public FrameSink {
  public:
-  // The set's files are 8-bit PNGs of images of this type as stored.
+  // The set's files are PNGs this sink writes from EPIs of this type: byte
+  // images as stored into 8-bit files, float ones into files of any bits.
   static bool handles(const Manifest& manifest, PixelType type);
   // How the views were made, as manifests say (FrameTranspose::method's kin).
   static constexpr const char* kMethod = "EPI rows into the views' PNG encoders";
-  // EPIs a sink queues for encoding within `budget` bytes of memory: an
-  // eighth of it, at most 128 MB, so that a GL renderer can hand over a
-  // batch or two (16 EPIs at 640 x 1000) and draw the next while they
-  // are encoded; 4 to 64 EPIs.
-  static int queueLength(const Manifest& manifest, size_t budget);
+  // EPIs of `type` a sink queues for encoding within `budget` bytes of
+  // memory: an eighth of it, at most 128 MB, so that a GL renderer can
+  // hand over a batch or two (16 EPIs at 640 x 1000) and draw the next
+  // while they are encoded; 4 to 64 EPIs.
+  static int queueLength(const Manifest& manifest, PixelType type, size_t budget);
   // The bytes of files a sink may hold within `budget` bytes of memory
   // beside its encoders and queue, 0 when those alone would not leave
   // room for 16 KiB per view.
-  static size_t filesBudget(const Manifest& manifest, size_t budget);
+  static size_t filesBudget(const Manifest& manifest, PixelType type, size_t budget);
 
   // The writer names, writes and records the files (putEncoded); its
   // manifest gives the size, the views per row and the zlib level. When

@@ -24,11 +24,13 @@ std::vector<unsigned char> fileBytes(const fs::path& path) {
   return {std::istreambuf_iterator<char>(in), {}};
 }
 
-Manifest manifestFor(int width, int height, int views, int rows, int level) {
-  return {.views = views, .rows = rows, .width = width, .height = height, .compression = level};
+Manifest manifestFor(int width, int height, int views, int rows, int level, int bits = 8, bool srgb = true) {
+  return {.views = views, .rows = rows, .width = width, .height = height, .bits = bits, .compression = level,
+          .srgb = srgb};
 }
 
 // EPIs with runs (so the files deflate) and noise; epis[row][scanline].
+// Floats run a little beyond [0, 1] at both ends (the clamps).
 std::vector<std::vector<Image>> makeEpis(int width, int height, int views, int rows, PixelType type) {
   std::mt19937 rng(11);
   std::vector<std::vector<Image>> epis(static_cast<size_t>(rows));
@@ -36,7 +38,13 @@ std::vector<std::vector<Image>> makeEpis(int width, int height, int views, int r
     for (int j = 0; j < height; ++j) {
       Image epi(width, views, type);
       for (int i = 0; i < views; ++i)
-        for (int x = 0; x < width * 4; ++x) epi.row(i)[x] = uint8_t(x < width * 2 ? (x / 4 + i + j) : rng());
+        for (int x = 0; x < width * 4; ++x) {
+          const uint8_t b = uint8_t(x < width * 2 ? (x / 4 + i + j) : rng());
+          if (type == PixelType::F32)
+            reinterpret_cast<float*>(epi.row(i))[x] = float(b) / 250.0f - 0.01f + float(rng() % 1000) * 1e-7f;
+          else
+            epi.row(i)[x] = b;
+        }
       row.push_back(std::move(epi));
     }
   return epis;
@@ -45,14 +53,25 @@ std::vector<std::vector<Image>> makeEpis(int width, int height, int views, int r
 // 2 rows of 40 views of 301 x 90: 3 PNG segments a view. The views
 // through ImageSetWriter::putView (transposed here by hand) and straight
 // from the EPIs, in order (copied) and shuffled within each row (handed
-// over in place): the same files.
+// over in place): the same files. Byte EPIs into 8-bit files; float ones
+// into 16-bit files, sRGB and linear, and into 8-bit ones.
 TEST(EpisToPngViews, FilesAreThoseOfTheViews) {
   const int width = 301, height = 90, views = 40, rows = 2;
-  for (PixelType type : {PixelType::Srgb8, PixelType::U8}) {
+  struct Case {
+    PixelType type;
+    int bits;
+    bool srgb;
+  };
+  for (const Case c : {Case{PixelType::Srgb8, 8, true}, Case{PixelType::U8, 8, true}, Case{PixelType::F32, 16, true},
+                       Case{PixelType::F32, 16, false}, Case{PixelType::F32, 8, true}}) {
+    const PixelType type = c.type;
+    const std::string label = std::string(type == PixelType::F32 ? "float" : type == PixelType::U8 ? "linear" : "sRGB") +
+                              " into " + std::to_string(c.bits) + " bits" + (c.srgb ? "" : ", linear file");
+    const Manifest manifest = manifestFor(width, height, views, rows, 1, c.bits, c.srgb);
     const auto epis = makeEpis(width, height, views, rows, type);
     const fs::path expected = test::freshDir("pngviews_expected");
     {
-      ImageSetWriter writer(expected.string(), manifestFor(width, height, views, rows, 1));
+      ImageSetWriter writer(expected.string(), manifest);
       for (int r = 0; r < rows; ++r)
         for (int i = 0; i < views; ++i) {
           Image view(width, height, type);
@@ -67,7 +86,7 @@ TEST(EpisToPngViews, FilesAreThoseOfTheViews) {
     for (const auto& [shuffled, budget] : {std::pair{false, SIZE_MAX}, std::pair{true, SIZE_MAX},
                                            std::pair{true, size_t(1)}, std::pair{false, size_t(60000)}}) {
       const fs::path got = test::freshDir("pngviews_got");
-      ImageSetWriter writer(got.string(), manifestFor(width, height, views, rows, 1));
+      ImageSetWriter writer(got.string(), manifest);
       EpisToPngViews sink(writer, type, budget);
       std::mt19937 rng(5);
       for (int r = 0; r < rows; ++r) {
@@ -101,8 +120,7 @@ TEST(EpisToPngViews, FilesAreThoseOfTheViews) {
           const std::string name = writer.manifest().viewName(r, i);
           ASSERT_TRUE(fs::exists(got / name)) << name;
           EXPECT_EQ(fileBytes(got / name), fileBytes(expected / name))
-              << name << (shuffled ? ", shuffled" : "") << (type == PixelType::U8 ? ", linear" : ", sRGB")
-              << ", budget " << budget;
+              << name << (shuffled ? ", shuffled" : "") << ", " << label << ", budget " << budget;
         }
     }
   }
@@ -143,8 +161,13 @@ TEST(EpisToPngViews, AnEncodingErrorSurfaces) {
 TEST(EpisToPngViews, MisuseIsAnError) {
   const fs::path dir = test::freshDir("pngviews_errors");
   ImageSetWriter writer(dir.string(), manifestFor(8, 4, 3, 2, 1));
-  EXPECT_FALSE(EpisToPngViews::handles(writer.manifest(), PixelType::F32));
-  EXPECT_THROW(EpisToPngViews(writer, PixelType::F32), Error);
+  {
+    // Bytes into 16-bit files are not stored as they are: the volume's way.
+    ImageSetWriter deep(test::freshDir("pngviews_errors16").string(), manifestFor(8, 4, 3, 2, 1, 16));
+    EXPECT_FALSE(EpisToPngViews::handles(deep.manifest(), PixelType::U8));
+    EXPECT_TRUE(EpisToPngViews::handles(deep.manifest(), PixelType::F32));
+    EXPECT_THROW(EpisToPngViews(deep, PixelType::Srgb8), Error);
+  }
   EpisToPngViews sink(writer, PixelType::Srgb8);
   const Image epi(8, 3, PixelType::Srgb8);
   EXPECT_THROW(sink.putEpi(0, 0, Image(8, 2, PixelType::Srgb8)), Error) << "views";
