@@ -234,8 +234,9 @@ void PngEncoder::zlibDeflate(std::span<const uint8_t> rows, bool last, std::vect
   chunk.resize(used);
 }
 
-// The staged rows as one IDAT chunk: deflated on their own, ending on a
-// byte boundary (a sync flush) so that the next segment's blocks follow.
+// The staged rows as one IDAT chunk: deflated on their own, by zlib
+// ending on a byte boundary (a sync flush), by our coder (level 1) as one
+// block whose last bits short of a byte open the next chunk.
 void PngEncoder::deflateSegment(bool last) {
   std::vector<unsigned char>& chunk = deflater().chunk;
   const bool first = !started_;

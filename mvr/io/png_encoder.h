@@ -47,8 +47,8 @@ class PngEncoder {
   bool finished() const { return rowsLeft_ == 0; }
 
   // Rows are deflated in segments of about this many bytes, each by a
-  // deflate stream reset for it and ended by a sync flush, stored as one
-  // IDAT chunk: an encoder holds one segment, not a deflate stream's 256
+  // deflate stream reset for it and ended by a sync flush (at level 1: one
+  // block of our coder's), stored as one IDAT chunk: an encoder holds one segment, not a deflate stream's 256
   // KiB, so a thousand views can be encoded side by side as their rows
   // arrive (mvr/io/png_views.h), and a file's bytes depend on its pixels
   // alone, however they were fed. A segment starts from the last
