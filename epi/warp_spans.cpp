@@ -271,24 +271,29 @@ void WarpSpans::composite(const Line& l0, const Line* l1, int j, int view, int a
   // in the plane of the track and the point, h its distance from the
   // track, u its foot's offset from the eye; the angle at it between the
   // eye and a reference `base` along the track.
-  thread_local std::vector<float> ratio, cosine;
-  ratio.resize(size_t(w) + 4), cosine.resize(size_t(w) + 4);
+  // and from those the weight of eq. 5-3 (compositeWeight), used where both
+  // lines have the pixel.
+  thread_local std::vector<float> weight;
+  weight.resize(size_t(w) + 4);
   if (l1) {
     const float hPerZ = std::sqrt(1.0f + yRatio * yRatio);
     for (int p = lo & ~3; p < hi; p += 4) {
-      F4 inv, x;
+      F4 inv, x, inv0, inv1, occ0, occ1;
       for (int k = 0; k < 4; ++k) {
         const size_t q = size_t(std::min(p + k, w - 1));
-        inv[k] = std::max({l0.inv[q], l1->inv[q], 1e-30f});
+        inv0[k] = l0.inv[q], inv1[k] = l1->inv[q];
+        occ0[k] = float(l0.occ[q]), occ1[k] = float(l1->occ[q]);
+        inv[k] = std::max({inv0[k], inv1[k], 1e-30f});
         x[k] = float(p + k) + 0.5f;
       }
       const F4 z = 1.0f / inv, h = z * hPerZ, u = (x - cx) * z / fx;
       auto angle = [&](float base) { return atan2Upper(std::abs(base) * h, h * h + (base - u) * -u); };
       const F4 t0 = angle(baseA), t1 = angle(baseB), sum = t0 + t1;
       const F4 s = sum > 0.0f ? t0 / max4(sum, F4{} + 1e-30f) : F4{} + 0.5f;
-      const F4 c = cosPi(s);
-      std::memcpy(&ratio[size_t(p)], &s, sizeof s);
-      std::memcpy(&cosine[size_t(p)], &c, sizeof c);
+      // Lanes one line lacks get a weight that is not used.
+      const F4 tiny = F4{} + 1e-30f;
+      const F4 wgt = compositeWeightOf(s, cosPi(s), 1.0f / max4(inv0, tiny), 1.0f / max4(inv1, tiny), occ0, occ1, tau_, a_);
+      std::memcpy(&weight[size_t(p)], &wgt, sizeof wgt);
     }
   }
   const Srgb8Encoder srgb;
@@ -301,9 +306,7 @@ void WarpSpans::composite(const Line& l0, const Line* l1, int j, int view, int a
         encodePixel<T>(srgb, seen0 ? &l0.rgb[3 * size_t(p)] : &l1->rgb[3 * size_t(p)], out + size_t(p) * bytes);
         continue;
       }
-      const float z0 = 1.0f / l0.inv[size_t(p)], z1 = 1.0f / l1->inv[size_t(p)];
-      const float wgt = compositeWeight(ratio[size_t(p)], cosine[size_t(p)], z0, z1, float(l0.occ[size_t(p)]),
-                                        float(l1->occ[size_t(p)]), tau_, a_);
+      const float wgt = weight[size_t(p)];
       const float* c0 = &l0.rgb[3 * size_t(p)];
       const float* c1 = &l1->rgb[3 * size_t(p)];
       const float rgb[3] = {c1[0] + wgt * (c0[0] - c1[0]), c1[1] + wgt * (c0[1] - c1[1]),

@@ -64,16 +64,25 @@ namespace mvr {
 // occ their occlusion labels. The composite pass computes the same in GLSL.
 float warpWeight(float theta0, float theta1, float z0, float z1, float occ0, float occ1, float tau, float a);
 // The same from s = theta0 / (theta0 + theta1) and cos(pi s), for the CPU
-// warp (epi/warp_spans.h), which computes both faster.
+// warp (epi/warp_spans.h), which computes both faster: F is float, or a
+// vector of floats (GCC's vector extension) for several pixels at once,
+// through the same operations in the same order, so each lane's weight is
+// the scalar one bit for bit.
+template <class F>
+inline F compositeWeightOf(F s, F cosPiS, F z0, F z1, F occ0, F occ1, float tau, float a) {
+  const F zero = F{}, one = zero + 1.0f;
+  auto lesser = [](F x, F y) { return y < x ? y : x; };                   // std::min(x, y)
+  auto unit = [&](F v) { return v < zero ? zero : one < v ? one : v; };  // std::clamp(v, 0, 1)
+  const F wAng = 0.5f + 0.5f * cosPiS;
+  const F closer0 = z0 - z1 < -tau * z0 ? one : zero;
+  const F closer1 = z1 - z0 < -tau * z1 ? one : zero;
+  const F p0 = a * s, p1 = a * (1.0f - s);
+  const F phi0 = lesser(one, occ0 * (p0 * p0) * (p0 * p0));
+  const F phi1 = lesser(one, occ1 * (p1 * p1) * (p1 * p1));
+  return unit(lesser(one, phi1 + (1.0f - phi0) * unit(wAng + phi0 * closer0 - phi1 * closer1)));
+}
 inline float compositeWeight(float s, float cosPiS, float z0, float z1, float occ0, float occ1, float tau, float a) {
-  const float wAng = 0.5f + 0.5f * cosPiS;
-  const float closer0 = z0 - z1 < -tau * z0 ? 1.0f : 0.0f;
-  const float closer1 = z1 - z0 < -tau * z1 ? 1.0f : 0.0f;
-  const float p0 = a * s, p1 = a * (1.0f - s);
-  const float phi0 = std::min(1.0f, occ0 * (p0 * p0) * (p0 * p0));
-  const float phi1 = std::min(1.0f, occ1 * (p1 * p1) * (p1 * p1));
-  const float w = std::min(1.0f, phi1 + (1.0f - phi0) * std::clamp(wAng + phi0 * closer0 - phi1 * closer1, 0.0f, 1.0f));
-  return std::clamp(w, 0.0f, 1.0f);
+  return compositeWeightOf(s, cosPiS, z0, z1, occ0, occ1, tau, a);
 }
 
 // The two references a view is composited from, by their centres: the
