@@ -119,10 +119,6 @@ int streamTo(Renderer& renderer, const ShearingCamera& cam, double imagePlaneZ, 
   return 0;
 }
 
-// The depth pass's frames between the renderer and the maps: one float a
-// pixel in a 4-byte pixel type (mvr/depth.h's packDepth).
-constexpr PixelType kPackedDepth = PixelType::U8;
-
 // Hands each view of the depth pass on as a depth map, from views packed
 // one float a pixel (DepthPacker).
 class DepthSink final : public FrameSink {
@@ -585,7 +581,7 @@ int runRender(int argc, char** argv, RenderCommand command) {
   const bool pngRows = reorders && !streaming && !mpi && order == "view" && !quiltLayout &&
                        EpisToPngViews::handles(setManifest, type) && pngFilesBudget > 0;
   const bool scratch = reorders && !pngRows && reorder.spills(rowBytes);
-  // The depth pass reorders float frames where the back end renders EPIs.
+  // The depth pass reorders its packed frames (mvr/depth.h) where the back end renders EPIs.
   const size_t depthViewBytes = size_t(width) * height * 4 * Image::channelBytes(kPackedDepth);
   const size_t depthRowBytes = depthViewBytes * views;
   ReorderMemory depthReorder;

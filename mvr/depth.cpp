@@ -59,14 +59,14 @@ DepthImage depthFromColors(const Image& view, const DepthColoring& coloring) {
 }
 
 void packDepth(const Image& frame, const DepthColoring& coloring, Image& packed) {
-  static_assert(sizeof(float) == 4, "a packed pixel is one float");
-  if (packed.width != frame.width || packed.height != frame.height || packed.type != PixelType::U8)
-    packed = Image(frame.width, frame.height, PixelType::U8);
+  static_assert(sizeof(float) == 4, "a packed pixel (4 bytes) is one float");
+  if (packed.width != frame.width || packed.height != frame.height || packed.type != kPackedDepth)
+    packed = Image(frame.width, frame.height, kPackedDepth);
   depthsOf(frame, coloring, reinterpret_cast<float*>(packed.bytes.data()));
 }
 
 DepthImage unpackDepth(const Image& packed) {
-  if (packed.type != PixelType::U8) fail("depth", "a packed depth map holds 4 bytes a pixel");
+  if (packed.type != kPackedDepth) fail("depth", "a packed depth map holds 4 bytes a pixel");
   DepthImage depth(packed.width, packed.height);
   std::memcpy(depth.values.data(), packed.bytes.data(), depth.values.size() * sizeof(float));
   return depth;

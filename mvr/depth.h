@@ -40,6 +40,7 @@ DepthImage depthFromColors(const Image& view, const DepthColoring& coloring);
 // size: the reorderers and a split job's exchange only move pixels, so
 // depth goes through them at a quarter of the float colour's bytes, and
 // 0 (nothing seen) where they leave a pixel unwritten. `packed` is reused.
+constexpr PixelType kPackedDepth = PixelType::U8;
 void packDepth(const Image& frame, const DepthColoring& coloring, Image& packed);
 // A view packed so, as a depth map.
 DepthImage unpackDepth(const Image& packed);

@@ -60,13 +60,6 @@ Image floatFor(const Image& image, bool encode) {
   return out;
 }
 
-// One row of pixels as the PNG stores it: bytes as they are, or floats
-// as pngSamples stores them.
-std::span<const uint8_t> pngRow(const Image& pixels, int y, int bits, bool encode, std::vector<uint8_t>& room) {
-  if (isByteType(pixels.type)) return {pixels.row(y), pixels.rowBytes()};
-  return pngSamples(reinterpret_cast<const float*>(pixels.row(y)), pixels.width, bits, encode, room);
-}
-
 // encode: the pixels are linear floats the file stores sRGB-encoded.
 void encodePng(const Image& pixels, const ImageEncoding& e, bool srgb, bool encode, std::vector<unsigned char>& out) {
   PngEncoder png({pixels.width, pixels.height, e.bits, e.pngLevel, srgb, e.attributes}, out);

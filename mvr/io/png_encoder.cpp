@@ -277,8 +277,10 @@ T quantise(float v) {
 
 }  // namespace
 
-std::span<const uint8_t> pngSamples(const float* v, int width, int bits, bool encode, std::vector<uint8_t>& room) {
-  const size_t n = size_t(width) * 4;
+std::span<const uint8_t> pngRow(const Image& pixels, int y, int bits, bool encode, std::vector<uint8_t>& room) {
+  if (isByteType(pixels.type)) return {pixels.row(y), pixels.rowBytes()};
+  const float* v = reinterpret_cast<const float*>(pixels.row(y));
+  const size_t n = size_t(pixels.width) * 4;
   room.resize(n * size_t(bits / 8));
   for (size_t i = 0; i < n; ++i) {
     const float f = encode && i % 4 != 3 ? srgbEncode(v[i]) : v[i];

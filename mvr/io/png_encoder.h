@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "mvr/image.h"
 #include "mvr/io/row_deflate.h"
 
 namespace mvr {
@@ -81,10 +82,12 @@ class PngEncoder {
   RowDeflater rowDeflater_;                // level 1's coder, its bits carried from segment to segment
 };
 
-// A row of float RGBA pixels as a PNG of `bits` (8 or 16) stores it:
-// sRGB-encoded first where `encode` (alpha never), rounded, clamped (NaN
-// to 0), 16-bit values big-endian; into `room`, returned.
-std::span<const uint8_t> pngSamples(const float* rgba, int width, int bits, bool encode, std::vector<uint8_t>& room);
+// Row y of an image as a PNG of `bits` (8 or 16) stores it: a byte
+// image's row as it is; a float one's sRGB-encoded first where `encode`
+// (alpha never), rounded, clamped (NaN to 0), 16-bit values big-endian,
+// into `room`. The samples writeImage and the EPI-fed view encoders
+// (mvr/io/png_views.h) both give addRow.
+std::span<const uint8_t> pngRow(const Image& pixels, int y, int bits, bool encode, std::vector<uint8_t>& room);
 
 // Level 1, the default: every row by the Up filter, deflated by our row
 // coder (mvr/io/row_deflate.h) instead of zlib.

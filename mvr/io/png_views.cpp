@@ -81,9 +81,7 @@ void EpisToPngViews::feed(const Image& epi) {
   parallelFor(0, (views_ + run - 1) / run, [&](int k) {
     thread_local std::vector<uint8_t> room;  // a float row's samples
     for (int i = k * run; i < std::min(views_, (k + 1) * run); ++i)
-      encoders_[size_t(i)]->addRow(
-          isByteType(type_) ? std::span<const uint8_t>(epi.row(i), epi.rowBytes())
-                            : pngSamples(reinterpret_cast<const float*>(epi.row(i)), epi.width, format_.bits, encode, room));
+      encoders_[size_t(i)]->addRow(pngRow(epi, i, format_.bits, encode, room));
   });
   if (++fed_ < format_.height) {
     size_t held = 0;

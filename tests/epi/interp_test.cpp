@@ -11,7 +11,6 @@
 #include <glm/gtc/constants.hpp>
 
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -21,7 +20,6 @@
 #include "mvr/baselines/fragment_lists.h"
 #include "mvr/baselines/source_layers.h"
 #include "mvr/error.h"
-#include "mvr/gl/gl_api.h"
 #include "mvr/io/scene_io.h"
 #include "slicing/image_slices.h"
 #include "tests/support/meshes.h"
@@ -517,7 +515,7 @@ TEST_F(InterpTest, CoalescingCutsSlicesAndKeepsTheSourceViewAndQuality) {
 // compute passes there too: the same layers, hidden pixels, hole checks
 // and source views. The filter decides a pixel from the track's parallax
 // in double precision, whose division GLSL promises no better than single
-// (gpu_image_slicer_test.cpp's expectSameDecisions): off llvmpipe, with
+// (test::expectSameDecisions, tests/support/gl_fixture.h): off llvmpipe, with
 // the filter on, hidden pixels and the slices they leave may differ by one
 // in a thousand.
 TEST_F(InterpTest, GpuSlicingAndPstsMatchTheCpuPath) {
@@ -556,8 +554,8 @@ TEST_F(InterpTest, GpuSlicingAndPstsMatchTheCpuPath) {
     EXPECT_EQ(cpuStats.notes["image_slicer"], "cpu") << label;
     for (const char* counter : {"slices", "slice_pixels", "hidden_pixels"}) {
       const long got = long(gpuStats.counters[counter]), want = long(cpuStats.counters[counter]);
-      if (c.visibility && !gl::rendersOnCpu())
-        EXPECT_LE(std::abs(got - want), std::max<long>(2, want / 1000)) << label << " " << counter;
+      if (c.visibility)
+        test::expectSameDecisions(got, want, want, label + " " + counter);
       else
         EXPECT_EQ(got, want) << label << " " << counter;
     }

@@ -7,11 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 #include "mvr/baselines/outline_triangles.h"
 #include "mvr/baselines/source_layers.h"
-#include "mvr/gl/gl_api.h"
 #include "mvr/io/scene_io.h"
 #include "slicing/gpu/gpu_image_slicer.h"
 #include "slicing/gpu/gpu_source_visibility.h"
@@ -235,25 +233,10 @@ TEST_F(GpuImageSlicerTest, HandMadeLayersAndEdgeCases) {
   EXPECT_EQ(empty.table.offsets().size(), size_t(cam.height()) + 1);
 }
 
-// GLSL promises double-precision division no better than single precision
-// (GLSL 4.60, 4.7.1), and a GPU's double division is a reciprocal refined
-// by Newton steps; llvmpipe's is the CPU's, correctly rounded. Where a
-// pixel's place from the track's parallax lies within an ulp of a pixel
-// boundary, a GPU may decide it the other way. So: exactly the host's
-// decisions where GL runs on the CPU, and elsewhere all but one in a
-// thousand of `decisions` (at least 2).
-void expectSameDecisions(long got, long want, long decisions, const std::string& label) {
-  if (gl::rendersOnCpu()) {
-    EXPECT_EQ(got, want) << label;
-    return;
-  }
-  EXPECT_LE(std::abs(got - want), std::max<long>(2, decisions / 1000)) << label << ": " << got << " against " << want;
-}
-
 // Visibility on the store (GpuVisibility) against hideInvisible, its host
 // oracle, on copies of the same layers: in every layer behind a nearest
 // the same pixels dropped (the depths bit for bit) and the same counts
-// (up to expectSameDecisions' allowance off llvmpipe); the nearest layers
+// (up to test::expectSameDecisions' allowance off llvmpipe); the nearest layers
 // untouched. Returns the pixels dropped.
 long expectSameVisibility(std::vector<SourceLayer> host, DeviceLayers& device, const ShearingCamera& cam,
                           float overlap, const std::string& label) {
@@ -271,11 +254,11 @@ long expectSameVisibility(std::vector<SourceLayer> host, DeviceLayers& device, c
     const long kept = front[k] == int(k) ? 0 : hideInvisible(host[size_t(front[k])], host[k], cam, overlap);
     const std::string layer = label + " layer " + std::to_string(k);
     EXPECT_EQ(counts[k].covered, front[k] == int(k) ? 0 : covered) << layer;
-    expectSameDecisions(counts[k].kept, kept, covered, layer + ", pixels kept");
+    test::expectSameDecisions(counts[k].kept, kept, covered, layer + ", pixels kept");
     if (front[k] != int(k)) hidden += covered - kept;
     long differ = 0;
     for (size_t i = 0; i < pixels; ++i) differ += host[k].depth[i] != depths[k * pixels + i];
-    expectSameDecisions(differ, 0, covered, layer + ", pixels whose depth differs");
+    test::expectSameDecisions(differ, 0, covered, layer + ", pixels whose depth differs");
   }
   return hidden;
 }
@@ -347,7 +330,7 @@ TEST_F(GpuImageSlicerTest, HoleCountsAreTheHosts) {
       for (int view : {2, 4, 7})
         for (float overlap : {0.0f, 0.25f}) {
           const long expected = countHoles(used, cam, cam.viewX(view), overlap);
-          expectSameDecisions(visibility.holes(device, use, cam, cam.viewX(view), overlap), expected,
+          test::expectSameDecisions(visibility.holes(device, use, cam, cam.viewX(view), overlap), expected,
                               long(cam.width()) * cam.height(),
                               std::to_string(maxLayers) + " layers, " + (both ? "both sources" : "one") +
                                   ", view " + std::to_string(view) + ", overlap " + std::to_string(overlap));

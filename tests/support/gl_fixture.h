@@ -3,6 +3,7 @@
 // first use: context creation is slow on llvmpipe.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -42,6 +43,21 @@ inline std::string assetPath(const std::string& name) { return assetsDir() + "/"
 inline std::string sourcePath(const std::string& relative) {
   const char* dir = std::getenv("MVR_TEST_SOURCE");
   return std::string(dir ? dir : MVR_TEST_SOURCE) + "/" + relative;
+}
+
+// A count of decisions a GPU pass makes from double-precision divisions
+// against the host's: GLSL promises double division no better than single
+// precision (GLSL 4.60, 4.7.1), and a GPU's is a reciprocal refined by
+// Newton steps, while llvmpipe's is the CPU's, correctly rounded. Where a
+// value lies within an ulp of a boundary a GPU may decide it the other
+// way. So: exactly the host's count where GL runs on the CPU, and
+// elsewhere all but one in a thousand of `decisions` (at least 2).
+inline void expectSameDecisions(long got, long want, long decisions, const std::string& label) {
+  if (gl::rendersOnCpu()) {
+    EXPECT_EQ(got, want) << label;
+    return;
+  }
+  EXPECT_LE(std::abs(got - want), std::max<long>(2, decisions / 1000)) << label << ": " << got << " against " << want;
 }
 
 // The first `count` elements of a GL buffer, read back.
