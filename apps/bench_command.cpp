@@ -31,7 +31,8 @@
 #include "mvr/io/compare.h"
 #include "mvr/io/scene_io.h"
 #include "mvr/parallel.h"
-#include "mvr/progress.h"
+#include "mvr/frames/frame_chain.h"
+#include "mvr/frames/progress.h"
 
 namespace mvr::app {
 
@@ -88,11 +89,13 @@ Run measure(Renderer& renderer, const ShearingCamera& cam, const Supersampling& 
   const ShearingCamera samples = aa.active() ? supersampledCamera(cam, aa) : cam;
   for (int k = 0; k < repeat; ++k) {
     SampleSink sink(sampled, cam.width(), cam.height(), type);
-    SupersampleSink filter(sink, aa, cam.width(), cam.height(), cam.views());
+    FrameChain chain({.sink = &sink}, {.rendered = renderer.order(), .delivered = renderer.order(),
+                                       .width = cam.width(), .height = cam.height(), .views = cam.views(),
+                                       .type = type, .aa = aa});
     RenderStats stats;
     gl::GpuClock::discard();
     Stopwatch watch;
-    renderer.render(samples, aa.active() ? static_cast<FrameSink&>(filter) : sink, stats);
+    renderer.render(samples, chain.entry(), stats);
     const double s = watch.seconds();
     gl::GpuClock::collect(stats.times);
     if (s < best.seconds) best = {s, stats, sink.samples()};

@@ -8,7 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "mvr/scene.h"
-#include "mvr/supersampling.h"
+#include "mvr/frames/supersampling.h"
 
 
 namespace mvr::app {

@@ -10,7 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "epi/volume.h"
+#include "mvr/frames/volume.h"
 
 namespace mvr::app {
 

@@ -10,14 +10,13 @@
 
 #include "apps/cli.h"
 #include "apps/memory_check.h"
-#include "epi/epi_stream.h"
-#include "epi/volume.h"
+#include "mvr/frames/epi_stream.h"
+#include "mvr/frames/frame_chain.h"
 #include "mvr/error.h"
 #include "mvr/io/fd_stream.h"
 #include "mvr/io/image_codec.h"
 #include "mvr/io/image_file.h"
 #include "mvr/io/image_set.h"
-#include "mvr/io/png_views.h"
 #include "mvr/parallel.h"
 #include "mvr/timer.h"
 
@@ -59,14 +58,13 @@ int consume(int argc, char** argv) {
   // 8-bit PNG views take their rows as the EPIs come (no volume; the
   // files' bytes within the budget, beyond it on their way to disk); the
   // rest is reassembled.
-  const size_t filesBudget = mvr::EpisToPngViews::filesBudget(writer.manifest(), type, reorder.budget);
-  const bool pngRows = mvr::EpisToPngViews::handles(writer.manifest(), type) && filesBudget > 0;
+  const std::optional<mvr::PngRows> pngRows = mvr::planPngRows(writer.manifest(), type, reorder.budget, false);
   if (!pngRows && reorder.spills(rowBytes)) mvr::app::checkScratchFits(rowBytes, reorder.scratchDir);
-  std::optional<mvr::EpisToPngViews> rows;
-  std::optional<mvr::EpisToViews> volume;
-  mvr::FrameSink& views = pngRows ? static_cast<mvr::FrameSink&>(rows.emplace(writer, type, filesBudget,
-                                                       mvr::EpisToPngViews::queueLength(writer.manifest(), type, reorder.budget)))
-                                  : volume.emplace(writer, int(h.width), int(h.height), int(h.views), type, reorder);
+  mvr::FrameChain chain({.sink = &writer, .set = &writer},
+                        {.rendered = mvr::FrameOrder::Epi, .delivered = mvr::FrameOrder::View, .width = int(h.width),
+                         .height = int(h.height), .views = int(h.views), .type = type, .reorder = reorder,
+                         .pngRows = pngRows});
+  mvr::FrameSink& views = chain.entry();
   size_t frames = 0;
   // In order, all of them, nothing after (or it throws); the sink leaves a
   // written EPI's buffer in the frame for the next to be read into.
@@ -76,16 +74,14 @@ int consume(int argc, char** argv) {
     ++frames;
   }
   views.finish();
-  const std::string method = pngRows ? mvr::EpisToPngViews::kMethod : volume->transpose().method();
   writer.manifest().info = {{"source", "stream " + from},
-                            {"reorder", {{"method", method}, {"budget_bytes", reorder.budget},
-                                         {"files_to_disk_before_done", rows ? rows->spills() : 0}}},
+                            {"reorder", chain.reorderInfo()},
                             {"timings_s", {{"total", watch.seconds()}}}};
   // The producer's camera: the same per-view cameras as its own manifest.
   if (camera) writer.manifest().setCamera(*camera, h.camera->imagePlaneZ);
   writer.commit();
   std::fprintf(stderr, "mvr-consume: %zu EPIs -> %u views in %s%s\n", frames, h.views * h.rows,
-               out.c_str(), volume ? volume->transpose().scratchNote().c_str() : "");
+               out.c_str(), chain.scratchNote().c_str());
   return 0;
 }
 

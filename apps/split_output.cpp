@@ -4,7 +4,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "epi/volume.h"
+#include "mvr/frames/volume.h"
 #include "mvr/error.h"
 
 namespace mvr::app {

@@ -18,8 +18,8 @@
 
 #include "apps/job_split.h"
 #include "apps/mpi_session.h"
-#include "epi/volume.h"
-#include "mvr/frame_sinks.h"
+#include "mvr/frames/volume.h"
+#include "mvr/frames/frame_sinks.h"
 
 namespace mvr::app {
 

@@ -17,7 +17,7 @@
 #include "apps/backend_flags.h"
 #include "apps/cli.h"
 #include "apps/quilt_layout.h"
-#include "epi/volume.h"
+#include "mvr/frames/volume.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
 #include "mvr/gl/glfw_window.h"

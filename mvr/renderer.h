@@ -14,7 +14,7 @@ namespace mvr {
 // Receives frames as a back end finishes them. View renderers (SVR,
 // deferred) produce views; EPI renderers (MVR, interp) produce EPIs, one
 // scanline seen from every view of a row: W x N pixels, row i = view i.
-// Adaptors in epi/volume.h turn one order into the other.
+// Adaptors in mvr/frames/volume.h turn one order into the other.
 class FrameSink {
  public:
   virtual ~FrameSink() = default;

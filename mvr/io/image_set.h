@@ -35,7 +35,7 @@ class ImageSetWriter final : public FrameSink {
   // with metadata attributes (ImageEncoding::attributes).
   void putExtra(const std::string& name, const Image& image,
                 std::vector<std::pair<std::string, std::string>> attributes = {});
-  // A file of the set encoded elsewhere (mvr/io/png_views.h): written on
+  // A file of the set encoded elsewhere (mvr/frames/png_views.h): written on
   // the pool like the rest, removed like the rest on failure. afterPart:
   // its first bytes are in its temporary file already (appendToPart on
   // pathOf(name), mvr/io/atomic_file.h) and these are the rest.

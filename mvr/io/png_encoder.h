@@ -51,7 +51,7 @@ class PngEncoder {
   // deflate stream reset for it and ended by a sync flush (at level 1: one
   // block of our coder's), stored as one IDAT chunk: an encoder holds one segment, not a deflate stream's 256
   // KiB, so a thousand views can be encoded side by side as their rows
-  // arrive (mvr/io/png_views.h), and a file's bytes depend on its pixels
+  // arrive (mvr/frames/png_views.h), and a file's bytes depend on its pixels
   // alone, however they were fed. A segment starts from the last
   // kDictionaryRows rows of the one before as its history: a row's best
   // match is mostly the row above. Measured with zlib's level 1 on the rendered
@@ -86,7 +86,7 @@ class PngEncoder {
 // image's row as it is; a float one's sRGB-encoded first where `encode`
 // (alpha never), rounded, clamped (NaN to 0), 16-bit values big-endian,
 // into `room`. The samples writeImage and the EPI-fed view encoders
-// (mvr/io/png_views.h) both give addRow.
+// (mvr/frames/png_views.h) both give addRow.
 std::span<const uint8_t> pngRow(const Image& pixels, int y, int bits, bool encode, std::vector<uint8_t>& room);
 
 // Level 1, the default: every row by the Up filter, deflated by our row

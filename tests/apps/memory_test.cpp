@@ -48,7 +48,7 @@ const std::string kJob = " --size 48x36 --views 12 --threads 1";
 TEST(MemoryBudget, MvrViewsThroughScratchAreByteIdentical) {
   const fs::path memory = test::freshDir("budget_mem"), scratch = test::freshDir("budget_scratch");
   // PNG views within the budget are encoded from the EPIs' rows
-  // (mvr/io/png_views.h), 8-bit ones from byte EPIs, 16-bit ones from float
+  // (mvr/frames/png_views.h), 8-bit ones from byte EPIs, 16-bit ones from float
   // EPIs: over the budget both go through the scratch file, to the same
   // bytes.
   for (const std::string bits : {"8", "16"})

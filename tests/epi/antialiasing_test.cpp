@@ -1,4 +1,4 @@
-// Anti-aliasing every back end shares (mvr/supersampling.h), checked by
+// Anti-aliasing every back end shares (mvr/frames/supersampling.h), checked by
 // hand: a quad on the image plane (zero disparity, so every view and every
 // perspective sample sees it alike) whose edges cut pixels at known
 // fractions, and MVR against SVR with both supersampled.
@@ -6,7 +6,7 @@
 
 #include "epi/backend.h"
 #include "mvr/io/scene_io.h"
-#include "mvr/supersampling.h"
+#include "mvr/frames/supersampling.h"
 #include "tests/support/render_helpers.h"
 
 namespace mvr {

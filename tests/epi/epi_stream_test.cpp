@@ -4,8 +4,8 @@
 #include <sstream>
 #include <vector>
 
-#include "epi/epi_stream.h"
-#include "epi/stream_queue.h"
+#include "mvr/frames/epi_stream.h"
+#include "mvr/frames/stream_queue.h"
 #include "mvr/error.h"
 #include "mvr/io/scene_io.h"
 #include "tests/support/render_helpers.h"

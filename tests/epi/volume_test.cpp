@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <random>
 
-#include "epi/volume.h"
+#include "mvr/frames/volume.h"
 #include "mvr/error.h"
 #include "tests/support/capture_sink.h"
 

@@ -5,7 +5,7 @@
 #include <sstream>
 #include <string>
 
-#include "epi/epi_stream.h"
+#include "mvr/frames/epi_stream.h"
 #include "mvr/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -4,8 +4,8 @@
 #include <fstream>
 
 #include "mvr/error.h"
-#include "mvr/frame_sinks.h"
-#include "mvr/progress.h"
+#include "mvr/frames/frame_sinks.h"
+#include "mvr/frames/progress.h"
 #include "tests/support/capture_sink.h"
 
 namespace mvr {

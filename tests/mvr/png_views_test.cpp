@@ -1,4 +1,4 @@
-// Views encoded straight from EPIs (mvr/io/png_views.h): the files must be
+// Views encoded straight from EPIs (mvr/frames/png_views.h): the files must be
 // the bytes ImageSetWriter writes for the same views, whatever order the
 // EPIs come in, and a render that ends early must not pass for complete.
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 #include <random>
 
 #include "mvr/error.h"
-#include "mvr/io/png_views.h"
+#include "mvr/frames/png_views.h"
 #include "tests/support/cli.h"
 
 namespace mvr {

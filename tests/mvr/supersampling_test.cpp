@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "mvr/error.h"
-#include "mvr/supersampling.h"
+#include "mvr/frames/supersampling.h"
 #include "tests/support/capture_sink.h"
 
 namespace mvr {

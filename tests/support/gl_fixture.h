@@ -11,7 +11,7 @@
 
 #include "mvr/gl/gl_api.h"
 #include "mvr/gl/gl_context.h"
-#include "mvr/progress.h"
+#include "mvr/frames/progress.h"
 
 namespace mvr::test {
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "epi/mvr_renderer.h"
-#include "epi/volume.h"
+#include "mvr/frames/volume.h"
 #include "mvr/baselines/baselines.h"
 #include "mvr/io/compare.h"
 #include "mvr/io/image_file.h"

@@ -1,4 +1,4 @@
-#include "mvr/progress.h"
+#include "mvr/frames/progress.h"
 
 #include <unistd.h>
 

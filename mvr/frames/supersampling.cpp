@@ -1,4 +1,4 @@
-#include "mvr/supersampling.h"
+#include "mvr/frames/supersampling.h"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "epi/stream_queue.h"
+#include "mvr/frames/stream_queue.h"
 
 #include "mvr/error.h"
 

@@ -1,4 +1,4 @@
-#include "epi/epi_stream.h"
+#include "mvr/frames/epi_stream.h"
 
 #include <algorithm>
 #include <array>

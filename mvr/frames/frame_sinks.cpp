@@ -1,4 +1,4 @@
-#include "mvr/frame_sinks.h"
+#include "mvr/frames/frame_sinks.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 // A row of views written as PNG files straight from its EPIs: view i's
 // file row j is EPI j's row i, so each arriving EPI hands one row to every
 // view's encoder (mvr/io/png_encoder.h), and each file is written as soon
-// as its last row is in. Where EpisToViews (epi/volume.h) first fills the
+// as its last row is in. Where EpisToViews (mvr/frames/volume.h) first fills the
 // whole W x H x N volume (memory, its zero-fill and a copy of every pixel)
 // and encodes after the last EPI, this encodes while the EPIs come and
 // holds the views' compressed bytes and one deflate segment each: what a

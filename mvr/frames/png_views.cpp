@@ -1,4 +1,4 @@
-#include "mvr/io/png_views.h"
+#include "mvr/frames/png_views.h"
 
 #include <algorithm>
 #include <string>

@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-#include "epi/epi_stream.h"
+#include "mvr/frames/epi_stream.h"
 #include "mvr/image_pool.h"
 
 namespace mvr {

@@ -1,4 +1,4 @@
-#include "epi/volume.h"
+#include "mvr/frames/volume.h"
 
 #include <algorithm>
 #include <cstring>

@@ -1,0 +1,95 @@
+#pragma once
+// A render, stream or synthesis as a job: described once the command line
+// is read (render_flags.h), then run in three steps: set-up (the scene and
+// GL side by side, the camera, the renderer), the memory plan (what is held
+// for reordering, decided before anything renders), and the output: an
+// image set (set_output.cpp) or the EPI-major stream (stream_output.cpp).
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "apps/backend_flags.h"
+#include "apps/camera_flags.h"
+#include "apps/job_split.h"
+#include "apps/memory_check.h"
+#include "apps/quilt_layout.h"
+#include "apps/render_command.h"
+#include "epi/warp_renderer.h"
+#include "mvr/frames/frame_chain.h"
+#include "mvr/gl/gl_context.h"
+#include "mvr/io/image_file.h"
+#include "mvr/io/manifest.h"
+#include "mvr/io/rgbd_set.h"
+#include "mvr/scene.h"
+#include "mvr/timer.h"
+
+namespace mvr::app {
+
+class MpiSession;
+
+// Every choice of the command line, resolved and checked.
+struct RenderJob {
+  RenderCommand command = RenderCommand::Render;
+  BackendFlags backendFlags;  // the default accuracy mode needs GL and the scene
+  BackendOptions backend;
+  std::string scenePath;
+  bool strict = false;
+  std::optional<RgbdSet> references;  // synthesize
+  std::string from;
+  WarpOptions warp;
+  int views = 16, rows = 1, width = 320, height = 240;
+  std::string out, format, order;
+  int bits = 8, compression = kDefaultPngCompression;
+  std::string codec;
+  bool linear = false;
+  PixelType type = PixelType::Srgb8;
+  GlPlatform platform = GlPlatform::Egl;
+  bool depth = false, quiltOnly = false;
+  std::optional<QuiltLayout> quilt;
+  std::string predistort;
+  std::string stream;  // the stream's endpoint; empty: an image set
+  int queue = 8;
+  MemoryFlags memory;
+  std::string splitBy;
+  CameraFlags camera;
+  Supersampling aa;
+
+  bool streaming() const { return !stream.empty(); }
+  bool synthesize() const { return command == RenderCommand::Synthesize; }
+  // The set's layout and encoding, as its manifest records them.
+  Manifest manifest() const;
+};
+
+// What set-up made, and the memory plan.
+struct PreparedJob {
+  Scene scene;
+  std::unique_ptr<GlContext> context;
+  double imagePlaneZ = 0.0;
+  std::optional<ShearingCamera> camera, renderCamera;  // the set's, and the one rendered (samples)
+  std::unique_ptr<Renderer> renderer;
+  size_t referenceCount = 0;
+  StageTimes startup;
+  Stopwatch sinceStart;
+  MpiSession* mpi = nullptr;
+  // Frames held, decided before rendering starts.
+  bool reorders = false, depthReorders = false;
+  ReorderMemory reorder, depthReorder;
+  std::optional<PngRows> pngRows;  // EPIs straight into PNG views
+  bool scratch = false;            // the colour's reorder spills to a scratch file
+  size_t rowBytes = 0, depthRowBytes = 0;
+
+  // "mvr cpu": the renderer and its accuracy mode, for summaries and progress.
+  std::string label(const BackendOptions& backend) const;
+  // The chain's frames in the renderer's order, with the job's
+  // supersampling and background; callers add the rest.
+  FrameChainSpec chainSpec(const RenderJob& job) const;
+};
+
+// How a split job's ranks share it: the same on every rank (apps/job_split.h).
+JobSplit splitFor(const RenderJob& job, const PreparedJob& prepared);
+
+int runJob(RenderJob& job);
+int writeSet(const RenderJob& job, PreparedJob& prepared);
+int writeStream(const RenderJob& job, PreparedJob& prepared);
+
+}  // namespace mvr::app
