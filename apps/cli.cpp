@@ -1,5 +1,6 @@
 #include "apps/cli.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "mvr/camera.h"
@@ -19,6 +20,19 @@ std::optional<int> parseCommandLine(CLI::App& app, int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
+  } catch (const CLI::ExtrasError&) {
+    // CLI11 lists them as it parsed them, backwards; ours in the order given.
+    std::vector<std::string> left = app.remaining(), given;
+    for (int i = 1; i < argc; ++i)
+      if (auto at = std::find(left.begin(), left.end(), argv[i]); at != left.end()) {
+        given.push_back(*at);
+        left.erase(at);
+      }
+    given.insert(given.end(), left.begin(), left.end());
+    std::string list;
+    for (const std::string& a : given) list += (list.empty() ? "" : " ") + a;
+    throw Error("unexpected argument" + std::string(given.size() == 1 ? " " : "s ") + list + " (see " +
+                app.get_name() + " --help)");
   } catch (const CLI::ParseError& e) {
     // CLI11's own report adds a second line; ours is one, like every error.
     std::string what = e.what();

@@ -129,7 +129,8 @@ int dispatch(int argc, char** argv) {
   app.add_option("COMMAND", command, "info, render, stream, synthesize, view, compare or bench")->required();
   app.allow_extras();
   if (auto exit = parseCommandLine(app, argc, argv)) return *exit;
-  fail("mvr", "unknown command '" + command + "' (expected info, render, stream, synthesize, view, compare or bench)");
+  // main prefixes "mvr: ": the error names the command, not the program again.
+  throw Error("unknown command '" + command + "' (expected info, render, stream, synthesize, view, compare or bench)");
 }
 
 }  // namespace

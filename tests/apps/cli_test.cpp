@@ -635,6 +635,22 @@ TEST(Cli, RepeatedOptionsAndTheSummaryLine) {
   EXPECT_EQ(r.err.find("mvr: mvr"), std::string::npos) << r.err;
 }
 
+// Errors read as ours: one "mvr: " prefix, and arguments nobody takes
+// named in the order given (CLI11 lists them as it parsed them, backwards).
+TEST(Cli, UnknownCommandsAndUnexpectedArgumentsInTheOrderGiven) {
+  Result c = run("native");
+  EXPECT_EQ(c.status, 1);
+  EXPECT_EQ(c.err, "mvr: unknown command 'native' (expected info, render, stream, synthesize, view, compare or "
+                   "bench)\n");
+  const fs::path d = outDir("extras");
+  Result e = run("render " + test::assetsDir() + "/cube.obj extra --bogus --out " + d.string());
+  EXPECT_EQ(e.status, 1);
+  EXPECT_EQ(e.err, "mvr: unexpected arguments extra --bogus (see mvr render --help)\n");
+  EXPECT_FALSE(fs::exists(d));
+  Result one = run("info --frames");
+  EXPECT_EQ(one.err, "mvr: unexpected argument --frames (see mvr info --help)\n");
+}
+
 TEST(Cli, VersionPrintsTheProjectVersion) {
   const std::string cmd = test::mvrBinary() + " --version | grep -qx 'mvr [0-9]*\\.[0-9]*\\.[0-9]*'";
   EXPECT_EQ(std::system(cmd.c_str()), 0);
