@@ -651,6 +651,22 @@ TEST(Cli, UnknownCommandsAndUnexpectedArgumentsInTheOrderGiven) {
   EXPECT_EQ(one.err, "mvr: unexpected argument --frames (see mvr info --help)\n");
 }
 
+// docs/CLI.md is what the programs' --help prints (scripts/cli-doc): the
+// options are declared once, and the reference cannot drift from them.
+TEST(Cli, ReferenceDocsMatchTheHelp) {
+  const fs::path source = MVR_TEST_SOURCE;
+  const fs::path generated = fs::temp_directory_path() / ("mvr_cli_doc_" + std::to_string(getpid()) + ".md");
+  const std::string cmd = "MVR=" + test::mvrBinary() + " MVR_CONSUME=" + test::consumeBinary() + " bash " +
+                          (source / "scripts/cli-doc").string() + " --stdout >" + generated.string();
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  std::stringstream expected, actual;
+  expected << std::ifstream(source / "docs/CLI.md").rdbuf();
+  actual << std::ifstream(generated).rdbuf();
+  fs::remove(generated);
+  EXPECT_GT(actual.str().size(), 1000u);
+  EXPECT_TRUE(expected.str() == actual.str()) << "docs/CLI.md disagrees with the programs' --help: run scripts/cli-doc";
+}
+
 TEST(Cli, VersionPrintsTheProjectVersion) {
   const std::string cmd = test::mvrBinary() + " --version | grep -qx 'mvr [0-9]*\\.[0-9]*\\.[0-9]*'";
   EXPECT_EQ(std::system(cmd.c_str()), 0);
