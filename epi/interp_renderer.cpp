@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "epi/source_views.h"
 #include "epi/track_refinement.h"
 #include "mvr/baselines/source_layers.h"
 #include "mvr/error.h"
@@ -18,16 +19,6 @@
 
 namespace mvr {
 
-void validate(const InterpOptions& options) {
-  if (options.maxLayers < 1 || options.maxLayers > 64) fail("--max-layers", "must be 1 to 64");
-  if (!(options.coalesce >= 0.0f) || !std::isfinite(options.coalesce))
-    fail("--coalesce", "must be a finite number of pixels, at least 0");
-  if (options.budget < 2 || options.budget > 1024) fail("--budget", "must be 2 to 1024 source views");
-  if (options.splits < 0 || options.splits > 64) fail("--splits", "must be 0 to 64");
-  if (!(options.overlap >= 0.0f && options.overlap <= 4.0f)) fail("--overlap", "must be 0 to 4 pixels");
-  if (options.outlineSamples < 1 || options.outlineSamples > 16) fail("--outline-samples", "must be 1 to 16");
-}
-
 namespace {
 
 const InterpOptions& validated(const InterpOptions& options) {
@@ -38,55 +29,6 @@ const InterpOptions& validated(const InterpOptions& options) {
 // Split tracks only where some material has a highlight to split.
 int splitsFor(const Scene& scene, const InterpOptions& options) {
   return shading::planShading(scene).specular ? options.splits : 0;
-}
-
-// The layers of one source view.
-struct Source {
-  double x;  // camera x
-  std::vector<SourceLayer> layers;
-};
-
-// A view of the set that is a source view, and that source's image: its
-// nearest layer (F32, rows top first; empty where the source saw nothing).
-struct SourceView {
-  int view;
-  Image color;
-};
-
-// Hands EPIs on with the rows of the views that are source views replaced
-// by the sources' own pixels: there the best image of the scene is the
-// source itself, whereas the slices of the other sources, each exact only
-// at its own eye, win the depth test wherever their chords of a curved
-// surface pass in front of it (de Quilletes' dual reproduced its ends only
-// approximately; issue 18).
-class SourceViewSink final : public FrameSink {
- public:
-  SourceViewSink(FrameSink& inner, const std::vector<SourceView>& views) : inner_(inner), views_(views) {}
-  void putEpi(int row, int scanline, const Image& epi) override {
-    if (views_.empty()) return inner_.putEpi(row, scanline, epi);
-    copy_ = epi;
-    putEpiInPlace(row, scanline, copy_);
-  }
-  // No copy (of every EPI: 0.1 s of interp dual's 0.22 at 640x480 x 500
-  // views on an H100).
-  void putEpiInPlace(int row, int scanline, Image& epi) override {
-    for (const SourceView& v : views_)
-      for (int x = 0; x < epi.width; ++x) epi.setLinear(x, v.view, v.color.pixel(x, scanline));
-    inner_.putEpi(row, scanline, epi);
-  }
-  void finish() override { inner_.finish(); }
-
- private:
-  FrameSink& inner_;
-  const std::vector<SourceView>& views_;
-  Image copy_;
-};
-
-// The view of cam whose eye is camera x `x`, or -1.
-int viewAt(const ShearingCamera& cam, double x) {
-  const double spacing = cam.viewSpacing();
-  const int i = spacing != 0.0 ? int(std::lround((x - cam.viewX(0)) / spacing)) : 0;
-  return i >= 0 && i < cam.views() && std::abs(cam.viewX(i) - x) <= 1e-9 * std::max(1.0, std::abs(spacing)) ? i : -1;
 }
 
 class InterpRenderer final : public Renderer {
@@ -124,7 +66,7 @@ class InterpRenderer final : public Renderer {
       std::vector<Source> sources = acquire(cam, row, stats);
       std::sort(sources.begin(), sources.end(), [](const Source& a, const Source& b) { return a.x < b.x; });
       for (const Source& source : sources) stats.counters["layers"] += double(source.layers.size());
-      const std::vector<SourceView> views = sourceViews(cam, sources);
+      const std::vector<SourceView> views = sourceViews(cam, sources, passesThrough());
       SourceViewSink out(sink, views);
       if (sources.size() == 1) renderWhole(cam, row, sources, out, stats);
       else renderIntervals(cam, row, sources, out, stats);
@@ -329,16 +271,6 @@ class InterpRenderer final : public Renderer {
     countSlices(slices.table.sliceCount(), slices.pixels, stats);
     if (splits_ > 0) stats.counters["highlight_knots"] += double(slices.vertices.knots.size());
     return slices;
-  }
-
-  // The views that are source views, with their sources' nearest layers.
-  std::vector<SourceView> sourceViews(const ShearingCamera& cam, const std::vector<Source>& sources) const {
-    std::vector<SourceView> views;
-    for (const Source& source : sources)
-      if (const int v = passesThrough() ? viewAt(cam, source.x) : -1; v >= 0)
-        views.push_back({v, source.layers.empty() ? Image(cam.width(), cam.height(), PixelType::F32)
-                                                  : source.layers.front().color});
-    return views;
   }
 
   // Source views in GPU memory, sliced there: only the EPIs and the slice

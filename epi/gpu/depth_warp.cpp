@@ -8,6 +8,7 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include "epi/gpu/warp_grid.h"
 #include "epi/warp_spans.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
@@ -191,155 +192,6 @@ gl::Texture texture2D(GLenum format, int w, int h, GLenum filter) {
 
 void setMatrix(const gl::Program& p, const char* name, const glm::dmat4& m) { gl::setUniform(p, name, glm::mat4(m)); }
 
-// The grid (DepthWarp::ensureGrid): (W + 2) x (H + 2) vertices, vertex
-// (i, j) at pixel centre (i - 1/2, j - 1/2) clamped to the image, fetching
-// the pixel it lies in.
-int gridPixel(int k, int n) { return std::clamp(int(std::floor(std::clamp(float(k) - 0.5f, 0.0f, float(n)))), 0, n - 1); }
-
-// The grid's triangles that touch only pixels with samples: a triangle
-// with a vertex on an empty pixel would draw nothing, so it is left out of
-// the reference's list rather than transformed for every view; most of a
-// scene's image is background. And where a rectangle of cells lies on a
-// plane (no occlusion label, 1/z affine over all of its vertices within
-// `deviation`: a plane's 1/z is affine in its image), the rectangle is one
-// quad: its inner vertices land within that of the quad's plane. A vertex
-// at camera z moves f e / z pixels in a view e from the reference (focal
-// length f in pixels), so a deviation of 1/z moves it f e times that.
-// Triangles are what a CPU rasterizer pays for per view.
-class GridTriangles {
- public:
-  GridTriangles(const DepthImage& d, const std::vector<float>& labels, float tau, float deviation)
-      : tau_(tau), deviation_(deviation), gw_(d.width + 2), gh_(d.height + 2), valid_(size_t(gw_) * gh_),
-        flat_(size_t(gw_) * gh_), inverse_(size_t(gw_) * gh_), merged_(size_t(gw_) * gh_) {
-    for (int j = 0; j < gh_; ++j)
-      for (int i = 0; i < gw_; ++i) {
-        const int x = gridPixel(i, d.width), y = gridPixel(j, d.height);
-        const size_t k = at(i, j);
-        valid_[k] = d.at(x, y) > 0.0f;
-        inverse_[k] = valid_[k] ? 1.0f / d.at(x, y) : 0.0f;
-        // The border ring's vertices sit at the image's edge, off the
-        // pixel-centre spacing: never inside a merged rectangle.
-        flat_[k] = valid_[k] && labels[size_t(y) * d.width + x] == 0.0f && i > 0 && i + 1 < gw_ && j > 0 &&
-                   j + 1 < gh_;
-      }
-  }
-
-  // The triangles; those across a depth jump (rubber sheets) last, from
-  // index `sheets` on, each with its farthest vertex last (the provoking
-  // vertex: kWarpVertex's vFar).
-  struct Lists {
-    std::vector<uint32_t> indices;
-    size_t sheets = 0;
-  };
-  Lists lists() {
-    std::vector<uint32_t> out, sheets;
-    auto cell = [&](uint32_t a, uint32_t b, uint32_t c) {
-      if (!valid_[a] || !valid_[b] || !valid_[c]) return;
-      if (!jump(a, b, c)) {
-        out.insert(out.end(), {a, b, c});
-        return;
-      }
-      while (inverse_[c] > std::min(inverse_[a], inverse_[b])) std::tie(a, b, c) = std::tuple(b, c, a);
-      sheets.insert(sheets.end(), {a, b, c});
-    };
-    for (int j = 0; j + 1 < gh_; ++j)
-      for (int i = 0; i + 1 < gw_; ++i) {
-        if (merged_[at(i, j)]) continue;
-        const auto [i1, j1] = rectangle(i, j);
-        const uint32_t a = uint32_t(at(i, j));
-        if (i1 > i) {
-          const uint32_t b = uint32_t(at(i1, j)), c = uint32_t(at(i, j1)), e = uint32_t(at(i1, j1));
-          out.insert(out.end(), {a, b, c, b, e, c});
-          for (int y = j; y < j1; ++y) std::fill_n(merged_.begin() + ptrdiff_t(at(i, y)), i1 - i, uint8_t(1));
-          continue;
-        }
-        const uint32_t b = a + 1, c = a + uint32_t(gw_), e = c + 1;
-        cell(a, b, c);
-        cell(b, e, c);
-      }
-    const size_t start = out.size();
-    out.insert(out.end(), sheets.begin(), sheets.end());
-    return {std::move(out), start};
-  }
-
- private:
-  static constexpr int kLongest = 32;  // cells along a side of a rectangle
-  // Beside the allowed deviation, float rounding of 1/z and of the fit.
-  static constexpr float kRounding = 1e-6f;
-
-  size_t at(int i, int j) const { return size_t(j) * gw_ + i; }
-
-  // Vertices whose depths differ by more than tau of the nearer.
-  bool jump(uint32_t a, uint32_t b, uint32_t c) const {
-    const float near = std::max({inverse_[a], inverse_[b], inverse_[c]});
-    const float far = std::min({inverse_[a], inverse_[b], inverse_[c]});
-    return 1.0f / far - 1.0f / near > tau_ / near;
-  }
-
-  // 1/z = p0 + si (i - i0) + sj (j - j0): the plane of a rectangle whose
-  // top left vertex is (i0, j0).
-  struct Plane {
-    float p0, si, sj;
-    int i0, j0;
-    float operator()(int i, int j) const { return p0 + si * float(i - i0) + sj * float(j - j0); }
-  };
-
-  // The plane through vertex (i0, j0), (i1, j0) and (i0, j1) (chords,
-  // not the next vertices' slopes: on a curved surface a chord strays a
-  // quarter as far over the same length), if every vertex of the
-  // rectangle lies on it.
-  std::optional<Plane> fit(int i0, int j0, int i1, int j1) const {
-    const float p0 = inverse_[at(i0, j0)];
-    const Plane p{p0, (inverse_[at(i1, j0)] - p0) / float(i1 - i0), (inverse_[at(i0, j1)] - p0) / float(j1 - j0),
-                  i0, j0};
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) {
-        const size_t k = at(i, j);
-        if (!flat_[k] || std::abs(p(i, j) - inverse_[k]) > deviation_ + kRounding * inverse_[k])
-          return std::nullopt;
-      }
-    return p;
-  }
-
-  // The rectangle of free cells on one plane from cell (i, j), widest
-  // first; returns its far vertex (i1, j1), i1 == i when there is none.
-  std::pair<int, int> rectangle(int i, int j) const {
-    if (!fit(i, j, i + 1, j + 1)) return {i, j};
-    int i1 = i + 1;
-    while (i1 + 1 < gw_ && i1 + 1 - i <= kLongest && !merged_[at(i1, j)] && fit(i, j, i1 + 1, j + 1)) ++i1;
-    int j1 = j + 1;
-    while (j1 + 1 < gh_ && j1 + 1 - j <= kLongest && fit(i, j, i1, j1 + 1)) ++j1;
-    return {i1, j1};
-  }
-
-  float tau_, deviation_;  // deviation: of 1/z from a merged rectangle's plane, at most
-  int gw_, gh_;
-  std::vector<uint8_t> valid_, flat_;
-  std::vector<float> inverse_;
-  std::vector<uint8_t> merged_;  // cells already inside a rectangle
-};
-
-// A silhouette pixel's footprint as a quad (kWarpVertex): four corners,
-// each (corner, pixel centre), and two triangles. One indexed draw for
-// all: a CPU GL runs every instance of an instanced draw as its own draw.
-struct Splats {
-  std::vector<glm::vec4> vertices;
-  std::vector<uint32_t> indices;
-};
-
-Splats makeSplats(const std::vector<uint32_t>& pixels, int width) {
-  Splats s;
-  for (const uint32_t pixel : pixels) {
-    const glm::vec2 centre(float(pixel % uint32_t(width)) + 0.5f, float(pixel / uint32_t(width)) + 0.5f);
-    const uint32_t k = uint32_t(s.vertices.size());
-    for (const glm::vec2 corner : {glm::vec2(-0.5f, -0.5f), glm::vec2(0.5f, -0.5f), glm::vec2(-0.5f, 0.5f),
-                                   glm::vec2(0.5f, 0.5f)})
-      s.vertices.emplace_back(centre + corner, centre);
-    s.indices.insert(s.indices.end(), {k, k + 1, k + 2, k + 1, k + 3, k + 2});
-  }
-  return s;
-}
-
 }  // namespace
 
 float warpWeight(float theta0, float theta1, float z0, float z1, float occ0, float occ1, float tau, float a) {
@@ -384,7 +236,7 @@ WarpReference WarpReference::upload(const RgbdView& view, float tau, float flatn
   r.splatIndexCount = splats.indices.size();
   const double focal = std::max(std::abs(view.K[0][0]), std::abs(view.K[1][1]));
   const float deviation = flatness > 0.0f && focal * baseline > 0.0 ? float(flatness / (focal * baseline)) : 0.0f;
-  const auto [triangles, sheets] = GridTriangles(view.depth, labels, tau, deviation).lists();
+  const auto [triangles, sheets] = gridTriangles(view.depth, labels, tau, deviation);
   r.triangles = gl::makeBuffer(triangles.data(), triangles.size());
   r.triangleIndexCount = triangles.size();
   r.sheetIndexStart = sheets;
