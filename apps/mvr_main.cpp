@@ -1,5 +1,5 @@
 // The `mvr` command line: info, render, stream, synthesize, view, compare,
-// bench (README).
+// bench (docs/CLI.md has every option).
 // Every user error is an mvr::Error caught here: one line, exit status 1.
 #include <cmath>
 #include <cstdio>
