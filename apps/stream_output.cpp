@@ -14,6 +14,7 @@
 #include "mvr/frames/epi_stream.h"
 #include "mvr/frames/progress.h"
 #include "mvr/frames/stream_queue.h"
+#include "mvr/io/atomic_file.h"
 #include "mvr/io/fd_stream.h"
 
 namespace mvr::app {
@@ -45,13 +46,12 @@ EpiStreamHeader streamHeader(const ShearingCamera& cam, PixelType type, double i
 // queue. A regular file is written under a temporary name and renamed when
 // done; a device or named pipe in place (isPlainFile).
 int streamTo(const RenderJob& job, PreparedJob& p) {
-  namespace fs = std::filesystem;
   std::signal(SIGPIPE, SIG_IGN);  // a vanished consumer is an error, not a kill
   std::signal(SIGXFSZ, SIG_IGN);  // so is a file-size limit
   const std::string& endpoint = job.stream;
   const ShearingCamera& cam = *p.camera;
   const bool file = isPlainFile(endpoint);
-  const std::string target = file ? endpoint + ".part" : endpoint;
+  const std::string target = file ? partName(endpoint) : endpoint;
   const EpiStreamHeader header = streamHeader(cam, job.type, p.imagePlaneZ);
   Stopwatch watch;
   size_t highWater = 0;
@@ -72,17 +72,12 @@ int streamTo(const RenderJob& job, PreparedJob& p) {
     note = chain.scratchNote();
     buffer.reset();  // closed before the rename
   } catch (...) {
-    std::error_code ec;
-    if (file) fs::remove(target, ec);
+    if (file) removePart(endpoint);
     if (buffer && buffer->writeError())  // the system's reason, not the writer's guess
       fail(endpoint, std::string("cannot write stream: ") + std::strerror(buffer->writeError()));
     throw;
   }
-  if (file) {
-    std::error_code ec;
-    fs::rename(target, endpoint, ec);
-    if (ec) fail(endpoint, "cannot finish stream file: " + ec.message());
-  }
+  if (file) commitPart(endpoint);
   std::fprintf(stderr, "mvr: streamed %d EPIs of %dx%d to %s in %.3f s (queue high water %zu of %d%s)\n",
                cam.height() * cam.rows(), cam.width(), cam.views(), endpoint.c_str(), watch.seconds(), highWater,
                job.queue, note.c_str());
@@ -111,14 +106,13 @@ void relayStream(SharedFile& records, uint64_t bytes, FdStreamBuf& buffer, const
 // every rank is done); a pipe or socket is fed by rank 0 from a scratch
 // file once every rank is done, in stream order.
 int streamSplit(const RenderJob& job, PreparedJob& p, const JobSplit& split, const EpiStreamHeader& header) {
-  namespace fs = std::filesystem;
   std::signal(SIGPIPE, SIG_IGN);
   std::signal(SIGXFSZ, SIG_IGN);
   MpiSession& mpi = *p.mpi;
   const ShearingCamera& cam = *p.camera;
   const std::string& endpoint = job.stream;
   const bool file = isPlainFile(endpoint);
-  const std::string path = file ? endpoint + ".part" : ".mvr_split_stream";
+  const std::string path = file ? partName(endpoint) : ".mvr_split_stream";
   const uint64_t bytes = header.recordOffset(cam.rows(), 0);
   Stopwatch watch;
   std::optional<SharedFile> records;
@@ -151,14 +145,11 @@ int streamSplit(const RenderJob& job, PreparedJob& p, const JobSplit& split, con
     if (!file) inPhase(&mpi, [&] { if (pipe) relayStream(*records, bytes, *pipe, endpoint); });
     records.reset();  // collective; a kept file is complete
     if (file) inPhase(&mpi, [&] {
-      std::error_code ec;
-      if (mpi.rank() == 0) fs::rename(path, endpoint, ec);
-      if (ec) fail(endpoint, "cannot finish stream file: " + ec.message());
+      if (mpi.rank() == 0) commitPart(endpoint);
     });
   } catch (...) {
     records.reset();  // every rank is here: phases end on every rank alike
-    std::error_code ec;
-    if (file && mpi.rank() == 0) fs::remove(path, ec);
+    if (file && mpi.rank() == 0) removePart(endpoint);
     throw;
   }
   if (mpi.rank() == 0)

@@ -70,4 +70,8 @@ void finishPart(const std::string& path, std::span<const std::byte> last) {
 
 void removePart(const std::string& path) { ::unlink(partOf(path).c_str()); }
 
+std::string partName(const std::string& path) { return partOf(path); }
+
+void commitPart(const std::string& path) { renamePart(path); }
+
 }  // namespace mvr

@@ -23,5 +23,10 @@ void writeFileAtomically(const std::string& path, std::span<const std::byte> byt
 void appendToPart(const std::string& path, std::span<const std::byte> bytes, bool first);
 void finishPart(const std::string& path, std::span<const std::byte> last);
 void removePart(const std::string& path);
+// For a file another writer fills under the temporary name (a stream's
+// descriptor, a split job's shared file): the name, and the rename into
+// place once it is complete (errors as above, the temporary file removed).
+std::string partName(const std::string& path);
+void commitPart(const std::string& path);
 
 }  // namespace mvr
