@@ -37,9 +37,48 @@ struct ViewSet {
   std::vector<std::vector<Image>> images;
 };
 
+// Tile (row r, view v) of a quilt of `columns` x `tileRows` tiles: a
+// single row from view 0 at the bottom left, left to right, then upwards;
+// a grid's rows of views as rows of tiles, row 0 at the top
+// (docs/CONVENTIONS.md).
+Image quiltTile(const Image& quilt, int columns, int tileRows, int rows, int r, int v, int w, int h) {
+  const int x0 = rows > 1 ? v * w : (v % columns) * w;
+  const int y0 = rows > 1 ? r * h : (tileRows - 1 - v / columns) * h;
+  Image tile(w, h, quilt.type);
+  for (int y = 0; y < h; ++y)
+    std::memcpy(tile.row(y), quilt.row(y0 + y) + size_t(x0) * 4 * Image::channelBytes(quilt.type), tile.rowBytes());
+  return tile;
+}
+
+// A set written with --quilt-only: its views are the quilt's tiles, laid
+// out as its manifest says.
+ViewSet loadQuiltOfSet(const std::string& dir, const Manifest& manifest) {
+  const nlohmann::json& layout = manifest.info.value("quilt_layout", nlohmann::json::object());
+  if (!manifest.info.contains("quilt") || !layout.contains("columns") || !layout.contains("rows"))
+    fail(dir, "holds neither view images nor a quilt the manifest describes");
+  const std::string path = (fs::path(dir) / manifest.info["quilt"].get<std::string>()).string();
+  const Image quilt = readImage(path);
+  const int columns = layout["columns"], tileRows = layout["rows"];
+  ViewSet set;
+  set.views = manifest.views;
+  set.rows = manifest.rows;
+  set.width = manifest.width;
+  set.height = manifest.height;
+  if (columns < 1 || tileRows < 1 || quilt.width != columns * set.width || quilt.height != tileRows * set.height ||
+      long(columns) * tileRows < long(set.views) * set.rows)
+    fail(path, "is not the " + std::to_string(columns) + "x" + std::to_string(tileRows) + " quilt of " +
+                   std::to_string(set.width) + "x" + std::to_string(set.height) + " views the manifest describes");
+  set.images.resize(set.rows);
+  for (int r = 0; r < set.rows; ++r)
+    for (int v = 0; v < set.views; ++v)
+      set.images[r].push_back(quiltTile(quilt, columns, tileRows, set.rows, r, v, set.width, set.height));
+  return set;
+}
+
 ViewSet loadSet(const std::string& dir) {
   const Manifest manifest = Manifest::read(dir);
   if (manifest.order != "view") fail(dir, "holds EPIs; render with --order view to view it");
+  if (!fs::exists(fs::path(dir) / manifest.viewName(0, 0))) return loadQuiltOfSet(dir, manifest);
   ViewSet set;
   set.views = manifest.views;
   set.rows = manifest.rows;
@@ -64,13 +103,8 @@ ViewSet loadQuilt(const std::string& path) {
   set.width = quilt.width / layout.columns;
   set.height = quilt.height / layout.rows;
   set.images.resize(1);
-  for (int v = 0; v < set.views; ++v) {
-    Image tile(set.width, set.height, quilt.type);
-    const int x0 = (v % layout.columns) * set.width, y0 = (layout.rows - 1 - v / layout.columns) * set.height;
-    for (int y = 0; y < set.height; ++y)
-      std::memcpy(tile.row(y), quilt.row(y0 + y) + size_t(x0) * 4 * Image::channelBytes(quilt.type), tile.rowBytes());
-    set.images[0].push_back(std::move(tile));
-  }
+  for (int v = 0; v < set.views; ++v)
+    set.images[0].push_back(quiltTile(quilt, layout.columns, layout.rows, 1, 0, v, set.width, set.height));
   return set;
 }
 

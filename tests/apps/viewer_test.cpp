@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <filesystem>
 
 #include "mvr/image.h"
 #include "mvr/io/compare.h"
@@ -77,6 +78,41 @@ TEST(Viewer, OpensAQuiltOnTheMiddleOfTheObject) {
     std::snprintf(name, sizeof name, "view_%04d.png", i);
     const Image vi = overBlack(readImage((set / name).string()));
     ASSERT_EQ(0, std::memcmp(s.row(24 + i), vi.row(scanline), vi.rowBytes())) << "EPI row " << i;
+  }
+}
+
+// A set written with --quilt-only has no view files: the viewer cuts its
+// quilt into the views, laid out as the manifest says (a single row from
+// the bottom left; a grid's rows from the top), and shows what the set
+// with view files shows.
+TEST(Viewer, OpensASetWrittenAsAQuiltOnly) {
+  if (!haveXvfb()) GTEST_SKIP() << "no xvfb-run";
+  struct Case {
+    std::string shape, viewName;
+    int views;
+  };
+  for (const Case& c : {Case{"--views 6 --quilt 3x2", "view_%04d.png", 6},
+                        Case{"--views 4 --rows 2 --quilt auto", "view_r000_c%04d.png", 4}}) {
+    const auto full = test::freshDir("viewer_quilt_full"), only = test::freshDir("viewer_quilt_only");
+    ASSERT_EQ(test::runMvr("render --size 32x24 " + c.shape + " --out " + full.string()).status, 0);
+    ASSERT_EQ(test::runMvr("render --size 32x24 " + c.shape + " --quilt-only --out " + only.string()).status, 0);
+    ASSERT_FALSE(std::filesystem::exists(only / "view_0000.png"));
+    const std::string shot = (only / "shot.png").string();
+    auto r = test::shell("xvfb-run -a " + test::mvrBinary() + " view " + only.string() +
+                         " --view 2 --scanline 12 --screenshot " + shot);
+    ASSERT_EQ(r.status, 0) << c.shape << ": " << r.err;
+    const Image s = readImage(shot);
+    ASSERT_EQ(s.width, 32);
+    ASSERT_EQ(s.height, 24 + c.views);
+    auto view = [&](int i) {
+      char name[32];
+      std::snprintf(name, sizeof name, c.viewName.c_str(), i);
+      return overBlack(readImage((full / name).string()));
+    };
+    const Image shown = view(2);
+    for (int y = 0; y < 24; ++y) ASSERT_EQ(0, std::memcmp(s.row(y), shown.row(y), shown.rowBytes())) << c.shape << y;
+    for (int i = 0; i < c.views; ++i)
+      ASSERT_EQ(0, std::memcmp(s.row(24 + i), view(i).row(12), shown.rowBytes())) << c.shape << " EPI row " << i;
   }
 }
 
