@@ -108,8 +108,7 @@ Run measure(Renderer& renderer, const ShearingCamera& cam, const Supersampling& 
 // ring with nothing drawn, in reads of up to 64 MB: the floor under every
 // back end's time for that many frames.
 double readbackFloor(int w, int h, long frames, int repeat) {
-  GLint maxSize = 4096;
-  gl::GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  const int maxSize = gl::maxTextureSize();
   const long rowBytes = long(w) * 4, totalRows = long(h) * frames;
   const int rows = int(std::clamp<long>((64L << 20) / rowBytes, 1, std::min<long>(maxSize, totalRows)));
   RenderTarget target(w, rows, PixelType::U8);

@@ -19,7 +19,7 @@
 #include "apps/quilt_layout.h"
 #include "mvr/frames/volume.h"
 #include "mvr/error.h"
-#include "mvr/gl/gl_program.h"
+#include "mvr/gl/view_panel.h"
 #include "mvr/gl/glfw_window.h"
 #include "mvr/io/image_file.h"
 #include "mvr/io/manifest.h"
@@ -136,79 +136,22 @@ const char* const kKeys =
     "left/right view, up/down row, mouse over the view picks the scanline, drag scrubs views, "
     "S saves mvr_screenshot_NNNN.png, H lists keys, Q or Esc quits";
 
-// Top: the view, 1:1. Below: the EPI (views down), scaled to the panel.
-const char* const kPanelFragment = R"(
-layout(binding = 0) uniform sampler2D uView;
-layout(binding = 1) uniform sampler2D uEpi;
-uniform ivec2 uViewSize;
-uniform int uEpiRows;    // EPI texture height: the view count
-uniform int uPanelRows;  // window rows given to the EPI
-uniform int uWindowRows;
-uniform ivec2 uMarker;   // x: view row in the EPI, y: scanline; -1: none
-layout(location = 0) out vec4 oColor;
-// Over black, opaque: what a display shows, and screenshots without holes.
-vec4 opaque(vec4 c) { return vec4(c.rgb * c.a, 1.0); }
-void main() {
-  int x = int(gl_FragCoord.x);
-  int fromTop = uWindowRows - 1 - int(gl_FragCoord.y);
-  if (fromTop < uViewSize.y) {
-    oColor = opaque(texelFetch(uView, ivec2(x, fromTop), 0));
-    if (fromTop == uMarker.y) oColor = mix(oColor, vec4(1, 1, 0, 1), 0.5);
-  } else {
-    int e = fromTop - uViewSize.y;
-    int src = min(uEpiRows - 1, e * uEpiRows / uPanelRows);
-    oColor = opaque(texelFetch(uEpi, ivec2(x, src), 0));
-    if (src == uMarker.x) oColor = mix(oColor, vec4(1, 1, 0, 1), 0.5);
-  }
-}
-)";
-
 class Viewer {
  public:
+  // The EPI panel takes at most 512 window rows.
   Viewer(ViewSet set, GlfwWindow& window, int view, int scanline, bool overlay)
       : set_(std::move(set)), window_(window), view_(view), scanline_(scanline), overlay_(overlay),
-        viewTex_(GL_TEXTURE_2D), epiTex_(GL_TEXTURE_2D), vao_(gl::VertexArray::create()) {
-    panelRows_ = std::min(set_.views, 512);
-    program_ = gl::linkProgram("viewer", {{GL_VERTEX_SHADER, gl::glslHeader() + gl::kFullScreenTriangleVertex},
-                                          {GL_FRAGMENT_SHADER, gl::glslHeader() + kPanelFragment}});
-    gl::TextureStorage2D(viewTex_.id(), 1, GL_RGBA8, set_.width, set_.height);
-    gl::TextureStorage2D(epiTex_.id(), 1, GL_RGBA8, set_.width, set_.views);
+        panel_(set_.width, set_.height, set_.views, std::min(set_.views, 512)) {
     clampState();
     upload();
   }
 
-  int windowRows() const { return set_.height + panelRows_; }
+  int windowRows() const { return panel_.windowRows(); }
 
-  void draw() {
-    gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
-    gl::Viewport(0, 0, set_.width, windowRows());
-    gl::Disable(GL_DEPTH_TEST);
-    gl::Disable(GL_FRAMEBUFFER_SRGB);  // the textures hold display values already
-    gl::UseProgram(program_.id());
-    gl::setUniform(program_, "uEpiRows", set_.views);
-    gl::setUniform(program_, "uPanelRows", panelRows_);
-    gl::setUniform(program_, "uWindowRows", windowRows());
-    gl::ProgramUniform2i(program_.id(), gl::GetUniformLocation(program_.id(), "uViewSize"), set_.width, set_.height);
-    gl::ProgramUniform2i(program_.id(), gl::GetUniformLocation(program_.id(), "uMarker"),
-                         overlay_ ? view_ : -1, overlay_ ? scanline_ : -1);
-    gl::BindTextureUnit(0, viewTex_.id());
-    gl::BindTextureUnit(1, epiTex_.id());
-    gl::BindVertexArray(vao_.id());
-    gl::DrawArrays(GL_TRIANGLES, 0, 3);
-    gl::Finish();
-  }
+  void draw() { panel_.draw(overlay_ ? glm::ivec2(view_, scanline_) : glm::ivec2(-1)); }
 
   // The window as an image, rows top first.
-  Image screenshot() const {
-    Image img(set_.width, windowRows(), PixelType::Srgb8);
-    gl::BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
-    std::vector<uint8_t> raw(img.bytes.size());
-    gl::ReadPixels(0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
-    for (int y = 0; y < img.height; ++y)
-      std::memcpy(img.row(y), raw.data() + size_t(img.height - 1 - y) * img.rowBytes(), img.rowBytes());
-    return img;
-  }
+  Image screenshot() const { return panel_.read(); }
 
   void run() {
     GLFWwindow* w = window_.handle();
@@ -287,23 +230,18 @@ class Viewer {
   }
 
   void upload() {
-    const Image& v = set_.images[row_][view_];
-    gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    gl::TextureSubImage2D(viewTex_.id(), 0, 0, 0, set_.width, set_.height, GL_RGBA, GL_UNSIGNED_BYTE, v.bytes.data());
     Image epi(set_.width, set_.views, PixelType::U8);
     for (int i = 0; i < set_.views; ++i)
       std::memcpy(epi.row(i), set_.images[row_][i].row(scanline_), epi.rowBytes());
-    gl::TextureSubImage2D(epiTex_.id(), 0, 0, 0, set_.width, set_.views, GL_RGBA, GL_UNSIGNED_BYTE, epi.bytes.data());
+    panel_.upload(set_.images[row_][view_], epi);
   }
 
   ViewSet set_;
   GlfwWindow& window_;
-  int view_, row_ = 0, scanline_, panelRows_ = 0;
+  int view_, row_ = 0, scanline_;
   bool overlay_, saveRequested_ = false;
   double lastX_ = -1;
-  gl::Texture viewTex_, epiTex_;
-  gl::VertexArray vao_;
-  gl::Program program_;
+  gl::ViewPanel panel_;
 };
 
 // 8-bit copies for display: float sets (linear) are clamped and

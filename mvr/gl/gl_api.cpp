@@ -28,6 +28,12 @@ bool rendersOnCpu() {
   return name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos;
 }
 
+int maxTextureSize() {
+  GLint size = 4096;
+  GetIntegerv(GL_MAX_TEXTURE_SIZE, &size);
+  return size;
+}
+
 void checkError(const char* what) {
   GLenum err = GetError();
   if (err == GL_NO_ERROR) return;

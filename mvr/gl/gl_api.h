@@ -25,6 +25,9 @@ bool hasExtension(const std::string& name);
 // a copy.
 bool rendersOnCpu();
 
+// GL_MAX_TEXTURE_SIZE of the current context.
+int maxTextureSize();
+
 // Throws mvr::Error("GL: <what>: <error name>") if glGetError reports one.
 void checkError(const char* what);
 
