@@ -37,17 +37,27 @@ struct ViewSet {
   std::vector<std::vector<Image>> images;
 };
 
-// Tile (row r, view v) of a quilt of `columns` x `tileRows` tiles: a
-// single row from view 0 at the bottom left, left to right, then upwards;
-// a grid's rows of views as rows of tiles, row 0 at the top
-// (docs/CONVENTIONS.md).
-Image quiltTile(const Image& quilt, int columns, int tileRows, int rows, int r, int v, int w, int h) {
-  const int x0 = rows > 1 ? v * w : (v % columns) * w;
-  const int y0 = rows > 1 ? r * h : (tileRows - 1 - v / columns) * h;
-  Image tile(w, h, quilt.type);
-  for (int y = 0; y < h; ++y)
-    std::memcpy(tile.row(y), quilt.row(y0 + y) + size_t(x0) * 4 * Image::channelBytes(quilt.type), tile.rowBytes());
-  return tile;
+// The views of a quilt of `columns` x `tileRows` tiles: a single row from
+// view 0 at the bottom left, left to right, then upwards; a grid's rows of
+// views as rows of tiles, row 0 at the top (docs/CONVENTIONS.md).
+ViewSet quiltViews(const Image& quilt, int columns, int tileRows, int views, int rows) {
+  ViewSet set;
+  set.views = views;
+  set.rows = rows;
+  set.width = quilt.width / columns;
+  set.height = quilt.height / tileRows;
+  set.images.resize(rows);
+  for (int r = 0; r < rows; ++r)
+    for (int v = 0; v < views; ++v) {
+      const int x0 = (rows > 1 ? v : v % columns) * set.width;
+      const int y0 = (rows > 1 ? r : tileRows - 1 - v / columns) * set.height;
+      Image tile(set.width, set.height, quilt.type);
+      for (int y = 0; y < set.height; ++y)
+        std::memcpy(tile.row(y), quilt.row(y0 + y) + size_t(x0) * 4 * Image::channelBytes(quilt.type),
+                    tile.rowBytes());
+      set.images[r].push_back(std::move(tile));
+    }
+  return set;
 }
 
 // A set written with --quilt-only: its views are the quilt's tiles, laid
@@ -59,20 +69,12 @@ ViewSet loadQuiltOfSet(const std::string& dir, const Manifest& manifest) {
   const std::string path = (fs::path(dir) / manifest.info["quilt"].get<std::string>()).string();
   const Image quilt = readImage(path);
   const int columns = layout["columns"], tileRows = layout["rows"];
-  ViewSet set;
-  set.views = manifest.views;
-  set.rows = manifest.rows;
-  set.width = manifest.width;
-  set.height = manifest.height;
-  if (columns < 1 || tileRows < 1 || quilt.width != columns * set.width || quilt.height != tileRows * set.height ||
-      long(columns) * tileRows < long(set.views) * set.rows)
+  if (columns < 1 || tileRows < 1 || quilt.width != columns * manifest.width ||
+      quilt.height != tileRows * manifest.height || long(columns) * tileRows < long(manifest.views) * manifest.rows)
     fail(path, "is not the " + std::to_string(columns) + "x" + std::to_string(tileRows) + " quilt of " +
-                   std::to_string(set.width) + "x" + std::to_string(set.height) + " views the manifest describes");
-  set.images.resize(set.rows);
-  for (int r = 0; r < set.rows; ++r)
-    for (int v = 0; v < set.views; ++v)
-      set.images[r].push_back(quiltTile(quilt, columns, tileRows, set.rows, r, v, set.width, set.height));
-  return set;
+                   std::to_string(manifest.width) + "x" + std::to_string(manifest.height) +
+                   " views the manifest describes");
+  return quiltViews(quilt, columns, tileRows, manifest.views, manifest.rows);
 }
 
 ViewSet loadSet(const std::string& dir) {
@@ -98,14 +100,7 @@ ViewSet loadSet(const std::string& dir) {
 ViewSet loadQuilt(const std::string& path) {
   const Image quilt = readImage(path);
   const QuiltFile layout = readQuiltLayout(path, quilt.width, quilt.height);
-  ViewSet set;
-  set.views = layout.views;
-  set.width = quilt.width / layout.columns;
-  set.height = quilt.height / layout.rows;
-  set.images.resize(1);
-  for (int v = 0; v < set.views; ++v)
-    set.images[0].push_back(quiltTile(quilt, layout.columns, layout.rows, 1, 0, v, set.width, set.height));
-  return set;
+  return quiltViews(quilt, layout.columns, layout.rows, layout.views, 1);
 }
 
 // The middle of the rows where a view shows anything: the scanline whose
