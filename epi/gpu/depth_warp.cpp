@@ -115,10 +115,7 @@ void main() {
 }
 )";
 
-// The composite's full-screen triangle at window depth 0: tested LESS
-// against a warped reference's depth buffer (cleared to 0, far in reversed
-// Z), it passes exactly where that reference drew, and early fragment tests
-// let a CPU rasterizer skip the blocks it left empty.
+// The composite's full-screen triangle.
 const char* const kCoverageVertex = R"(
 void main() {
   vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
@@ -126,14 +123,17 @@ void main() {
 }
 )";
 
-// Over reference 0's coverage: both references blended, or reference 0
-// alone. With REST, over reference 1's coverage where 0 drew nothing.
-// Coverage is read from the other reference's depth buffer: the warped
-// colours are not cleared between views, and the pass's own depth buffer
-// is attached, so it is not sampled.
+// Where reference 0 drew: both references blended, or reference 0 alone.
+// With REST, where reference 1 drew and 0 did not. A reference drew where
+// its depth buffer (cleared to 0, far in reversed Z) is above 0: read as a
+// texture, not tested as the pass's depth attachment. Tested, it was a
+// depth buffer the warp had just drawn into through another framebuffer,
+// and NVIDIA's driver culled whole tiles of it that were drawn (on an
+// H200, the fourth view of a synthesize lost the top of the cup). The
+// warped colours are not cleared between views: coverage decides what is
+// read.
 // The weight of reference 0 (depth_warp.h; keep in step with warpWeight).
 const char* const kComposite = R"(
-layout(early_fragment_tests) in;
 layout(binding = 0) uniform sampler2D uWarped0;  // rgb, signed z (kWarpFragment)
 layout(binding = 1) uniform sampler2D uCover0;   // depth buffer: > 0 where drawn
 layout(binding = 2) uniform sampler2D uWarped1;
@@ -164,10 +164,12 @@ float weight0(float theta0, float theta1, float z0, float z1, float occ0, float 
 
 void main() {
   ivec2 px = ivec2(gl_FragCoord.xy);
+  bool drew0 = texelFetch(uCover0, px, 0).r > 0.0;
 #ifdef REST
-  if (texelFetch(uCover0, px, 0).r > 0.0) discard;
+  if (drew0 || !(texelFetch(uCover1, px, 0).r > 0.0)) discard;
   oColor = vec4(texelFetch(uWarped1, px, 0).rgb, 1.0);
 #else
+  if (!drew0) discard;
   vec4 c0 = texelFetch(uWarped0, px, 0);
   if (uTwo == 0 || !(texelFetch(uCover1, px, 0).r > 0.0)) { oColor = vec4(c0.rgb, 1.0); return; }
   vec4 c1 = texelFetch(uWarped1, px, 0);
@@ -404,20 +406,14 @@ void DepthWarp::render(const WarpReference& a, const WarpReference* b, const War
   gl::BindTextureUnit(2, warped_[1].color.id());
   gl::BindTextureUnit(3, warped_[1].zbuffer.id());
   gl::BindVertexArray(empty_.id());
-  // Each pass over one reference's coverage (kCoverageVertex): the
-  // target's colour with that reference's depth buffer, tested, not written.
+  // The target's colour alone, so no depth test (kComposite).
   gl::BindFramebuffer(GL_FRAMEBUFFER, over_.id());
   gl::NamedFramebufferTexture(over_.id(), GL_COLOR_ATTACHMENT0, target.colorTexture(), 0);
-  gl::DepthFunc(GL_LESS);
-  gl::DepthMask(GL_FALSE);
   for (int k = 0; k < (b ? 2 : 1); ++k) {
-    gl::NamedFramebufferTexture(over_.id(), GL_DEPTH_ATTACHMENT, warped_[k].zbuffer.id(), 0);
     gl::UseProgram(k == 0 ? composite_.id() : compositeRest_.id());
     gl::DrawArrays(GL_TRIANGLES, 0, 3);
   }
   gl::NamedFramebufferTexture(over_.id(), GL_COLOR_ATTACHMENT0, 0, 0);
-  gl::NamedFramebufferTexture(over_.id(), GL_DEPTH_ATTACHMENT, 0, 0);
-  setDepthConvention();
   target.bind();
   gl::checkError("depth warp");
 }

@@ -163,7 +163,7 @@ class DepthWarp {
 
   gl::Program warp_, warpSheet_, composite_, compositeRest_;
   gl::VertexArray grid_, splats_, empty_;
-  gl::Framebuffer over_;  // the target's colour over a warped reference's depth (render)
+  gl::Framebuffer over_;  // the target's colour alone (render)
   gl::Buffer gridVertices_;
   int gridWidth_ = 0, gridHeight_ = 0;
   Warped warped_[2];
