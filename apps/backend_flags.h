@@ -1,13 +1,13 @@
 #pragma once
 // The back-end options of every command that renders (render, stream,
-// view), on CLI11, filling one BackendOptions (epi/backend.h).
+// view), on CLI11, filling one BackendOptions (mvr/backends/backend.h).
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
-#include "epi/backend.h"
+#include "mvr/backends/backend.h"
 
 namespace mvr::app {
 

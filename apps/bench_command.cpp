@@ -23,7 +23,7 @@
 #include "apps/sample_sink.h"
 #include "apps/teacup.h"
 #include "apps/test_scenes.h"
-#include "epi/backend.h"
+#include "mvr/backends/backend.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_context.h"
 #include "mvr/gl/gpu_clock.h"

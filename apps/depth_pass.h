@@ -7,7 +7,7 @@
 #include <string>
 
 #include "apps/job_split.h"
-#include "epi/backend.h"
+#include "mvr/backends/backend.h"
 #include "mvr/frames/volume.h"
 #include "mvr/io/image_set.h"
 

@@ -14,7 +14,7 @@
 #include "apps/memory_check.h"
 #include "apps/quilt_layout.h"
 #include "apps/render_command.h"
-#include "epi/warp_renderer.h"
+#include "mvr/backends/warp/warp_renderer.h"
 #include "mvr/frames/frame_chain.h"
 #include "mvr/gl/gl_context.h"
 #include "mvr/io/image_file.h"

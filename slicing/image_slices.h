@@ -38,7 +38,7 @@
 // never coalesce: their highlights differ.
 #include <vector>
 
-#include "mvr/baselines/source_layers.h"
+#include "mvr/views/source_layers.h"
 #include "mvr/camera.h"
 #include "slicing/slice_table.h"
 
@@ -60,7 +60,7 @@ struct ImageSliceOptions {
   bool meetSilhouettes = true;
   // A lone pixel at a smooth silhouette ends at the outline and depth its
   // surface's curvature gives (LayerSlicer::rimFit). Measured to help only
-  // where two sources' outlines are blended (epi/source_blend.h).
+  // where two sources' outlines are blended (mvr/backends/interp/source_blend.h).
   bool fitRims = false;
 };
 

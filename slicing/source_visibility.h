@@ -13,7 +13,7 @@
 // affine in d: 1/w = (d (f - n) + n) / (n f) (reversed Z, near n, far f).
 #include <vector>
 
-#include "mvr/baselines/source_layers.h"
+#include "mvr/views/source_layers.h"
 #include "mvr/camera.h"
 
 namespace mvr {

@@ -20,7 +20,7 @@
 // one multiply-add per endpoint.
 #include <cstddef>
 
-#include "mvr/baselines/source_layers.h"
+#include "mvr/views/source_layers.h"
 #include "mvr/camera.h"
 #include "mvr/gl/gl_handles.h"
 #include "mvr/gl/prefix_sum.h"

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "mvr/baselines/source_layers.h"
+#include "mvr/views/source_layers.h"
 #include "mvr/camera.h"
 #include "mvr/gl/gl_handles.h"
 

@@ -4,7 +4,7 @@
 // fractions, and MVR against SVR with both supersampled.
 #include <gtest/gtest.h>
 
-#include "epi/backend.h"
+#include "mvr/backends/backend.h"
 #include "mvr/io/scene_io.h"
 #include "mvr/frames/supersampling.h"
 #include "tests/support/render_helpers.h"

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "epi/backend.h"
+#include "mvr/backends/backend.h"
 #include "mvr/depth.h"
 #include "mvr/io/scene_io.h"
 #include "tests/support/render_helpers.h"

@@ -11,7 +11,7 @@
 // 6912 off over the long track.
 #include <gtest/gtest.h>
 
-#include "epi/backend.h"
+#include "mvr/backends/backend.h"
 #include "epi/epi_rasterizer.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_api.h"

@@ -16,9 +16,9 @@
 
 #include "apps/cli.h"
 #include "apps/test_scenes.h"
-#include "epi/interp_renderer.h"
-#include "mvr/baselines/fragment_lists.h"
-#include "mvr/baselines/source_layers.h"
+#include "mvr/backends/interp/interp_renderer.h"
+#include "mvr/views/fragment_lists.h"
+#include "mvr/views/source_layers.h"
 #include "mvr/error.h"
 #include "mvr/io/scene_io.h"
 #include "slicing/image_slices.h"

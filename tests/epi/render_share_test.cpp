@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "apps/job_split.h"
-#include "epi/backend.h"
+#include "mvr/backends/backend.h"
 #include "mvr/io/scene_io.h"
 #include "tests/support/render_helpers.h"
 

@@ -1,8 +1,8 @@
-// Weights and per-pixel rules of blending two sources (epi/source_blend.h),
+// Weights and per-pixel rules of blending two sources (mvr/backends/interp/source_blend.h),
 // on EPIs small enough to check by hand.
 #include <gtest/gtest.h>
 
-#include "epi/source_blend.h"
+#include "mvr/backends/interp/source_blend.h"
 
 namespace mvr {
 namespace {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "epi/epi_rasterizer.h"
-#include "mvr/baselines/source_layers.h"
+#include "mvr/views/source_layers.h"
 #include "mvr/io/scene_io.h"
 #include "shading/lighting.h"
 #include "slicing/extreme_vertices.h"

@@ -1,13 +1,13 @@
-// The CPU warp (epi/warp_spans.h): a plane's known track, the composite's
+// The CPU warp (mvr/backends/warp/warp_spans.h): a plane's known track, the composite's
 // weight from the angles at the surface, and the scene back end against
 // the GL warp and svr.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "epi/backend.h"
-#include "epi/gpu/depth_warp.h"
-#include "epi/warp_spans.h"
+#include "mvr/backends/backend.h"
+#include "mvr/backends/warp/depth_warp.h"
+#include "mvr/backends/warp/warp_spans.h"
 #include "mvr/io/scene_io.h"
 #include "tests/support/render_helpers.h"
 

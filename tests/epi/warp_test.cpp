@@ -1,5 +1,5 @@
-// The depth-image warping back end (epi/gpu/depth_warp.h,
-// epi/warp_renderer.h): the compositing weight by hand, identity at a
+// The depth-image warping back end (mvr/backends/warp/depth_warp.h,
+// mvr/backends/warp/warp_renderer.h): the compositing weight by hand, identity at a
 // reference, occlusion labels on a step, a round trip through RGB-D
 // references against svr, and bad options.
 #include <gtest/gtest.h>
@@ -10,8 +10,8 @@
 #include <glm/gtc/constants.hpp>
 
 #include "apps/cli.h"
-#include "epi/backend.h"
-#include "epi/gpu/depth_warp.h"
+#include "mvr/backends/backend.h"
+#include "mvr/backends/warp/depth_warp.h"
 #include "mvr/depth.h"
 #include "mvr/io/scene_io.h"
 #include "tests/support/render_helpers.h"

@@ -12,10 +12,13 @@ declare -A floor=(
   [mvr/gl]=1 [mvr/io]=1
   [mvr/frames]=2
   [shading]=3
-  [mvr/baselines]=4
+  [mvr/views]=4
   [slicing]=5 [slicing/gpu]=5
   [epi]=6 [epi/gpu]=6
-  [apps]=7
+  [mvr/backends/mvr]=7 [mvr/backends/interp]=7 [mvr/backends/warp]=7
+  [mvr/backends/svr]=7 [mvr/backends/deferred]=7
+  [mvr/backends]=8
+  [apps]=9
 )
 bad=0
 while IFS= read -r file; do

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "mvr/baselines/outline_triangles.h"
+#include "mvr/views/outline_triangles.h"
 
 namespace mvr {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "mvr/baselines/baselines.h"
+#include "mvr/backends/svr/svr_renderer.h"
 #include "mvr/io/scene_io.h"
 #include "tests/support/capture_sink.h"
 #include "tests/support/gl_fixture.h"

@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "mvr/baselines/outline_triangles.h"
-#include "mvr/baselines/source_layers.h"
+#include "mvr/views/outline_triangles.h"
+#include "mvr/views/source_layers.h"
 #include "mvr/io/scene_io.h"
 #include "slicing/gpu/gpu_image_slicer.h"
 #include "slicing/gpu/gpu_source_visibility.h"

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "epi/mvr_renderer.h"
+#include "mvr/backends/mvr/mvr_renderer.h"
 #include "mvr/io/scene_io.h"
 #include "shading/lighting.h"
 #include "slicing/extreme_vertices.h"

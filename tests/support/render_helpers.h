@@ -6,9 +6,10 @@
 #include <memory>
 #include <string>
 
-#include "epi/mvr_renderer.h"
+#include "mvr/backends/mvr/mvr_renderer.h"
 #include "mvr/frames/volume.h"
-#include "mvr/baselines/baselines.h"
+#include "mvr/backends/deferred/deferred_renderer.h"
+#include "mvr/backends/svr/svr_renderer.h"
 #include "mvr/io/compare.h"
 #include "mvr/io/image_file.h"
 #include "tests/support/capture_sink.h"
