@@ -3,6 +3,20 @@
 #include "mvr/error.h"
 
 namespace mvr::app {
+// warp's numbers that interp's table declares too were parsed into interp's
+// members (add): given on the command line, they are warp's values.
+void BackendFlags::copyShared(BackendOptions& o) const {
+  for (const NumberOption<WarpOptions>& w : kWarpNumbers)
+    for (const NumberOption<InterpOptions>& i : kInterpNumbers) {
+      if (std::string(w.flag) != i.flag) continue;
+      const CLI::Option* given = nullptr;
+      for (const CLI::Option* option : interpOptions_)
+        if (option->check_name(w.flag)) given = option;
+      if (!given || !given->count()) continue;
+      const double v = i.get(o.interp);
+      std::visit([&](auto m) { o.warp.*m = static_cast<std::remove_reference_t<decltype(o.warp.*m)>>(v); }, w.member);
+    }
+}
 
 void BackendFlags::add(CLI::App& app) {
   InterpOptions& interp = options_.interp;
@@ -30,70 +44,27 @@ void BackendFlags::add(CLI::App& app) {
                                   "two sources wherever they leave holes, recursively (hierarchical); "
                                   "default " + std::string(acquireName(interp.acquire)))
                        ->type_name(choices(kAcquireNames));
-  budgetOption_ = app.add_option("--budget", interp.budget,
-                                 "interp and warp hierarchical: source views per row at most")
-                      ->capture_default_str();
   WarpOptions& warp = options_.warp;
-  warpOptions_ = {
-      app.add_option("--tau", warp.tau,
-                     "warp: relative depth step that makes a depth discontinuity (occlusion label) "
-                     "and a nearer surface (visibility test)")
-          ->capture_default_str(),
-      app.add_option("--penalty", warp.penalty,
-                     "warp: growth a of the occlusion penalty phi = occ (a theta_i / (theta_i + "
-                     "theta_j))^4")
-          ->type_name("A")
-          ->capture_default_str(),
-      app.add_option("--flatness", warp.flatness,
-                     "warp by GL: merge a reference's grid cells into one quad where that moves no vertex more than "
-                     "PX pixels in the farthest view (0: only planes merge)")
-          ->type_name("PX")
-          ->capture_default_str(),
-      app.add_option("--warp-path", warpPath_,
-                     "warp: by GL, the seed's grid mesh (gl), or on the CPU, EPI by EPI, exactly (cpu; scene "
-                     "sources only); auto (default): cpu where GL renders on the CPU (llvmpipe), else gl")
-          ->type_name(choices(kWarpPathNames)),
-  };
-  interpOptions_ = {
-      app.add_option("--max-layers", interp.maxLayers, "interp: depth-peeled layers per source view")
-          ->capture_default_str(),
-      app.add_option("--coalesce", interp.coalesce,
-                     "interp: draw runs of source pixels with close depths as one slice when that "
-                     "moves no pixel more than T pixels in any view (0: a slice per pixel)")
-          ->type_name("T")
-          ->capture_default_str(),
-      app.add_flag("--visibility", interp.visibility,
-                   "interp: drop layer pixels the nearest layer hides from the whole track; stop "
-                   "peeling at a layer with none left"),
-      app.add_option("--splits", interp.splits,
-                     "interp: highlights per view, split at K views across each specular pixel's "
-                     "highlight (0: as the source saw it)")
-          ->type_name("K")
-          ->capture_default_str(),
-      app.add_option("--blend", blend_,
-                     "interp: between two sources, let the depth test pick one per pixel (none, "
-                     "default) or weight both where they agree, by distance along the track (track) "
-                     "or by the angles at the pixel (angular); blending draws each interval 3 times")
-          ->type_name(choices(kBlendNames)),
-      app.add_option("--overlap", interp.overlap,
-                     "interp: join neighbouring pixels whose tracks part by at most 2P pixels over "
-                     "the track (joined, they share their boundary's end: no cracks); slices at the "
-                     "image's edge widen by P")
-          ->type_name("P")
-          ->capture_default_str(),
-      app.add_flag("--whole-intervals", wholeIntervals_,
-                   "interp: draw the views between two sources from every layer of both, not each "
-                   "half from its near source's layers and the far source's nearest layer"),
-      app.add_flag("--layer-passes", layerPasses_,
-                   "interp: draw the mesh once per depth-peeled layer instead of once per source "
-                   "into per-pixel fragment lists (the same layers, without the lists' memory)"),
-      app.add_option("--outline-samples", interp.outlineSamples,
-                     "interp: sample each source's outline at S columns a pixel (its nearest layer "
-                     "drawn once more, S times as wide) so that silhouettes end where the surface "
-                     "does, within a sample (1: at the pixel's boundary)")
-          ->type_name("S")
-          ->capture_default_str(),
-  };
+  // The tables' numbers and switches (interp_options.h, warp_options.h); a
+  // flag both back ends declare (--budget) is added once, bound to
+  // interp's member, and copied to warp's by resolve().
+  for (const NumberOption<InterpOptions>& n : kInterpNumbers) interpOptions_.push_back(addNumber(app, n, interp));
+  for (const FlagOption<InterpOptions>& f : kInterpFlags)
+    interpOptions_.push_back(app.add_flag_function(
+        f.flag, [&interp, f](std::int64_t) { interp.*f.member = f.value; }, f.help));
+  for (const NumberOption<WarpOptions>& n : kWarpNumbers)
+    if (!app.get_option_no_throw(n.flag)) warpOptions_.push_back(addNumber(app, n, warp));
+  warpOptions_.push_back(app.add_option("--warp-path", warpPath_,
+                                        "warp: by GL, the seed's grid mesh (gl), or on the CPU, EPI by EPI, exactly "
+                                        "(cpu; scene sources only); auto (default): cpu where GL renders on the CPU "
+                                        "(llvmpipe), else gl")
+                             ->type_name(choices(kWarpPathNames)));
+  interpOptions_.push_back(app.add_option("--blend", blend_,
+                                          "interp: between two sources, let the depth test pick one per pixel "
+                                          "(none, default) or weight both where they agree, by distance along the "
+                                          "track (track) or by the angles at the pixel (angular); blending draws "
+                                          "each interval 3 times")
+                               ->type_name(choices(kBlendNames)));
 }
 
 void BackendFlags::chooseDefaultPst(BackendOptions& o, const Scene& scene) const {
@@ -115,25 +86,30 @@ BackendOptions BackendFlags::resolve() const {
     if (!o.hasPst()) fail("--pst-builder", "applies to --backend mvr and interp only");
     o.setBuilder(parseName(kPstBuilderNames, builder_, "--pst-builder", "builder"));
   }
+  // Which back ends an option applies to: interp's, warp's, or both
+  // (--acquire, and the numbers both tables declare).
+  auto isWarps = [&](const CLI::Option* option) {
+    for (const NumberOption<WarpOptions>& n : kWarpNumbers)
+      if (option->check_name(n.flag)) return true;
+    return false;
+  };
   for (const CLI::Option* option : interpOptions_)
-    if (option->count() && o.backend != Backend::Interp)
-      fail(option->get_name(), "applies to --backend interp only");
+    if (option->count() && o.backend != Backend::Interp && !(isWarps(option) && o.backend == Backend::Warp))
+      fail(option->get_name(), isWarps(option) ? "applies to --backend interp and warp only"
+                                               : "applies to --backend interp only");
   for (const CLI::Option* option : warpOptions_)
     if (option->count() && o.backend != Backend::Warp)
       fail(option->get_name(), "applies to --backend warp only");
-  for (const CLI::Option* option : {acquireOption_, budgetOption_})
-    if (option->count() && o.backend != Backend::Interp && o.backend != Backend::Warp)
-      fail(option->get_name(), "applies to --backend interp and warp only");
+  if (acquireOption_->count() && o.backend != Backend::Interp && o.backend != Backend::Warp)
+    fail(acquireOption_->get_name(), "applies to --backend interp and warp only");
   if (o.backend == Backend::Interp) {
     if (!acquire_.empty()) o.interp.acquire = parseAcquire(acquire_);
     if (!blend_.empty()) o.interp.blend = parseName(kBlendNames, blend_, "--blend", "blend");
-    if (wholeIntervals_) o.interp.halves = false;
-    if (layerPasses_) o.interp.onePass = false;
     validate(o.interp);
   }
   if (o.backend == Backend::Warp) {
     if (!acquire_.empty()) o.warp.acquire = parseAcquire(acquire_);
-    if (budgetOption_->count()) o.warp.budget = o.interp.budget;
+    copyShared(o);
     if (!warpPath_.empty()) o.warp.path = parseName(kWarpPathNames, warpPath_, "--warp-path", "path");
     validate(o.warp);
   }

@@ -25,14 +25,14 @@
 #include "apps/test_scenes.h"
 #include "mvr/backends/backend.h"
 #include "mvr/error.h"
+#include "mvr/frames/frame_chain.h"
+#include "mvr/frames/progress.h"
 #include "mvr/gl/gl_context.h"
 #include "mvr/gl/gpu_clock.h"
 #include "mvr/gl/readback_ring.h"
 #include "mvr/io/compare.h"
 #include "mvr/io/scene_io.h"
 #include "mvr/parallel.h"
-#include "mvr/frames/frame_chain.h"
-#include "mvr/frames/progress.h"
 
 namespace mvr::app {
 

@@ -119,16 +119,10 @@ void RenderFlags::addSynthesizeOwn(CLI::App& app) {
                  "RGB-D references: a set mvr render --depth wrote, or the HCI 4D light-field "
                  "layout (parameters.cfg, input_Cam%03d.png, gt_depth_lowres[_Cam%03d].pfm)")
       ->required();
-  app.add_option("--tau", warp_.tau, "relative depth step of a discontinuity and of a nearer surface")
-      ->capture_default_str();
-  app.add_option("--penalty", warp_.penalty, "growth a of the occlusion penalty (seed eq. 5-2)")
-      ->type_name("A")
-      ->capture_default_str();
-  app.add_option("--flatness", warp_.flatness,
-                 "by GL: merge grid cells into one quad where that moves no vertex more than PX pixels in "
-                 "the farthest view (0: only planes merge)")
-      ->type_name("PX")
-      ->capture_default_str();
+  // warp's numbers but the source budget: captured references are given,
+  // not chosen.
+  for (const NumberOption<WarpOptions>& n : kWarpNumbers)
+    if (std::string(n.flag) != "--budget") addNumber(app, n, warp_);
   app.add_option("--warp-path", warpPath_,
                  "by GL, the seed's grid mesh (gl), or on the CPU, EPI by EPI, exactly (cpu: the references on "
                  "the rows of views, as their own track puts them); auto (default): cpu where GL renders on "

@@ -38,8 +38,8 @@
 // never coalesce: their highlights differ.
 #include <vector>
 
-#include "mvr/views/source_layers.h"
 #include "mvr/camera.h"
+#include "mvr/views/source_layers.h"
 #include "slicing/slice_table.h"
 
 namespace mvr {

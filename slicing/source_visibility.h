@@ -13,8 +13,8 @@
 // affine in d: 1/w = (d (f - n) + n) / (n f) (reversed Z, near n, far f).
 #include <vector>
 
-#include "mvr/views/source_layers.h"
 #include "mvr/camera.h"
+#include "mvr/views/source_layers.h"
 
 namespace mvr {
 

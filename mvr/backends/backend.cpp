@@ -1,10 +1,9 @@
 #include "mvr/backends/backend.h"
 
-#include <cstdlib>
 #include <vector>
 
-#include "mvr/backends/mvr/mvr_renderer.h"
 #include "mvr/backends/deferred/deferred_renderer.h"
+#include "mvr/backends/mvr/mvr_renderer.h"
 #include "mvr/backends/svr/svr_renderer.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_api.h"
@@ -58,8 +57,9 @@ bool builderOption(const std::string& token, PstBuilder& builder) {
   return false;
 }
 
-// One interp option token; values are checked where every interp option
-// is (validate(InterpOptions)), not here.
+// One interp option token: a builder, a PST mode, a blend, or an entry of
+// interp's tables. Values are checked where every interp option is
+// (validate(InterpOptions)), not here.
 void interpOption(const std::string& token, InterpOptions& o, const char* where) {
   if (builderOption(token, o.builder)) return;
   for (const auto& mode : kPstModeNames)
@@ -67,49 +67,23 @@ void interpOption(const std::string& token, InterpOptions& o, const char* where)
       o.mode = mode.value;
       return;
     }
-  if (token == "vis") {
-    o.visibility = true;
-    return;
-  }
-  if (token == "whole") {
-    o.halves = false;
-    return;
-  }
-  if (token == "passes") {
-    o.onePass = false;
-    return;
-  }
   for (const auto& blend : kBlendNames)
     if (token == blend.name) {
       o.blend = blend.value;
       return;
     }
-  char* end = nullptr;
-  const char* text = token.c_str();
-  const char key = token.size() > 1 ? token[0] : '\0';
-  if (key == 's') o.splits = int(std::strtol(text + 1, &end, 10));
-  else if (key == 'b') o.budget = int(std::strtol(text + 1, &end, 10));
-  else if (key == 'c') o.coalesce = std::strtof(text + 1, &end);
-  else if (key == 'o') o.overlap = std::strtof(text + 1, &end);
-  else if (key == 'x') o.outlineSamples = int(std::strtol(text + 1, &end, 10));
-  else o.maxLayers = int(std::strtol(text, &end, 10));
-  if (token.empty() || *end != '\0') fail(where, "unknown interp option '" + token + "'");
+  if (!parseSpecToken<InterpOptions>(token, kInterpNumbers, kInterpFlags, o))
+    fail(where, "unknown interp option '" + token + "'");
 }
 
-// One warp option token, checked by validate(WarpOptions).
+// One warp option token: a path, or an entry of warp's table; checked by
+// validate(WarpOptions).
 void warpOption(const std::string& token, WarpOptions& o, const char* where) {
   if (token == "cpu" || token == "gl") {
     o.path = token == "cpu" ? WarpPath::Cpu : WarpPath::Gl;
     return;
   }
-  char* end = nullptr;
-  const char* text = token.c_str();
-  const char key = token.size() > 1 ? token[0] : '\0';
-  if (key == 't') o.tau = std::strtof(text + 1, &end);
-  else if (key == 'a') o.penalty = std::strtof(text + 1, &end);
-  else if (key == 'b') o.budget = int(std::strtol(text + 1, &end, 10));
-  else if (key == 'f') o.flatness = std::strtof(text + 1, &end);
-  if (!end || *end != '\0') fail(where, "unknown warp option '" + token + "'");
+  if (!parseSpecToken<WarpOptions>(token, kWarpNumbers, {}, o)) fail(where, "unknown warp option '" + token + "'");
 }
 
 // One mvr option token: a texture mode, or NAME-psts for a PST builder.

@@ -7,11 +7,11 @@
 
 #include <glm/glm.hpp>
 
-#include "mvr/views/fragment_lists.h"
 #include "mvr/gl/gl_program.h"
 #include "mvr/gl/render_target.h"
 #include "mvr/gl/scene_buffers.h"
 #include "mvr/scene.h"
+#include "mvr/views/fragment_lists.h"
 #include "shading/gpu_materials.h"
 #include "shading/shading_plan.h"
 

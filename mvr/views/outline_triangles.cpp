@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "mvr/views/source_layers.h"
 #include "mvr/parallel.h"
+#include "mvr/views/source_layers.h"
 
 namespace mvr {
 namespace {

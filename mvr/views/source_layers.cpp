@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <optional>
 
-#include "mvr/views/deferred_pipeline.h"
-#include "mvr/views/outline_triangles.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
+#include "mvr/views/deferred_pipeline.h"
+#include "mvr/views/outline_triangles.h"
 
 namespace mvr {
 namespace {

@@ -20,10 +20,10 @@
 // one multiply-add per endpoint.
 #include <cstddef>
 
-#include "mvr/views/source_layers.h"
 #include "mvr/camera.h"
 #include "mvr/gl/gl_handles.h"
 #include "mvr/gl/prefix_sum.h"
+#include "mvr/views/source_layers.h"
 #include "slicing/gpu/gpu_slice_table.h"
 #include "slicing/gpu/gpu_vertices.h"
 #include "slicing/image_slices.h"

@@ -11,9 +11,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "mvr/views/source_layers.h"
 #include "mvr/camera.h"
 #include "mvr/gl/gl_handles.h"
+#include "mvr/views/source_layers.h"
 
 namespace mvr {
 

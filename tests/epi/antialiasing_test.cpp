@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include "mvr/backends/backend.h"
-#include "mvr/io/scene_io.h"
 #include "mvr/frames/supersampling.h"
+#include "mvr/io/scene_io.h"
 #include "tests/support/render_helpers.h"
 
 namespace mvr {

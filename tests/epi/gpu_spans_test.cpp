@@ -11,8 +11,8 @@
 // 6912 off over the long track.
 #include <gtest/gtest.h>
 
-#include "mvr/backends/backend.h"
 #include "epi/epi_rasterizer.h"
+#include "mvr/backends/backend.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_api.h"
 #include "mvr/io/scene_io.h"

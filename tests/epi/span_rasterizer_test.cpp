@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "epi/epi_rasterizer.h"
-#include "mvr/views/source_layers.h"
 #include "mvr/io/scene_io.h"
+#include "mvr/views/source_layers.h"
 #include "shading/lighting.h"
 #include "slicing/extreme_vertices.h"
 #include "slicing/image_slices.h"

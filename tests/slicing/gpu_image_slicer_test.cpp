@@ -8,9 +8,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mvr/io/scene_io.h"
 #include "mvr/views/outline_triangles.h"
 #include "mvr/views/source_layers.h"
-#include "mvr/io/scene_io.h"
 #include "slicing/gpu/gpu_image_slicer.h"
 #include "slicing/gpu/gpu_source_visibility.h"
 #include "slicing/image_slices.h"

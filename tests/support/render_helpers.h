@@ -6,10 +6,10 @@
 #include <memory>
 #include <string>
 
-#include "mvr/backends/mvr/mvr_renderer.h"
-#include "mvr/frames/volume.h"
 #include "mvr/backends/deferred/deferred_renderer.h"
+#include "mvr/backends/mvr/mvr_renderer.h"
 #include "mvr/backends/svr/svr_renderer.h"
+#include "mvr/frames/volume.h"
 #include "mvr/io/compare.h"
 #include "mvr/io/image_file.h"
 #include "tests/support/capture_sink.h"

@@ -5,8 +5,9 @@
 
 #include "epi/epi_rasterizer.h"
 #include "mvr/backends/interp/source_blend.h"
-#include "mvr/views/acquire.h"
 #include "mvr/names.h"
+#include "mvr/option_table.h"
+#include "mvr/views/acquire.h"
 
 namespace mvr {
 
@@ -55,7 +56,37 @@ struct InterpOptions {
   bool onePass = true;
 };
 
+// interp's numbers and switches: flag, key in a bench spec
+// (interp:ACQUIRE:KEY VALUE...), member, range, help (mvr/option_table.h).
+inline const NumberOption<InterpOptions> kInterpNumbers[] = {
+    {"--max-layers", "", &InterpOptions::maxLayers, 1, 64, false, "", "interp: depth-peeled layers per source view"},
+    {"--coalesce", "c", &InterpOptions::coalesce, 0, kUnbounded, false, "T",
+     "interp: draw runs of source pixels with close depths as one slice when that moves no pixel more than T "
+     "pixels in any view (0: a slice per pixel)"},
+    {"--budget", "b", &InterpOptions::budget, 2, 1024, false, "", "interp and warp hierarchical: source views per row at most"},
+    {"--splits", "s", &InterpOptions::splits, 0, 64, false, "K",
+     "interp: highlights per view, split at K views across each specular pixel's highlight (0: as the source "
+     "saw it)"},
+    {"--overlap", "o", &InterpOptions::overlap, 0, 4, false, "P",
+     "interp: join neighbouring pixels whose tracks part by at most 2P pixels over the track (joined, they "
+     "share their boundary's end: no cracks); slices at the image's edge widen by P"},
+    {"--outline-samples", "x", &InterpOptions::outlineSamples, 1, 16, false, "S",
+     "interp: sample each source's outline at S columns a pixel (its nearest layer drawn once more, S times as "
+     "wide) so that silhouettes end where the surface does, within a sample (1: at the pixel's boundary)"},
+};
+inline const FlagOption<InterpOptions> kInterpFlags[] = {
+    {"--visibility", "vis", &InterpOptions::visibility, true,
+     "interp: drop layer pixels the nearest layer hides from the whole track; stop peeling at a layer with none "
+     "left"},
+    {"--whole-intervals", "whole", &InterpOptions::halves, false,
+     "interp: draw the views between two sources from every layer of both, not each half from its near "
+     "source's layers and the far source's nearest layer"},
+    {"--layer-passes", "passes", &InterpOptions::onePass, false,
+     "interp: draw the mesh once per depth-peeled layer instead of once per source into per-pixel fragment "
+     "lists (the same layers, without the lists' memory)"},
+};
+
 // Throws mvr::Error naming the option that is out of range; needs no GL.
-void validate(const InterpOptions& options);
+inline void validate(const InterpOptions& options) { checkRanges<InterpOptions>(kInterpNumbers, options); }
 
 }  // namespace mvr

@@ -5,12 +5,12 @@
 #include <optional>
 
 #include "mvr/backends/interp/source_views.h"
-#include "mvr/views/track_refinement.h"
-#include "mvr/views/source_layers.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_api.h"
 #include "mvr/gl/gpu_clock.h"
 #include "mvr/parallel.h"
+#include "mvr/views/source_layers.h"
+#include "mvr/views/track_refinement.h"
 #include "shading/shading_plan.h"
 #include "slicing/gpu/gpu_image_slicer.h"
 #include "slicing/gpu/gpu_source_visibility.h"

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <vector>
 
-#include "mvr/views/source_layers.h"
 #include "mvr/camera.h"
 #include "mvr/renderer.h"
+#include "mvr/views/source_layers.h"
 
 namespace mvr {
 

@@ -5,13 +5,13 @@
 #include <vector>
 
 #include "mvr/backends/svr/svr_renderer.h"
-#include "mvr/views/view_loop.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
 #include "mvr/gl/readback_ring.h"
-#include "mvr/image_pool.h"
 #include "mvr/gl/render_target.h"
 #include "mvr/gl/scene_buffers.h"
+#include "mvr/image_pool.h"
+#include "mvr/views/view_loop.h"
 #include "shading/gpu_materials.h"
 #include "shading/lighting.h"
 #include "shading/shading_plan.h"

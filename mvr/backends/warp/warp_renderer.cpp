@@ -7,22 +7,14 @@
 
 #include "epi/epi_batch.h"
 #include "mvr/backends/warp/depth_warp.h"
-#include "mvr/views/track_refinement.h"
 #include "mvr/backends/warp/warp_spans.h"
-#include "mvr/views/source_layers.h"
-#include "mvr/views/view_loop.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_api.h"
+#include "mvr/views/source_layers.h"
+#include "mvr/views/track_refinement.h"
+#include "mvr/views/view_loop.h"
 
 namespace mvr {
-
-void validate(const WarpOptions& o) {
-  if (o.acquire == Acquire::Center) fail("--acquire", "warp composites two references: dual or hierarchical");
-  if (!(o.tau > 0.0f && o.tau < 1.0f)) fail("--tau", "expected a relative depth step in (0, 1)");
-  if (!(o.penalty >= 0.0f && std::isfinite(o.penalty))) fail("--penalty", "expected a finite value >= 0");
-  if (o.budget < 2) fail("--budget", "expected at least 2 source views");
-  if (!(o.flatness >= 0.0f && o.flatness <= 16.0f)) fail("--flatness", "expected 0 to 16 pixels");
-}
 
 namespace {
 
