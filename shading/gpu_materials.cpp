@@ -13,10 +13,10 @@ GpuMaterials::GpuMaterials(const Scene& scene, const TextureSet& textures,
 }
 
 void GpuMaterials::bind(GLuint textureUnit) const {
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, materials_.id());
-  if (textures_.id()) gl::BindTextureUnit(textureUnit, textures_.id());
-  if (cubeMaps_.id()) gl::BindTextureUnit(EnvironmentSet::kCubeUnit, cubeMaps_.id());
-  if (sphereMaps_.id()) gl::BindTextureUnit(EnvironmentSet::kSphereUnit, sphereMaps_.id());
+  materials_.bindStorage(1);
+  if (textures_.id()) textures_.bind(textureUnit);
+  if (cubeMaps_.id()) cubeMaps_.bind(EnvironmentSet::kCubeUnit);
+  if (sphereMaps_.id()) sphereMaps_.bind(EnvironmentSet::kSphereUnit);
 }
 
 }  // namespace mvr::shading

@@ -395,7 +395,7 @@ float EpiPass::edgeSnap() {
 }
 
 void EpiPass::begin(const glm::vec2& scale, const glm::vec3& eye0, const glm::vec3& eyeStep) const {
-  gl::UseProgram(program_.id());
+  program_.use();
   gl::setUniform(program_, "uScale", scale);
   if (first()) {
     gl::Disable(GL_BLEND);

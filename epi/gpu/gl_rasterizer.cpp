@@ -253,7 +253,7 @@ class GlRasterizer final : public EpiRasterizer {
     gl::Buffer buffer = gl::makeBuffer(vectors_.texels().data(), std::max<size_t>(1, vectors_.texels().size()));
     vectorTexture_ = gl::Texture(GL_TEXTURE_BUFFER);
     gl::TextureBuffer(vectorTexture_.id(), GL_RGBA32F, buffer.id());
-    gl::BindTextureUnit(EpiPass::kVectorUnit, vectorTexture_.id());
+    vectorTexture_.bind(EpiPass::kVectorUnit);
     return buffer;
   }
 

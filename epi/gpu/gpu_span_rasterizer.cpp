@@ -336,15 +336,15 @@ class GpuSpanRasterizer final : public EpiRasterizer {
       trackCapacity_ = table.sliceCount() + table.sliceCount() / 4;
       trackBuffer_ = gl::makeBuffer<std::byte>(nullptr, trackCapacity_ * kTrackBytes);
     }
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTracks, trackBuffer_.id());
+    trackBuffer_.bindStorage(kTracks);
     if (v.hasVectors()) bindVectors(v);
     gl::setUniform(tracks_, "uViews", float(n));
     gl::setUniform(program_, "uViews", float(n));
     gl::setUniform(program_, "uWidth", w);
     gl::setUniform(program_, "uTileColumns", tile.columns);
     gl::setUniform(program_, "uTileRows", tile.rows);
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, PstGeometry::kRecords, v.records.id());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, PstGeometry::kTriangles, v.triangles.id());
+    v.records.bindStorage(PstGeometry::kRecords);
+    v.triangles.bindStorage(PstGeometry::kTriangles);
     table.bind(PstGeometry::kSlices, PstGeometry::kOffsets);
   }
 
@@ -355,15 +355,14 @@ class GpuSpanRasterizer final : public EpiRasterizer {
     const uint32_t firstSlice = table.offsets()[size_t(first)];
     const uint32_t slices = table.offsets()[size_t(first + count)] - firstSlice;
     if (slices > 0) {
-      gl::UseProgram(tracks_.id());
-      gl::ProgramUniform1ui(tracks_.id(), gl::GetUniformLocation(tracks_.id(), "uFirst"), firstSlice);
-      gl::ProgramUniform1ui(tracks_.id(), gl::GetUniformLocation(tracks_.id(), "uCount"), slices);
-      gl::DispatchCompute((slices + 63) / 64, 1, 1);
-      gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+      tracks_.use();
+      gl::setUniform(tracks_, "uFirst", GLuint(firstSlice));
+      gl::setUniform(tracks_, "uCount", GLuint(slices));
+      gl::dispatch((slices + 63) / 64, 1, 1);
     }
-    gl::UseProgram(program_.id());
+    program_.use();
     gl::setUniform(program_, "uFirstScanline", first);
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kEpis, out.id());
+    out.bindStorage(kEpis);
     gl::DispatchCompute(GLuint((w + tile.columns - 1) / tile.columns), GLuint((n + tile.rows - 1) / tile.rows),
                         GLuint(count));
   }
@@ -378,8 +377,8 @@ class GpuSpanRasterizer final : public EpiRasterizer {
                             std::to_string(limit));
     texels_ = gl::Texture(GL_TEXTURE_BUFFER);
     gl::TextureBuffer(texels_.id(), GL_RGBA32F, v.texelBuffer);
-    gl::BindTextureUnit(kTexelUnit, texels_.id());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kVectors, v.vectors.id());
+    texels_.bind(kTexelUnit);
+    v.vectors.bindStorage(kVectors);
   }
 
   static constexpr GLuint kEpis = 6, kTracks = 7, kVectors = 8, kTexelUnit = 3;

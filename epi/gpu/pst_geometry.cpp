@@ -231,15 +231,14 @@ void PstGeometry::build(const GpuVertices& vertices, const GpuSliceTable& table,
     pieces_ = gl::makeBuffer<glm::uvec2>(nullptr, capacity_);
   }
   if (sliceCount_ > 0) {
-    gl::UseProgram(count_.id());
+    count_.use();
     setSliceUniforms(count_);
-    gl::ProgramUniform1ui(count_.id(), gl::GetUniformLocation(count_.id(), "uFirstScanline"), first);
-    gl::ProgramUniform1ui(count_.id(), gl::GetUniformLocation(count_.id(), "uScanlines"), count);
+    gl::setUniform(count_, "uFirstScanline", GLuint(first));
+    gl::setUniform(count_, "uScanlines", GLuint(count));
     gl::setUniform(count_, "uStrip", mode_ == PstMode::Strip ? 1 : 0);
     bindBuffers();
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kOffsets, table.offsetsBuffer());
-    gl::DispatchCompute((sliceCount_ + 63) / 64, 1, 1);
-    gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    gl::bindStorage(kOffsets, table.offsetsBuffer());
+    gl::dispatch((sliceCount_ + 63) / 64, 1, 1);
   }
   prefixSum_.exclusive(firstVertex_.id(), 0, sliceCount_, indirect_.id(), 0);
   if (sceneVectors_) {
@@ -252,17 +251,17 @@ void PstGeometry::build(const GpuVertices& vertices, const GpuSliceTable& table,
 size_t PstGeometry::vectorTexels() const { return sceneVectors_ ? sceneVectors_->texelCount() : 0; }
 
 void PstGeometry::setSliceUniforms(const gl::Program& p) const {
-  gl::ProgramUniform1ui(p.id(), gl::GetUniformLocation(p.id(), "uFirstSlice"), firstSlice_);
-  gl::ProgramUniform1ui(p.id(), gl::GetUniformLocation(p.id(), "uSliceCount"), sliceCount_);
+  gl::setUniform(p, "uFirstSlice", GLuint(firstSlice_));
+  gl::setUniform(p, "uSliceCount", GLuint(sliceCount_));
   gl::setUniform(p, "uViews", float(views_));
 }
 
 void PstGeometry::bindBuffers() const {
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kRecords, vertices_->records.id());
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTriangles, vertices_->triangles.id());
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kSlices, table_->slicesBuffer());
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kFirstVertex, firstVertex_.id());
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kPieces, pieces_.id());
+  vertices_->records.bindStorage(kRecords);
+  vertices_->triangles.bindStorage(kTriangles);
+  gl::bindStorage(kSlices, table_->slicesBuffer());
+  firstVertex_.bindStorage(kFirstVertex);
+  pieces_.bindStorage(kPieces);
 }
 
 void PstGeometry::bind(const gl::Program& program, int chunkRows, int view0) const {
@@ -275,8 +274,8 @@ void PstGeometry::bind(const gl::Program& program, int chunkRows, int view0) con
 }
 
 void PstGeometry::bindVectors() const {
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kVectors, vertices_->vectors.id());
-  gl::BindTextureUnit(kVectorUnit, texels_.id());
+  vertices_->vectors.bindStorage(kVectors);
+  texels_.bind(kVectorUnit);
 }
 
 void PstGeometry::viewTexels(const GpuVertices& v) {

@@ -135,8 +135,8 @@ SceneVectors::SceneVectors(int recordStride, int uvAt, const shading::TextureSet
 }
 
 void SceneVectors::setUniforms(const gl::Program& p) const {
-  gl::ProgramUniform1ui(p.id(), gl::GetUniformLocation(p.id(), "uFirstSlice"), firstSlice_);
-  gl::ProgramUniform1ui(p.id(), gl::GetUniformLocation(p.id(), "uSliceCount"), sliceCount_);
+  gl::setUniform(p, "uFirstSlice", GLuint(firstSlice_));
+  gl::setUniform(p, "uSliceCount", GLuint(sliceCount_));
   gl::setUniform(p, "uViews", float(views_));
 }
 
@@ -146,22 +146,21 @@ void SceneVectors::build(uint32_t firstSlice, uint32_t sliceCount, int views) {
   if (sliceCount == 0) return;
   reserveSlices(sliceCount);
   auto run = [&](const gl::Program& p, size_t items) {
-    gl::UseProgram(p.id());
+    p.use();
     setUniforms(p);
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kBase, base_.id());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kLength, length_.id());
-    if (texels_.id()) gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kTexels, texels_.id());
-    gl::DispatchCompute(groups(items), 1, 1);
-    gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    base_.bindStorage(kBase);
+    length_.bindStorage(kLength);
+    if (texels_.id()) texels_.bindStorage(kTexels);
+    gl::dispatch(groups(items), 1, 1);
   };
   run(size_, sliceCount);
   prefixSum_.exclusive(base_.id(), 0, sliceCount, total_.id(), 0);
   uint32_t total = 0;
-  gl::GetNamedBufferSubData(total_.id(), 0, sizeof(total), &total);
+  total_.read(0, sizeof(total), &total);
   texelCount_ = total;
   if (total == 0) return;
   reserveTexels(total);
-  gl::ProgramUniform1ui(sample_.id(), gl::GetUniformLocation(sample_.id(), "uTexelCount"), total);
+  gl::setUniform(sample_, "uTexelCount", GLuint(total));
   run(sample_, total);
   run(levels_, sliceCount);
   gl::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -192,9 +191,9 @@ void SceneVectors::reserveTexels(size_t count) {
 }
 
 void SceneVectors::bind(GLuint vectorUnit) const {
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kBase, base_.id());
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, kLength, length_.id());
-  if (texelTexture_.id()) gl::BindTextureUnit(vectorUnit, texelTexture_.id());
+  base_.bindStorage(kBase);
+  length_.bindStorage(kLength);
+  if (texelTexture_.id()) texelTexture_.bind(vectorUnit);
 }
 
 }  // namespace mvr

@@ -1,6 +1,10 @@
 #pragma once
 // Move-only owners of GL object names: one GL object, one small type.
+#include <cstdint>
+#include <string>
+#include <unordered_map>
 #include <utility>
+#include <vector>
 
 #include "mvr/gl/gl_api.h"
 
@@ -55,11 +59,76 @@ struct ShaderTraits {
   static void destroy(GLuint id) { DeleteShader(id); }
 };
 
-using Buffer = Object<BufferTraits>;
 using VertexArray = Object<VertexArrayTraits>;
-using Framebuffer = Object<FramebufferTraits>;
-using Program = Object<ProgramTraits>;
 using Shader = Object<ShaderTraits>;
+
+// A buffer object and what is done with it: bound to an indexed target,
+// read back, written, cleared.
+class Buffer : public Object<BufferTraits> {
+ public:
+  using Object::Object;
+  Buffer(Object&& o) noexcept : Object(std::move(o)) {}
+  static Buffer create() { return Object::create(); }
+  // Binding `index` of the shader storage (or uniform) blocks.
+  void bindStorage(GLuint index) const { BindBufferBase(GL_SHADER_STORAGE_BUFFER, index, id()); }
+  void bindUniform(GLuint index) const { BindBufferBase(GL_UNIFORM_BUFFER, index, id()); }
+  // `bytes` from `offset` into dst (waits for the GPU).
+  void read(size_t offset, size_t bytes, void* dst) const {
+    GetNamedBufferSubData(id(), GLintptr(offset), GLsizeiptr(bytes), dst);
+  }
+  template <class T>
+  T value(size_t index = 0) const {
+    T v{};
+    read(index * sizeof(T), sizeof(T), &v);
+    return v;
+  }
+  template <class T>
+  std::vector<T> values(size_t count, size_t first = 0) const {
+    std::vector<T> v(count);
+    if (count) read(first * sizeof(T), count * sizeof(T), v.data());
+    return v;
+  }
+  void write(size_t offset, size_t bytes, const void* src) const {
+    NamedBufferSubData(id(), GLintptr(offset), GLsizeiptr(bytes), src);
+  }
+  // The first `count` 32-bit words set to `word`.
+  void fill(size_t count, uint32_t word = 0) const {
+    ClearNamedBufferSubData(id(), GL_R32UI, 0, GLsizeiptr(count * sizeof(uint32_t)), GL_RED_INTEGER, GL_UNSIGNED_INT,
+                            &word);
+  }
+};
+
+// A framebuffer and its attachments.
+class Framebuffer : public Object<FramebufferTraits> {
+ public:
+  using Object::Object;
+  Framebuffer(Object&& o) noexcept : Object(std::move(o)) {}
+  static Framebuffer create() { return Object::create(); }
+  void bind() const { BindFramebuffer(GL_FRAMEBUFFER, id()); }
+  // texture 0 detaches.
+  void attach(GLenum attachment, GLuint texture, GLint level = 0) const {
+    NamedFramebufferTexture(id(), attachment, texture, level);
+  }
+  bool complete() const { return CheckNamedFramebufferStatus(id(), GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE; }
+};
+
+// A linked program: made current, and its uniforms' locations looked up
+// once (gl_program.h sets them by name).
+class Program : public Object<ProgramTraits> {
+ public:
+  using Object::Object;
+  Program(Object&& o) noexcept : Object(std::move(o)) {}
+  static Program create() { return Object::create(); }
+  void use() const { UseProgram(id()); }
+  GLint location(const char* name) const {
+    auto [at, added] = locations_.try_emplace(name, -1);
+    if (added) at->second = GetUniformLocation(id(), name);
+    return at->second;
+  }
+
+ private:
+  mutable std::unordered_map<std::string, GLint> locations_;
+};
 
 // Textures need their target at creation.
 class Texture {
@@ -78,6 +147,30 @@ class Texture {
   Texture(const Texture&) = delete;
   Texture& operator=(const Texture&) = delete;
   GLuint id() const { return id_; }
+  explicit operator bool() const { return id_ != 0; }
+  // A 2D texture with one level: filtered by `filter`, clamped at edges.
+  static Texture image2D(GLenum format, int width, int height, GLenum filter = GL_NEAREST) {
+    Texture t(GL_TEXTURE_2D);
+    TextureStorage2D(t.id(), 1, format, width, height);
+    t.filter(filter, filter);
+    t.wrap(GL_CLAMP_TO_EDGE);
+    return t;
+  }
+  // A buffer texture over `buffer` (texelFetch of a samplerBuffer).
+  static Texture overBuffer(GLenum format, GLuint buffer) {
+    Texture t(GL_TEXTURE_BUFFER);
+    TextureBuffer(t.id(), format, buffer);
+    return t;
+  }
+  void filter(GLenum min, GLenum mag) const {
+    TextureParameteri(id_, GL_TEXTURE_MIN_FILTER, GLint(min));
+    TextureParameteri(id_, GL_TEXTURE_MAG_FILTER, GLint(mag));
+  }
+  void wrap(GLenum mode) const {
+    for (GLenum axis : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+      TextureParameteri(id_, axis, GLint(mode));
+  }
+  void bind(GLuint unit) const { BindTextureUnit(unit, id_); }
   void reset() {
     if (id_) DeleteTextures(1, &id_);
     id_ = 0;
@@ -86,6 +179,16 @@ class Texture {
  private:
   GLuint id_ = 0;
 };
+
+// Bindings by name, for objects another type owns (a slice table's
+// buffers, a render target's texture).
+inline void bindStorage(GLuint index, GLuint buffer) { BindBufferBase(GL_SHADER_STORAGE_BUFFER, index, buffer); }
+inline void bindTexture(GLuint unit, GLuint texture) { BindTextureUnit(unit, texture); }
+inline GLint getInteger(GLenum name) {
+  GLint v = 0;
+  GetIntegerv(name, &v);
+  return v;
+}
 
 // A buffer filled once with immutable storage.
 template <class T>

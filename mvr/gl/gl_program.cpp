@@ -72,22 +72,30 @@ std::string glslHeader(std::initializer_list<std::string_view> defines) {
 }
 
 void setUniform(const Program& p, const char* name, int v) {
-  ProgramUniform1i(p.id(), GetUniformLocation(p.id(), name), v);
+  ProgramUniform1i(p.id(), p.location(name), v);
+}
+void setUniform(const Program& p, const char* name, GLuint v) { ProgramUniform1ui(p.id(), p.location(name), v); }
+void setUniform(const Program& p, const char* name, double v) { ProgramUniform1d(p.id(), p.location(name), v); }
+void setUniform(const Program& p, const char* name, const glm::dvec2& v) {
+  ProgramUniform2d(p.id(), p.location(name), v.x, v.y);
+}
+void setUniform(const Program& p, const char* name, std::span<const float> v) {
+  ProgramUniform1fv(p.id(), p.location(name), GLsizei(v.size()), v.data());
 }
 void setUniform(const Program& p, const char* name, float v) {
-  ProgramUniform1f(p.id(), GetUniformLocation(p.id(), name), v);
+  ProgramUniform1f(p.id(), p.location(name), v);
 }
 void setUniform(const Program& p, const char* name, const glm::vec2& v) {
-  ProgramUniform2f(p.id(), GetUniformLocation(p.id(), name), v.x, v.y);
+  ProgramUniform2f(p.id(), p.location(name), v.x, v.y);
 }
 void setUniform(const Program& p, const char* name, const glm::vec3& v) {
-  ProgramUniform3f(p.id(), GetUniformLocation(p.id(), name), v.x, v.y, v.z);
+  ProgramUniform3f(p.id(), p.location(name), v.x, v.y, v.z);
 }
 void setUniform(const Program& p, const char* name, const glm::vec4& v) {
-  ProgramUniform4f(p.id(), GetUniformLocation(p.id(), name), v.x, v.y, v.z, v.w);
+  ProgramUniform4f(p.id(), p.location(name), v.x, v.y, v.z, v.w);
 }
 void setUniform(const Program& p, const char* name, const glm::mat4& v) {
-  ProgramUniformMatrix4fv(p.id(), GetUniformLocation(p.id(), name), 1, GL_FALSE,
+  ProgramUniformMatrix4fv(p.id(), p.location(name), 1, GL_FALSE,
                           glm::value_ptr(v));
 }
 

@@ -238,7 +238,7 @@ void DeferredPipeline::geometry(const glm::dmat4& viewProj, const GBuffer& gbuff
   if (previous) {
     if (!peeling_.id()) peeling_ = geometryProgram("deferred-geometry-peel", kPeelTest);
     program = &peeling_;
-    gl::BindTextureUnit(6, previous->depthTexture());
+    gl::bindTexture(6, previous->depthTexture());
     gl::setUniform(peeling_, "uPeel", peel);
   }
   gl::UseProgram(program->id());
@@ -253,7 +253,7 @@ bool DeferredPipeline::collect(const glm::dmat4& viewProj) {
   for (;;) {
     lists_.beginCollect(width_, height_);
     gl::Disable(GL_DEPTH_TEST);  // every fragment, not the nearest
-    gl::UseProgram(collect_.id());
+    collect_.use();
     gl::setUniform(collect_, "uViewProj", glm::mat4(viewProj));
     buffers_.bind();
     const GLuint condition = std::exchange(condition_, 0);
@@ -278,9 +278,9 @@ void DeferredPipeline::resolve(const GBuffer& gbuffer, const GBuffer* previous, 
   gbuffer.bindForWriting();
   gl::Enable(GL_DEPTH_TEST);
   gl::DepthFunc(GL_ALWAYS);  // the shader picks the fragment the depth test would
-  gl::UseProgram(program.id());
+  program.use();
   if (previous) {
-    gl::BindTextureUnit(6, previous->depthTexture());
+    gl::bindTexture(6, previous->depthTexture());
     gl::setUniform(program, "uPeel", peel);
   }
   lists_.bindForReading();
@@ -296,7 +296,7 @@ void DeferredPipeline::depth(const glm::dmat4& viewProj, const GBuffer& target,
                                                 {GL_FRAGMENT_SHADER, gl::glslHeader() + kDepthFragment}});
   target.bindForWriting();
   gl::Enable(GL_DEPTH_TEST);
-  gl::UseProgram(depth_.id());
+  depth_.use();
   gl::setUniform(depth_, "uViewProj", glm::mat4(viewProj));
   buffers_.bind();
   if (!triangles) return inRows([&] { buffers_.draw(); });
@@ -309,7 +309,7 @@ void DeferredPipeline::lighting(const glm::dmat4& viewProj, const glm::dvec3& ey
   target.bind();
   target.clear();
   gl::Disable(GL_DEPTH_TEST);
-  gl::UseProgram(lighting_.id());
+  lighting_.use();
   gl::setUniform(lighting_, "uInverseViewProj", glm::mat4(glm::inverse(viewProj)));
   gl::setUniform(lighting_, "uEye", glm::vec3(eye));
   gbuffer.bindForReading();

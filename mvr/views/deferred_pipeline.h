@@ -29,9 +29,9 @@ class GBuffer {
   GLuint depthTexture() const { return depth_.id(); }
   GLuint normalTexture() const { return normal_.id(); }
   void bindForReading() const {
-    gl::BindTextureUnit(0, albedo_.id());
-    gl::BindTextureUnit(1, normal_.id());
-    gl::BindTextureUnit(2, depth_.id());
+    albedo_.bind(0);
+    normal_.bind(1);
+    depth_.bind(2);
   }
 
  private:

@@ -83,7 +83,7 @@ void FragmentLists::beginCollect(int width, int height) {
 FragmentLists::Fit FragmentLists::check() {
   gl::MemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   uint32_t count = 0;
-  gl::GetNamedBufferSubData(header_.id(), 0, sizeof count, &count);
+  header_.read(0, sizeof count, &count);
   if (count <= capacity_) return Fit::Fits;
   GLint64 largest = 0;
   gl::GetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &largest);
@@ -97,11 +97,11 @@ FragmentLists::Fit FragmentLists::check() {
 }
 
 void FragmentLists::bindForReading() const {
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, header_.id());
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, heads_.id());
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, surface_.id());
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, normal_.id());
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, link_.id());
+  header_.bindStorage(2);
+  heads_.bindStorage(3);
+  surface_.bindStorage(4);
+  normal_.bindStorage(5);
+  link_.bindStorage(6);
 }
 
 }  // namespace mvr

@@ -122,7 +122,7 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
       drawOutline(cam, peel, outline.id(), 0, &triangles);
       std::vector<PixelOutline>& o = layers[0].outline;
       o.resize(size_t(w) * h);
-      gl::GetNamedBufferSubData(outline.id(), 0, GLsizeiptr(o.size() * sizeof(PixelOutline)), o.data());
+      outline.read(0, GLsizeiptr(o.size() * sizeof(PixelOutline)), o.data());
       for (size_t p = 0; p < o.size(); ++p)
         if (!read[p]) o[p] = PixelOutline{};  // not made from all of its samples' triangles
     }
@@ -236,14 +236,13 @@ class SourceLayerRendererImpl final : public SourceLayerRenderer {
     pipeline_.drawOnlyIf(0);
     pipeline_.depth(p.viewProj, fine_->gbuffer, triangles);
     gl::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    gl::UseProgram(outline_.id());
+    outline_.use();
     gl::setUniform(outline_, "uWidth", w);
     gl::setUniform(outline_, "uSamples", n);
-    gl::ProgramUniform1ui(outline_.id(), gl::GetUniformLocation(outline_.id(), "uFirst"), first);
-    gl::BindTextureUnit(0, fine_->gbuffer.depthTexture());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer);
-    gl::DispatchCompute(uint32_t((w + 63) / 64), uint32_t(h), 1);
-    gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    gl::setUniform(outline_, "uFirst", GLuint(first));
+    gl::bindTexture(0, fine_->gbuffer.depthTexture());
+    gl::bindStorage(0, buffer);
+    gl::dispatch(uint32_t((w + 63) / 64), uint32_t(h), 1, GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   }
 
   struct Fine {
@@ -337,7 +336,7 @@ Image DeviceLayers::readColor(int layer) const {
   if (layer < 0 || layer >= count()) fail("layer store", "no layer " + std::to_string(layer));
   Image image(width_, height_, PixelType::F32);
   const size_t bytes = pixelsPerLayer() * sizeof(glm::vec4);
-  gl::GetNamedBufferSubData(color_.id(), GLintptr(size_t(layer) * bytes), GLsizeiptr(bytes), image.bytes.data());
+  color_.read(GLintptr(size_t(layer) * bytes), GLsizeiptr(bytes), image.bytes.data());
   return image;
 }
 

@@ -326,22 +326,21 @@ GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingC
   gl::Buffer offsets = gl::makeBuffer<uint32_t>(nullptr, size_t(h) + 1);
 
   auto use = [&](const gl::Program& p) {
-    gl::UseProgram(p.id());
+    p.use();
     gl::setUniform(p, "uWidth", w);
     gl::setUniform(p, "uHeight", h);
     gl::setUniform(p, "uLayerCount", count);
     gl::setUniform(p, "uLevels", levels);
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, layers.depthBuffer());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, layers.colorBuffer());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, levels > 1 ? mips_.id() : flags_.id());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, flags_.id());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, layerInfo.id());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, keepInfo.id());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 14, rankInfo.id());
+    gl::bindStorage(0, layers.depthBuffer());
+    gl::bindStorage(1, layers.colorBuffer());
+    gl::bindStorage(2, levels > 1 ? mips_.id() : flags_.id());
+    flags_.bindStorage(3);
+    layerInfo.bindStorage(4);
+    keepInfo.bindStorage(13);
+    rankInfo.bindStorage(14);
   };
   auto overPixels = [&](int width) {
-    gl::DispatchCompute(groups(size_t(width)), uint32_t(h), uint32_t(count));
-    gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    gl::dispatch(groups(size_t(width)), uint32_t(h), uint32_t(count));
   };
   uint32_t coveredPixels = 0;
   if (count > 0) {
@@ -351,7 +350,7 @@ GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingC
       overPixels(w >> l);
     }
     use(flag_);
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, covered.id());
+    covered.bindStorage(5);
     overPixels(w);
   }
   // offsets[j]: the slot of scanline j's first run (flags run in
@@ -360,9 +359,8 @@ GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingC
   // The one readback: the offsets (for the buffers' sizes and the
   // rasterizer's batches) and the covered pixel count.
   std::vector<uint32_t> hostOffsets(size_t(h) + 1);
-  gl::GetNamedBufferSubData(offsets.id(), 0, GLsizeiptr(hostOffsets.size() * sizeof(uint32_t)),
-                            hostOffsets.data());
-  gl::GetNamedBufferSubData(covered.id(), 0, sizeof(uint32_t), &coveredPixels);
+  offsets.read(0, GLsizeiptr(hostOffsets.size() * sizeof(uint32_t)), hostOffsets.data());
+  covered.read(0, sizeof(uint32_t), &coveredPixels);
 
   const size_t slices = hostOffsets.back();
   GpuVertices v;
@@ -386,21 +384,19 @@ GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingC
     const CameraSpec& s = cam.spec();
     const double n = s.nearDistance, f = s.farDistance, D = s.distance;
     auto at = [&](const char* name) { return gl::GetUniformLocation(fill_.id(), name); };
-    gl::ProgramUniform2d(fill_.id(), at("uZOverW"), D * (f - n) / (n * f), D / f - 1.0);
-    gl::ProgramUniform2d(fill_.id(), at("uInvW"), (f - n) / (n * f), 1.0 / f);
+    gl::setUniform(fill_, "uZOverW", glm::dvec2(D * (f - n) / (n * f), D / f - 1.0));
+    gl::setUniform(fill_, "uInvW", glm::dvec2((f - n) / (n * f), 1.0 / f));
     const int views = cam.views();
-    gl::ProgramUniform1d(fill_.id(), at("uStepPerZOverW"),
-                         views > 1 ? (left - cam.viewX(views - 1)) * perPlane / (views - 1) : 0.0);
+    gl::setUniform(fill_, "uStepPerZOverW", double(views > 1 ? (left - cam.viewX(views - 1)) * perPlane / (views - 1) : 0.0));
     gl::setUniform(fill_, "uOwnTexels", levels > 1 ? 1 : 0);
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, table.id());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, v.records.id());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, v.triangles.id());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, v.vectors.id());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, v.texelBuffer);
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, layers.outlineBuffer());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, outlinedInfo.id());
-    gl::DispatchCompute(groups(size_t(w)), uint32_t(h), uint32_t(count));
-    gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    table.bindStorage(6);
+    v.records.bindStorage(7);
+    v.triangles.bindStorage(8);
+    v.vectors.bindStorage(9);
+    gl::bindStorage(10, v.texelBuffer);
+    gl::bindStorage(11, layers.outlineBuffer());
+    outlinedInfo.bindStorage(12);
+    gl::dispatch(groups(size_t(w)), uint32_t(h), uint32_t(count), GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   }
   gl::checkError("GPU image slicing");
   return {std::move(v), GpuSliceTable::adopt(std::move(table), std::move(offsets), std::move(hostOffsets)),

@@ -13,15 +13,15 @@ GpuSliceTable GpuSliceTable::upload(const SliceTable& table) {
 SliceTable GpuSliceTable::download() const {
   std::vector<uint32_t> offsets(size_t(height_) + 1);
   std::vector<Slice> slices(count_);
-  gl::GetNamedBufferSubData(offsets_.id(), 0, GLsizeiptr(offsets.size() * sizeof(uint32_t)), offsets.data());
+  offsets_.read(0, GLsizeiptr(offsets.size() * sizeof(uint32_t)), offsets.data());
   if (count_ > 0)
-    gl::GetNamedBufferSubData(slices_.id(), 0, GLsizeiptr(count_ * sizeof(Slice)), slices.data());
+    slices_.read(0, GLsizeiptr(count_ * sizeof(Slice)), slices.data());
   return SliceTable::fromArrays(std::move(offsets), std::move(slices));
 }
 
 void GpuSliceTable::bind(GLuint slicesBinding, GLuint offsetsBinding) const {
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, slicesBinding, slices_.id());
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, offsetsBinding, offsets_.id());
+  slices_.bindStorage(slicesBinding);
+  offsets_.bindStorage(offsetsBinding);
 }
 
 }  // namespace mvr

@@ -113,20 +113,19 @@ GpuSliceTable GpuSlicer::build(GLuint ys, GLuint tris, uint32_t triangles, int h
   gl::Buffer offsets = gl::makeBuffer<uint32_t>(nullptr, size_t(height) + 1);
 
   auto use = [&](const gl::Program& p) {
-    gl::UseProgram(p.id());
-    gl::ProgramUniform1ui(p.id(), gl::GetUniformLocation(p.id(), "uTriangleCount"), triangles);
-    gl::ProgramUniform1ui(p.id(), gl::GetUniformLocation(p.id(), "uBlocks"), blocks);
-    gl::ProgramUniform1ui(p.id(), gl::GetUniformLocation(p.id(), "uPerBlock"), perBlock);
+    p.use();
+    gl::setUniform(p, "uTriangleCount", GLuint(triangles));
+    gl::setUniform(p, "uBlocks", GLuint(blocks));
+    gl::setUniform(p, "uPerBlock", GLuint(perBlock));
     gl::setUniform(p, "uFirst", lines.begin);
     gl::setUniform(p, "uLast", lines.end);
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, ys);
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, tris);
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, cells.id());
+    gl::bindStorage(0, ys);
+    gl::bindStorage(1, tris);
+    cells.bindStorage(2);
   };
   gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // the clear
   use(count_);
-  gl::DispatchCompute(groups(blocks), 1, 1);
-  gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  gl::dispatch(groups(blocks), 1, 1);
   // offsets[j]: the first slot of scanline j's first cell; offsets[height]:
   // the slice count.
   prefixSum_.exclusiveRows(cells.id(), uint32_t(height), blocks, offsets.id());
@@ -134,13 +133,12 @@ GpuSliceTable GpuSlicer::build(GLuint ys, GLuint tris, uint32_t triangles, int h
   // The one readback: height + 1 offsets, for the slices buffer's size and
   // the rasterizer's batches.
   std::vector<uint32_t> hostOffsets(size_t(height) + 1);
-  gl::GetNamedBufferSubData(offsets.id(), 0, GLsizeiptr(hostOffsets.size() * sizeof(uint32_t)), hostOffsets.data());
+  offsets.read(0, GLsizeiptr(hostOffsets.size() * sizeof(uint32_t)), hostOffsets.data());
   gl::Buffer slices = gl::makeBuffer<Slice>(nullptr, hostOffsets.back());
   if (hostOffsets.back() > 0) {
     use(fill_);
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, slices.id());
-    gl::DispatchCompute(groups(blocks), 1, 1);
-    gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    slices.bindStorage(5);
+    gl::dispatch(groups(blocks), 1, 1);
   }
   gl::checkError("GPU slicing");
   return GpuSliceTable::adopt(std::move(slices), std::move(offsets), std::move(hostOffsets));

@@ -203,20 +203,18 @@ std::vector<LayerVisibility> GpuVisibility::hide(DeviceLayers& layers, const She
   const std::vector<uint32_t> zeros(2 * size_t(count), 0);
   const gl::Buffer counts = gl::makeBuffer(zeros.data(), zeros.size(), GL_DYNAMIC_STORAGE_BIT);
   const GLuint buffers[] = {layers.depthBuffer(), fronts.id(), motions.id(), prefix_.id(), range.id(), counts.id()};
-  for (GLuint i = 0; i < 6; ++i) gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i]);
+  for (GLuint i = 0; i < 6; ++i) gl::bindStorage(i, buffers[i]);
   for (const gl::Program* p : {&rows_, &hide_}) {
     gl::setUniform(*p, "uWidth", w);
     gl::setUniform(*p, "uHeight", h);
     gl::setUniform(*p, "uOverlap", overlap);
   }
-  gl::UseProgram(rows_.id());
-  gl::DispatchCompute(uint32_t((h + 63) / 64), uint32_t(count), 1);
-  gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-  gl::UseProgram(hide_.id());
-  gl::DispatchCompute(uint32_t((w + 63) / 64), uint32_t(h), uint32_t(count));
-  gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  rows_.use();
+  gl::dispatch(uint32_t((h + 63) / 64), uint32_t(count), 1);
+  hide_.use();
+  gl::dispatch(uint32_t((w + 63) / 64), uint32_t(h), uint32_t(count), GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   std::vector<uint32_t> out(zeros.size());
-  gl::GetNamedBufferSubData(counts.id(), 0, GLsizeiptr(out.size() * sizeof(uint32_t)), out.data());
+  counts.read(0, GLsizeiptr(out.size() * sizeof(uint32_t)), out.data());
   gl::checkError("GPU visibility");
   std::vector<LayerVisibility> result(static_cast<size_t>(count));
   for (size_t k = 0; k < result.size(); ++k) result[k] = {long(out[2 * k]), long(out[2 * k + 1])};
@@ -253,7 +251,7 @@ long GpuVisibility::holes(const DeviceLayers& layers, const std::vector<uint8_t>
   const uint32_t start[3] = {std::bit_cast<uint32_t>(1.0f), 0u, 0u};
   const gl::Buffer result = gl::makeBuffer(start, 3, GL_DYNAMIC_STORAGE_BIT);
   const GLuint buffers[] = {layers.depthBuffer(), roleBuffer.id(), eyeBuffer.id(), covered_.id(), result.id()};
-  for (GLuint i = 0; i < 5; ++i) gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, i, buffers[i]);
+  for (GLuint i = 0; i < 5; ++i) gl::bindStorage(i, buffers[i]);
   const CameraSpec& s = cam.spec();
   const TrackParallax parallax(cam);
   for (const gl::Program* p : {&range_, &splat_, &gaps_}) {
@@ -270,14 +268,12 @@ long GpuVisibility::holes(const DeviceLayers& layers, const std::vector<uint8_t>
   }
   for (const gl::Program* p : {&range_, &splat_}) {
     gl::UseProgram(p->id());
-    gl::DispatchCompute(uint32_t((w + 63) / 64), uint32_t(h), uint32_t(count));
-    gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    gl::dispatch(uint32_t((w + 63) / 64), uint32_t(h), uint32_t(count));
   }
-  gl::UseProgram(gaps_.id());
-  gl::DispatchCompute(uint32_t((h + 63) / 64), 1, 1);
-  gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  gaps_.use();
+  gl::dispatch(uint32_t((h + 63) / 64), 1, 1, GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   uint32_t out[3] = {0, 0, 0};
-  gl::GetNamedBufferSubData(result.id(), 0, sizeof out, out);
+  result.read(0, sizeof out, out);
   gl::checkError("GPU hole count");
   return long(out[2]);
 }

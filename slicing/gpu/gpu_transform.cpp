@@ -98,12 +98,11 @@ const GpuVertices& GpuExtremeTransform::transform(const ShearingCamera& cam, int
   gl::setUniform(program_, "uExtras", extraCount_);
   gl::ProgramUniform1ui(p, gl::GetUniformLocation(p, "uCount"), uint32_t(vertices_.vertexCount));
   gl::UseProgram(p);
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, positions_.id());
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, shading_.id());
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, vertices_.records.id());
-  gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, y_.id());
-  gl::DispatchCompute(uint32_t((vertices_.vertexCount + 63) / 64), 1, 1);
-  gl::MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  positions_.bindStorage(0);
+  shading_.bindStorage(1);
+  vertices_.records.bindStorage(2);
+  y_.bindStorage(3);
+  gl::dispatch(uint32_t((vertices_.vertexCount + 63) / 64), 1, 1);
   gl::checkError("GPU extreme transform");
   return vertices_;
 }

@@ -195,7 +195,7 @@ class SvrRenderer final : public Renderer {
     // window-CW: declare CW as front so gl_FrontFacing means camera-facing.
     gl::FrontFace(GL_CW);
     target.bind();
-    gl::UseProgram(program_.id());
+    program_.use();
     materials_.bind(0);
     buffers_.bind();
     renderEachView(cam, target, sink, stats, [&](int row, int view) {
@@ -255,13 +255,13 @@ class LayeredSvrRenderer final : public Renderer {
       }
     gl::Buffer views = gl::makeBuffer(matrices.data(), matrices.size());
     gl::Buffer eyeBuffer = gl::makeBuffer(eyes.data(), eyes.size());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, views.id());
-    gl::BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, eyeBuffer.id());
+    views.bindStorage(0);
+    eyeBuffer.bindStorage(2);
     materials_.bind(0);
     setDepthConvention();
     gl::FrontFace(GL_CW);
     target.bind();
-    gl::UseProgram(program_.id());
+    program_.use();
     buffers_.bind();
     const int total = int(matrices.size());
     const size_t layerBytes = size_t(cam.width()) * cam.height() * 4 * Image::channelBytes(type_);

@@ -317,9 +317,9 @@ void DepthWarp::warp(const WarpReference& ref, const WarpReference* other, const
   const float zero[4] = {0, 0, 0, 0};
   if (clearColor) gl::ClearNamedFramebufferfv(into.fbo.id(), GL_COLOR, 0, zero);
   gl::ClearNamedFramebufferfi(into.fbo.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
-  gl::BindTextureUnit(0, ref.color.id());
-  gl::BindTextureUnit(1, ref.depth.id());
-  gl::BindTextureUnit(2, ref.label.id());
+  ref.color.bind(0);
+  ref.depth.bind(1);
+  ref.label.bind(2);
   for (const gl::Program* p : {&warp_, &warpSheet_}) {
     gl::setUniform(*p, "uPixelToWorld", ref.pixelToWorld);
     setMatrix(*p, "uViewProjection", view.viewProjection);
@@ -328,17 +328,17 @@ void DepthWarp::warp(const WarpReference& ref, const WarpReference* other, const
   gl::VertexArrayElementBuffer(grid_.id(), ref.triangles.id());
   // The surfaces, then the rubber sheets, tested against the other
   // reference where there is one.
-  gl::UseProgram(warp_.id());
+  warp_.use();
   const size_t sheets = other ? ref.sheetIndexStart : ref.triangleIndexCount;
   if (sheets) gl::DrawElements(GL_TRIANGLES, GLsizei(sheets), GL_UNSIGNED_INT, nullptr);
   if (sheets < ref.triangleIndexCount) {
-    gl::UseProgram(warpSheet_.id());
-    gl::BindTextureUnit(4, other->depth.id());
+    warpSheet_.use();
+    other->depth.bind(4);
     gl::setUniform(warpSheet_, "uOtherWorldToPixel", glm::inverse(other->pixelToWorld));
     gl::setUniform(warpSheet_, "uEye", glm::vec3(view.center));
     gl::DrawElements(GL_TRIANGLES, GLsizei(ref.triangleIndexCount - sheets), GL_UNSIGNED_INT,
                      reinterpret_cast<const void*>(sheets * sizeof(uint32_t)));
-    gl::UseProgram(warp_.id());
+    warp_.use();
   }
   if (!ref.splatIndexCount) return;
   gl::BindVertexArray(splats_.id());
@@ -395,16 +395,16 @@ void DepthWarp::render(const WarpReference& a, const WarpReference* b, const War
   if (b) warp(*b, &a, view, warped_[1], false);
   target.bind();
   target.clear();
-  gl::UseProgram(composite_.id());
+  composite_.use();
   gl::setUniform(composite_, "uTwo", b ? 1 : 0);
   setMatrix(composite_, "uPixelToWorld", view.pixelToWorld);
   gl::setUniform(composite_, "uCenter", glm::vec3(view.center));
   gl::setUniform(composite_, "uCenter0", a.center);
   gl::setUniform(composite_, "uCenter1", b ? b->center : a.center);
-  gl::BindTextureUnit(0, warped_[0].color.id());
-  gl::BindTextureUnit(1, warped_[0].zbuffer.id());
-  gl::BindTextureUnit(2, warped_[1].color.id());
-  gl::BindTextureUnit(3, warped_[1].zbuffer.id());
+  warped_[0].color.bind(0);
+  warped_[0].zbuffer.bind(1);
+  warped_[1].color.bind(2);
+  warped_[1].zbuffer.bind(3);
   gl::BindVertexArray(empty_.id());
   // The target's colour alone, so no depth test (kComposite).
   gl::BindFramebuffer(GL_FRAMEBUFFER, over_.id());
