@@ -131,10 +131,8 @@ gl::Texture uploadLayers(GLenum target, int size, int depth, const std::vector<u
   gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
   gl::TextureSubImage3D(tex.id(), 0, 0, 0, 0, size, size, depth, GL_RGBA, GL_UNSIGNED_BYTE,
                         texels.data());
-  gl::TextureParameteri(tex.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  gl::TextureParameteri(tex.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  gl::TextureParameteri(tex.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  gl::TextureParameteri(tex.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  tex.filter(GL_LINEAR, GL_LINEAR);
+  tex.wrap(GL_CLAMP_TO_EDGE);
   gl::checkError("uploading reflection maps");
   return tex;
 }

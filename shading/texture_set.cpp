@@ -104,10 +104,8 @@ gl::Texture TextureSet::upload() const {
   for (int l = 0; l < levels(); ++l)
     gl::TextureSubImage3D(tex.id(), l, 0, 0, 0, levelSize_[l].x, levelSize_[l].y, layers_, GL_RGBA,
                           GL_UNSIGNED_BYTE, levels_[l].data());
-  gl::TextureParameteri(tex.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  gl::TextureParameteri(tex.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  gl::TextureParameteri(tex.id(), GL_TEXTURE_WRAP_S, GL_REPEAT);
-  gl::TextureParameteri(tex.id(), GL_TEXTURE_WRAP_T, GL_REPEAT);
+  tex.filter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
+  tex.wrap(GL_REPEAT);
   gl::checkError("uploading textures");
   return tex;
 }

@@ -416,16 +416,11 @@ void EpiPass::begin(const glm::vec2& scale, const glm::vec3& eye0, const glm::ve
 }
 
 void EpiPass::bindVertices(GLuint vertices, GLuint indices) const {
-  const GLuint vao = vao_.id();
-  gl::VertexArrayVertexBuffer(vao, 0, vertices, 0, GLsizei(stride() * sizeof(float)));
-  gl::VertexArrayElementBuffer(vao, indices);
-  for (int offset = 0; offset < stride(); offset += 4) {  // every attribute is a vec4
-    const GLuint loc = GLuint(offset / 4);
-    gl::VertexArrayAttribFormat(vao, loc, 4, GL_FLOAT, GL_FALSE, GLuint(offset * sizeof(float)));
-    gl::VertexArrayAttribBinding(vao, loc, 0);
-    gl::EnableVertexArrayAttrib(vao, loc);
-  }
-  gl::BindVertexArray(vao);
+  vao_.vertexBuffer(vertices, GLsizei(stride() * sizeof(float)));
+  vao_.elementBuffer(indices);
+  for (int offset = 0; offset < stride(); offset += 4)  // every attribute is a vec4
+    vao_.attribute(GLuint(offset / 4), 4, GLuint(offset * sizeof(float)));
+  vao_.bind();
 }
 
 }  // namespace mvr

@@ -251,8 +251,7 @@ class GlRasterizer final : public EpiRasterizer {
     if (!pass.linear()) return {};
     vectorTexels_ += vectors_.texels().size();
     gl::Buffer buffer = gl::makeBuffer(vectors_.texels().data(), std::max<size_t>(1, vectors_.texels().size()));
-    vectorTexture_ = gl::Texture(GL_TEXTURE_BUFFER);
-    gl::TextureBuffer(vectorTexture_.id(), GL_RGBA32F, buffer.id());
+    vectorTexture_ = gl::Texture::overBuffer(GL_RGBA32F, buffer.id());
     vectorTexture_.bind(EpiPass::kVectorUnit);
     return buffer;
   }

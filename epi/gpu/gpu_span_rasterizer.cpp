@@ -244,8 +244,7 @@ class GpuSpanRasterizer final : public EpiRasterizer {
       fail("--pst spans", "GPU spans shade diffuse scenes only (this one needs " + shading.plan.passNames() +
                               "); use exact");
     recordStride_ = GpuVertices::kRecordHead + shading.plan.extraCount;
-    GLint shared = 0;
-    gl::GetIntegerv(GL_MAX_COMPUTE_SHARED_MEMORY_SIZE, &shared);
+    const GLint shared = gl::getInteger(GL_MAX_COMPUTE_SHARED_MEMORY_SIZE);
     tile_ = int(std::min<GLint>(shared, 48 << 10) / 8);  // two uints per pixel
     std::string defines = "#define TILE " + std::to_string(tile_) + "\n";
     if (type == PixelType::F32) defines += "#define FLOAT_OUT\n";
@@ -256,7 +255,7 @@ class GpuSpanRasterizer final : public EpiRasterizer {
     program_ = gl::linkProgram("epi-spans", {{GL_COMPUTE_SHADER, gl::glslHeader() + defines + library + kSpans}});
     if (type == PixelType::Srgb8) {
       const auto& upper = detail::srgb8Table().upper;
-      gl::ProgramUniform1fv(program_.id(), gl::GetUniformLocation(program_.id(), "uSrgbUpper"), 255, upper.data());
+      gl::setUniform(program_, "uSrgbUpper", std::span<const float>(upper.data(), 255));
     }
   }
 
@@ -370,13 +369,11 @@ class GpuSpanRasterizer final : public EpiRasterizer {
   // Image slices' vectors and their texels (a buffer texture, as the GL
   // passes sample them).
   void bindVectors(const GpuVertices& v) {
-    GLint limit = 0;
-    gl::GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &limit);
+    const GLint limit = gl::getInteger(GL_MAX_TEXTURE_BUFFER_SIZE);
     if (v.texelCount > size_t(limit))
       fail("GPU spans", "the row's " + std::to_string(v.texelCount) + " vector texels pass the GL's texture-buffer limit of " +
                             std::to_string(limit));
-    texels_ = gl::Texture(GL_TEXTURE_BUFFER);
-    gl::TextureBuffer(texels_.id(), GL_RGBA32F, v.texelBuffer);
+    texels_ = gl::Texture::overBuffer(GL_RGBA32F, v.texelBuffer);
     texels_.bind(kTexelUnit);
     v.vectors.bindStorage(kVectors);
   }

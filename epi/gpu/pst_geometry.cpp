@@ -279,18 +279,16 @@ void PstGeometry::bindVectors() const {
 }
 
 void PstGeometry::viewTexels(const GpuVertices& v) {
-  GLint limit = 0;
-  gl::GetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &limit);
+  const GLint limit = gl::getInteger(GL_MAX_TEXTURE_BUFFER_SIZE);
   if (v.texelCount > size_t(limit))
     fail("PstGeometry", "the row's " + std::to_string(v.texelCount) +
                             " vector texels pass the GL's texture-buffer limit of " + std::to_string(limit));
-  texels_ = gl::Texture(GL_TEXTURE_BUFFER);
-  gl::TextureBuffer(texels_.id(), GL_RGBA32F, v.texelBuffer);
+  texels_ = gl::Texture::overBuffer(GL_RGBA32F, v.texelBuffer);
 }
 
 void PstGeometry::draw() const {
   if (sliceCount_ == 0) return;
-  gl::BindVertexArray(vao_.id());
+  vao_.bind();
   gl::BindBuffer(GL_DRAW_INDIRECT_BUFFER, indirect_.id());
   gl::DrawArraysIndirect(GL_TRIANGLES, nullptr);
   gl::BindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);

@@ -186,8 +186,7 @@ void SceneVectors::reserveTexels(size_t count) {
                              std::to_string(limit));
   texelCapacity_ = std::min(limit, count + count / 4);
   texels_ = gl::makeBuffer<glm::vec4>(nullptr, texelCapacity_);
-  texelTexture_ = gl::Texture(GL_TEXTURE_BUFFER);
-  gl::TextureBuffer(texelTexture_.id(), GL_RGBA32F, texels_.id());
+  texelTexture_ = gl::Texture::overBuffer(GL_RGBA32F, texels_.id());
 }
 
 void SceneVectors::bind(GLuint vectorUnit) const {

@@ -1,6 +1,8 @@
 #pragma once
 // Move-only owners of GL object names: one GL object, one small type.
 #include <cstdint>
+#include <initializer_list>
+#include <iterator>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -59,7 +61,6 @@ struct ShaderTraits {
   static void destroy(GLuint id) { DeleteShader(id); }
 };
 
-using VertexArray = Object<VertexArrayTraits>;
 using Shader = Object<ShaderTraits>;
 
 // A buffer object and what is done with it: bound to an indexed target,
@@ -98,6 +99,26 @@ class Buffer : public Object<BufferTraits> {
   }
 };
 
+// A vertex array: its buffers and float attributes, bound for drawing.
+class VertexArray : public Object<VertexArrayTraits> {
+ public:
+  using Object::Object;
+  VertexArray(Object&& o) noexcept : Object(std::move(o)) {}
+  static VertexArray create() { return Object::create(); }
+  void bind() const { BindVertexArray(id()); }
+  void vertexBuffer(GLuint buffer, GLsizei stride, GLuint binding = 0, GLintptr offset = 0) const {
+    VertexArrayVertexBuffer(id(), binding, buffer, offset, stride);
+  }
+  void elementBuffer(GLuint buffer) const { VertexArrayElementBuffer(id(), buffer); }
+  // Attribute `index`: `components` floats at `offset` bytes into a vertex
+  // of `binding`, enabled.
+  void attribute(GLuint index, GLint components, GLuint offset, GLuint binding = 0) const {
+    VertexArrayAttribFormat(id(), index, components, GL_FLOAT, GL_FALSE, offset);
+    VertexArrayAttribBinding(id(), index, binding);
+    EnableVertexArrayAttrib(id(), index);
+  }
+};
+
 // A framebuffer and its attachments.
 class Framebuffer : public Object<FramebufferTraits> {
  public:
@@ -110,6 +131,9 @@ class Framebuffer : public Object<FramebufferTraits> {
     NamedFramebufferTexture(id(), attachment, texture, level);
   }
   bool complete() const { return CheckNamedFramebufferStatus(id(), GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE; }
+  void drawBuffers(std::initializer_list<GLenum> buffers) const {
+    NamedFramebufferDrawBuffers(id(), GLsizei(buffers.size()), std::data(buffers));
+  }
 };
 
 // A linked program: made current, and its uniforms' locations looked up
@@ -171,6 +195,9 @@ class Texture {
       TextureParameteri(id_, axis, GLint(mode));
   }
   void bind(GLuint unit) const { BindTextureUnit(unit, id_); }
+  void storage2D(GLenum format, int width, int height, int levels = 1) const {
+    TextureStorage2D(id_, levels, format, width, height);
+  }
   void reset() {
     if (id_) DeleteTextures(1, &id_);
     id_ = 0;

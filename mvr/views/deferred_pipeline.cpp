@@ -160,15 +160,14 @@ void main() {
 GBuffer::GBuffer(int w, int h, bool exactAlbedo)
     : width_(w), height_(h), albedo_(GL_TEXTURE_2D), normal_(GL_TEXTURE_2D), depth_(GL_TEXTURE_2D),
       fbo_(gl::Framebuffer::create()) {
-  gl::TextureStorage2D(albedo_.id(), 1, exactAlbedo ? GL_RGBA32F : GL_RGBA8, w, h);
-  gl::TextureStorage2D(normal_.id(), 1, GL_RGBA16F, w, h);
-  gl::TextureStorage2D(depth_.id(), 1, GL_DEPTH_COMPONENT32F, w, h);
-  gl::NamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT0, albedo_.id(), 0);
-  gl::NamedFramebufferTexture(fbo_.id(), GL_COLOR_ATTACHMENT1, normal_.id(), 0);
-  gl::NamedFramebufferTexture(fbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
-  const GLenum buffers[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-  gl::NamedFramebufferDrawBuffers(fbo_.id(), 2, buffers);
-  if (gl::CheckNamedFramebufferStatus(fbo_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+  albedo_.storage2D(exactAlbedo ? GL_RGBA32F : GL_RGBA8, w, h);
+  normal_.storage2D(GL_RGBA16F, w, h);
+  depth_.storage2D(GL_DEPTH_COMPONENT32F, w, h);
+  fbo_.attach(GL_COLOR_ATTACHMENT0, albedo_.id(), 0);
+  fbo_.attach(GL_COLOR_ATTACHMENT1, normal_.id(), 0);
+  fbo_.attach(GL_DEPTH_ATTACHMENT, depth_.id(), 0);
+  fbo_.drawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1});
+  if (!fbo_.complete())
     fail("GL", "G-buffer is incomplete");
 }
 
@@ -176,16 +175,15 @@ GBuffer GBuffer::depthOnly(int width, int height) { return GBuffer(width, height
 
 GBuffer::GBuffer(int w, int h, DepthOnly)
     : width_(w), height_(h), depth_(GL_TEXTURE_2D), fbo_(gl::Framebuffer::create()), colour_(false) {
-  gl::TextureStorage2D(depth_.id(), 1, GL_DEPTH_COMPONENT32F, w, h);
-  gl::NamedFramebufferTexture(fbo_.id(), GL_DEPTH_ATTACHMENT, depth_.id(), 0);
-  const GLenum none = GL_NONE;
-  gl::NamedFramebufferDrawBuffers(fbo_.id(), 1, &none);
-  if (gl::CheckNamedFramebufferStatus(fbo_.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+  depth_.storage2D(GL_DEPTH_COMPONENT32F, w, h);
+  fbo_.attach(GL_DEPTH_ATTACHMENT, depth_.id(), 0);
+  fbo_.drawBuffers({GL_NONE});
+  if (!fbo_.complete())
     fail("GL", "depth-only G-buffer is incomplete");
 }
 
 void GBuffer::bindForWriting() const {
-  gl::BindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+  fbo_.bind();
   gl::Viewport(0, 0, width_, height_);
   const float zero[4] = {0, 0, 0, 0};
   if (colour_) {
@@ -241,7 +239,7 @@ void DeferredPipeline::geometry(const glm::dmat4& viewProj, const GBuffer& gbuff
     gl::bindTexture(6, previous->depthTexture());
     gl::setUniform(peeling_, "uPeel", peel);
   }
-  gl::UseProgram(program->id());
+  program->use();
   gl::setUniform(*program, "uViewProj", glm::mat4(viewProj));
   buffers_.bind();
   inRows([&] { buffers_.draw(); });
@@ -284,7 +282,7 @@ void DeferredPipeline::resolve(const GBuffer& gbuffer, const GBuffer* previous, 
     gl::setUniform(program, "uPeel", peel);
   }
   lists_.bindForReading();
-  gl::BindVertexArray(emptyVao_.id());
+  emptyVao_.bind();
   inRows([] { gl::DrawArrays(GL_TRIANGLES, 0, 3); });
   gl::DepthFunc(GL_GREATER);
 }
@@ -313,7 +311,7 @@ void DeferredPipeline::lighting(const glm::dmat4& viewProj, const glm::dvec3& ey
   gl::setUniform(lighting_, "uInverseViewProj", glm::mat4(glm::inverse(viewProj)));
   gl::setUniform(lighting_, "uEye", glm::vec3(eye));
   gbuffer.bindForReading();
-  gl::BindVertexArray(emptyVao_.id());
+  emptyVao_.bind();
   inRows([] { gl::DrawArrays(GL_TRIANGLES, 0, 3); });
 }
 

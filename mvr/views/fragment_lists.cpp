@@ -76,7 +76,7 @@ void FragmentLists::beginCollect(int width, int height) {
   gl::ClearNamedBufferSubData(heads_.id(), GL_RG32UI, 0, GLsizeiptr(pixels * sizeof empty), GL_RG_INTEGER,
                               GL_UNSIGNED_INT, empty);
   bindForReading();
-  gl::BindFramebuffer(GL_FRAMEBUFFER, fbo_.id());
+  fbo_.bind();
   gl::Viewport(0, 0, width, height);
 }
 

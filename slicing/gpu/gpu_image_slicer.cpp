@@ -383,7 +383,6 @@ GpuImageSlices GpuImageSlicer::build(const DeviceLayers& layers, const ShearingC
     gl::setUniform(fill_, "uOverlap", options.overlap);
     const CameraSpec& s = cam.spec();
     const double n = s.nearDistance, f = s.farDistance, D = s.distance;
-    auto at = [&](const char* name) { return gl::GetUniformLocation(fill_.id(), name); };
     gl::setUniform(fill_, "uZOverW", glm::dvec2(D * (f - n) / (n * f), D / f - 1.0));
     gl::setUniform(fill_, "uInvW", glm::dvec2((f - n) / (n * f), 1.0 / f));
     const int views = cam.views();

@@ -107,9 +107,7 @@ GpuSliceTable GpuSlicer::build(GLuint ys, GLuint tris, uint32_t triangles, int h
   const size_t cellCount = size_t(blocks) * height;
 
   gl::Buffer cells = gl::makeBuffer<uint32_t>(nullptr, cellCount, GL_DYNAMIC_STORAGE_BIT);
-  const uint32_t zero = 0;
-  gl::ClearNamedBufferSubData(cells.id(), GL_R32UI, 0, GLsizeiptr(cellCount * sizeof(uint32_t)), GL_RED_INTEGER,
-                              GL_UNSIGNED_INT, &zero);
+  cells.fill(cellCount);
   gl::Buffer offsets = gl::makeBuffer<uint32_t>(nullptr, size_t(height) + 1);
 
   auto use = [&](const gl::Program& p) {

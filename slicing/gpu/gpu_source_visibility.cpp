@@ -169,7 +169,7 @@ gl::Program holesPass(const char* name, const char* define) {
 }
 
 void setDouble(const gl::Program& p, const char* name, double v) {
-  gl::ProgramUniform1d(p.id(), gl::GetUniformLocation(p.id(), name), v);
+  gl::setUniform(p, name, v);
 }
 
 }  // namespace
@@ -244,9 +244,7 @@ long GpuVisibility::holes(const DeviceLayers& layers, const std::vector<uint8_t>
     covered_ = gl::makeBuffer<uint32_t>(nullptr, pixels);
     coveredSize_ = pixels;
   }
-  const uint32_t zero = 0;
-  gl::ClearNamedBufferSubData(covered_.id(), GL_R32UI, 0, GLsizeiptr(pixels * sizeof(uint32_t)), GL_RED_INTEGER,
-                              GL_UNSIGNED_INT, &zero);
+  covered_.fill(pixels);
   // countHoles starts its range at lo = 1, hi = 0.
   const uint32_t start[3] = {std::bit_cast<uint32_t>(1.0f), 0u, 0u};
   const gl::Buffer result = gl::makeBuffer(start, 3, GL_DYNAMIC_STORAGE_BIT);
@@ -267,7 +265,7 @@ long GpuVisibility::holes(const DeviceLayers& layers, const std::vector<uint8_t>
     setDouble(*p, "uPixelsPerDepth", parallax.pixelsPerDepth());
   }
   for (const gl::Program* p : {&range_, &splat_}) {
-    gl::UseProgram(p->id());
+    p->use();
     gl::dispatch(uint32_t((w + 63) / 64), uint32_t(h), uint32_t(count));
   }
   gaps_.use();

@@ -82,8 +82,7 @@ bool GpuExtremeTransform::needsNoClipping(const Bounds& b, const ShearingCamera&
 
 const GpuVertices& GpuExtremeTransform::transform(const ShearingCamera& cam, int row) {
   const CameraSpec& s = cam.spec();
-  const GLuint p = program_.id();
-  auto set = [&](const char* name, double v) { gl::ProgramUniform1d(p, gl::GetUniformLocation(p, name), v); };
+  auto set = [&](const char* name, double v) { gl::setUniform(program_, name, v); };
   set("uD", s.distance);
   set("uNear", s.nearDistance);
   set("uFar", s.farDistance);
@@ -96,8 +95,8 @@ const GpuVertices& GpuExtremeTransform::transform(const ShearingCamera& cam, int
   set("uHeight", cam.height());
   gl::setUniform(program_, "uViews", cam.views());
   gl::setUniform(program_, "uExtras", extraCount_);
-  gl::ProgramUniform1ui(p, gl::GetUniformLocation(p, "uCount"), uint32_t(vertices_.vertexCount));
-  gl::UseProgram(p);
+  gl::setUniform(program_, "uCount", GLuint(vertices_.vertexCount));
+  program_.use();
   positions_.bindStorage(0);
   shading_.bindStorage(1);
   vertices_.records.bindStorage(2);

@@ -182,16 +182,6 @@ void main() {
 }
 )";
 
-gl::Texture texture2D(GLenum format, int w, int h, GLenum filter) {
-  gl::Texture t(GL_TEXTURE_2D);
-  gl::TextureStorage2D(t.id(), 1, format, w, h);
-  gl::TextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, filter);
-  gl::TextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, filter);
-  gl::TextureParameteri(t.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  gl::TextureParameteri(t.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  return t;
-}
-
 void setMatrix(const gl::Program& p, const char* name, const glm::dmat4& m) { gl::setUniform(p, name, glm::mat4(m)); }
 
 }  // namespace
@@ -223,14 +213,14 @@ WarpReference WarpReference::upload(const RgbdView& view, float tau, float flatn
                                 std::to_string(h));
   WarpReference r;
   r.width = w, r.height = h;
-  r.color = texture2D(GL_RGBA32F, w, h, GL_LINEAR);
+  r.color = gl::Texture::image2D(GL_RGBA32F, w, h, GL_LINEAR);
   gl::TextureSubImage2D(r.color.id(), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, view.color.bytes.data());
-  r.depth = texture2D(GL_R32F, w, h, GL_NEAREST);
+  r.depth = gl::Texture::image2D(GL_R32F, w, h, GL_NEAREST);
   gl::TextureSubImage2D(r.depth.id(), 0, 0, 0, w, h, GL_RED, GL_FLOAT, view.depth.values.data());
   std::vector<float> labels;
   std::vector<uint32_t> silhouettes;
   labelPixels(view.depth, tau, labels, silhouettes);
-  r.label = texture2D(GL_R32F, w, h, GL_NEAREST);
+  r.label = gl::Texture::image2D(GL_R32F, w, h, GL_NEAREST);
   gl::TextureSubImage2D(r.label.id(), 0, 0, 0, w, h, GL_RED, GL_FLOAT, labels.data());
   const Splats splats = makeSplats(silhouettes, w);
   r.splatVertices = gl::makeBuffer(splats.vertices.data(), splats.vertices.size());
@@ -264,9 +254,7 @@ DepthWarp::DepthWarp(float tau, float a)
       over_(gl::Framebuffer::create()) {
   // A splat vertex (makeSplats): corner, then centre.
   for (GLuint attribute : {0u, 1u}) {
-    gl::VertexArrayAttribFormat(splats_.id(), attribute, 2, GL_FLOAT, GL_FALSE, attribute * sizeof(glm::vec2));
-    gl::VertexArrayAttribBinding(splats_.id(), attribute, 0);
-    gl::EnableVertexArrayAttrib(splats_.id(), attribute);
+    splats_.attribute(attribute, 2, attribute * sizeof(glm::vec2));
   }
   gl::setUniform(composite_, "uTau", tau);
   gl::setUniform(warpSheet_, "uTau", tau);
@@ -286,12 +274,9 @@ void DepthWarp::ensureGrid(int w, int h) {
     for (int i = 0; i < gw; ++i) vertices.emplace_back(at(i, w), at(j, h));
   gridVertices_ = gl::makeBuffer(vertices.data(), vertices.size());
   // A grid vertex is its own centre: both attributes read the same vec2.
-  const GLuint vao = grid_.id();
-  gl::VertexArrayVertexBuffer(vao, 0, gridVertices_.id(), 0, sizeof(glm::vec2));
+  grid_.vertexBuffer(gridVertices_.id(), sizeof(glm::vec2));
   for (GLuint attribute : {0u, 1u}) {
-    gl::VertexArrayAttribFormat(vao, attribute, 2, GL_FLOAT, GL_FALSE, 0);
-    gl::VertexArrayAttribBinding(vao, attribute, 0);
-    gl::EnableVertexArrayAttrib(vao, attribute);
+    grid_.attribute(attribute, 2, 0);
   }
   gridWidth_ = w, gridHeight_ = h;
 }
@@ -300,19 +285,19 @@ void DepthWarp::ensureTargets(int w, int h) {
   for (Warped& t : warped_) {
     if (t.width == w && t.height == h) continue;
     t.width = w, t.height = h;
-    t.color = texture2D(GL_RGBA32F, w, h, GL_NEAREST);
-    t.zbuffer = texture2D(GL_DEPTH_COMPONENT32F, w, h, GL_NEAREST);
+    t.color = gl::Texture::image2D(GL_RGBA32F, w, h, GL_NEAREST);
+    t.zbuffer = gl::Texture::image2D(GL_DEPTH_COMPONENT32F, w, h, GL_NEAREST);
     t.fbo = gl::Framebuffer::create();
-    gl::NamedFramebufferTexture(t.fbo.id(), GL_COLOR_ATTACHMENT0, t.color.id(), 0);
-    gl::NamedFramebufferTexture(t.fbo.id(), GL_DEPTH_ATTACHMENT, t.zbuffer.id(), 0);
-    if (gl::CheckNamedFramebufferStatus(t.fbo.id(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    t.fbo.attach(GL_COLOR_ATTACHMENT0, t.color.id(), 0);
+    t.fbo.attach(GL_DEPTH_ATTACHMENT, t.zbuffer.id(), 0);
+    if (!t.fbo.complete())
       fail("GL", "warp target is incomplete");
   }
 }
 
 void DepthWarp::warp(const WarpReference& ref, const WarpReference* other, const WarpCamera& view, const Warped& into,
                      bool clearColor) const {
-  gl::BindFramebuffer(GL_FRAMEBUFFER, into.fbo.id());
+  into.fbo.bind();
   gl::Viewport(0, 0, into.width, into.height);
   const float zero[4] = {0, 0, 0, 0};
   if (clearColor) gl::ClearNamedFramebufferfv(into.fbo.id(), GL_COLOR, 0, zero);
@@ -324,8 +309,8 @@ void DepthWarp::warp(const WarpReference& ref, const WarpReference* other, const
     gl::setUniform(*p, "uPixelToWorld", ref.pixelToWorld);
     setMatrix(*p, "uViewProjection", view.viewProjection);
   }
-  gl::BindVertexArray(grid_.id());
-  gl::VertexArrayElementBuffer(grid_.id(), ref.triangles.id());
+  grid_.bind();
+  grid_.elementBuffer(ref.triangles.id());
   // The surfaces, then the rubber sheets, tested against the other
   // reference where there is one.
   warp_.use();
@@ -341,9 +326,9 @@ void DepthWarp::warp(const WarpReference& ref, const WarpReference* other, const
     warp_.use();
   }
   if (!ref.splatIndexCount) return;
-  gl::BindVertexArray(splats_.id());
-  gl::VertexArrayVertexBuffer(splats_.id(), 0, ref.splatVertices.id(), 0, sizeof(glm::vec4));
-  gl::VertexArrayElementBuffer(splats_.id(), ref.splatIndices.id());
+  splats_.bind();
+  splats_.vertexBuffer(ref.splatVertices.id(), sizeof(glm::vec4));
+  splats_.elementBuffer(ref.splatIndices.id());
   gl::DrawElements(GL_TRIANGLES, GLsizei(ref.splatIndexCount), GL_UNSIGNED_INT, nullptr);
 }
 
@@ -405,15 +390,15 @@ void DepthWarp::render(const WarpReference& a, const WarpReference* b, const War
   warped_[0].zbuffer.bind(1);
   warped_[1].color.bind(2);
   warped_[1].zbuffer.bind(3);
-  gl::BindVertexArray(empty_.id());
+  empty_.bind();
   // The target's colour alone, so no depth test (kComposite).
-  gl::BindFramebuffer(GL_FRAMEBUFFER, over_.id());
-  gl::NamedFramebufferTexture(over_.id(), GL_COLOR_ATTACHMENT0, target.colorTexture(), 0);
+  over_.bind();
+  over_.attach(GL_COLOR_ATTACHMENT0, target.colorTexture(), 0);
   for (int k = 0; k < (b ? 2 : 1); ++k) {
-    gl::UseProgram(k == 0 ? composite_.id() : compositeRest_.id());
+    (k == 0 ? composite_ : compositeRest_).use();
     gl::DrawArrays(GL_TRIANGLES, 0, 3);
   }
-  gl::NamedFramebufferTexture(over_.id(), GL_COLOR_ATTACHMENT0, 0, 0);
+  over_.attach(GL_COLOR_ATTACHMENT0, 0, 0);
   target.bind();
   gl::checkError("depth warp");
 }
