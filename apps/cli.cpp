@@ -110,6 +110,7 @@ Scene loadInputScene(const std::string& path, bool strict) {
   Scene scene = loadScene(path, strict);
   if (const std::string warning = droppedFacesWarning(scene); !warning.empty())
     std::fprintf(stderr, "mvr: warning: %s\n", warning.c_str());
+  for (const std::string& warning : scene.warnings) std::fprintf(stderr, "mvr: warning: %s\n", warning.c_str());
   return scene;
 }
 

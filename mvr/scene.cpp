@@ -36,6 +36,7 @@ void Scene::append(const Scene& other) {
   for (uint32_t m : other.materialIds) materialIds.push_back(m + materialBase);
   materials.insert(materials.end(), other.materials.begin(), other.materials.end());
   droppedFaces += other.droppedFaces;
+  warnings.insert(warnings.end(), other.warnings.begin(), other.warnings.end());
 }
 
 }  // namespace mvr

@@ -76,6 +76,9 @@ struct Scene {
   // Faces of the files that could not be used (a repeated corner or one
   // naming a vertex that does not exist): dropped, and counted here.
   size_t droppedFaces = 0;
+  // What loading took other than as written, a line each ("FILE:3: ..."):
+  // the commands print them as warnings.
+  std::vector<std::string> warnings;
 
   size_t vertexCount() const { return positions.size(); }
   size_t triangleCount() const { return triangles.size(); }

@@ -166,7 +166,7 @@ void checkPlyAsciiElement(const std::string& path, long line, const std::string&
   }
 }
 
-void checkPly(const std::string& path) {
+void checkPly(const std::string& path, std::vector<long>* bareLines) {
   constexpr size_t kMaxHeader = 1 << 16;
   std::ifstream in(path, std::ios::binary);
   struct Element {
@@ -239,7 +239,8 @@ void checkPly(const std::string& path) {
     } else if (key == "end_header") {
       ended = true;
     } else if (key != "comment" && key != "obj_info" && !key.empty()) {
-      failAt(path, line, "unknown PLY header keyword '" + key + "'");
+      if (!bareLines) failAt(path, line, "unknown PLY header keyword '" + key + "'");
+      bareLines->push_back(line);
     }
   }
   if (!ended) fail(path, "PLY header has no end_header (file cut short)");
@@ -369,10 +370,10 @@ void checkOff(const std::string& path) {
 
 }  // namespace
 
-size_t checkMeshFile(const std::string& path) {
+size_t checkMeshFile(const std::string& path, std::vector<long>* bareLines) {
   const std::string ext = lower(std::filesystem::path(path).extension().string());
   if (ext == ".obj") return checkObj(path);
-  if (ext == ".ply") checkPly(path);
+  if (ext == ".ply") checkPly(path, bareLines);
   if (ext == ".off") checkOff(path);
   return 0;
 }

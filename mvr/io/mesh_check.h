@@ -35,7 +35,9 @@ void checkSceneGeometry(const Scene& scene, const std::string& where);
 // after them can hold. STL passes. Throws mvr::Error. Returns the
 // OBJ faces with fewer than three distinct corners, which OpenMesh's OBJ
 // reader drops before its importer sees them (its other readers hand them
-// on, and loadMesh counts them there).
-size_t checkMeshFile(const std::string& path);
+// on, and loadMesh counts them there). A PLY header line that starts with
+// no keyword (old Blender wrote "Created by Blender3D ..." bare) is taken
+// as a comment: its line number goes to bareLines.
+size_t checkMeshFile(const std::string& path, std::vector<long>* bareLines = nullptr);
 
 }  // namespace mvr

@@ -16,6 +16,11 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "mvr/error.h"
 #include "mvr/io/mesh_check.h"
@@ -83,20 +88,42 @@ void silenceOpenMesh() {
   omout().disable();
 }
 
+// The file with "comment " put before each of the header lines bareLines
+// names, for OpenMesh, which stops at a line it has no keyword for. Held in
+// memory: only old files have such lines.
+std::string withCommentedLines(const std::string& path, const std::vector<long>& bareLines) {
+  std::ifstream in(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  size_t at = 0;
+  long line = 1;
+  for (long bare : bareLines) {
+    for (; line < bare; ++line) at = text.find('\n', at) + 1;
+    text.insert(at, "comment ");
+  }
+  return text;
+}
+
 }  // namespace
 
 Scene loadMesh(const std::string& path) {
   silenceOpenMesh();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such mesh file");
-  const size_t degenerate = checkMeshFile(path);  // OpenMesh trusts its input; this does not
+  std::vector<long> bareLines;
+  const size_t degenerate = checkMeshFile(path, &bareLines);  // OpenMesh trusts its input; this does not
   ReadMesh mesh;
   OpenMesh::IO::Options opt = OpenMesh::IO::Options::VertexNormal |
                               OpenMesh::IO::Options::VertexColor |
                               OpenMesh::IO::Options::VertexTexCoord;
   CheckedImporter importer(mesh);
-  if (!OpenMesh::IO::IOManager().read(path, importer, opt))
-    fail(path, "cannot read mesh (unsupported format or broken file)");
+  bool read = false;
+  if (bareLines.empty()) {
+    read = OpenMesh::IO::IOManager().read(path, importer, opt);
+  } else {
+    std::istringstream text(withCommentedLines(path, bareLines));
+    read = OpenMesh::IO::IOManager().read(text, ".ply", importer, opt);
+  }
+  if (!read) fail(path, "cannot read mesh (unsupported format or broken file)");
   const size_t dropped = importer.dropped + degenerate;
   if (mesh.n_faces() == 0)
     fail(path, dropped ? "mesh has no usable triangles (" + std::to_string(dropped) +
@@ -105,6 +132,11 @@ Scene loadMesh(const std::string& path) {
   Scene s;
   s.source = path;
   s.droppedFaces = dropped;
+  if (!bareLines.empty())
+    s.warnings.push_back(path + ":" + std::to_string(bareLines[0]) + ": PLY header line" +
+                         (bareLines.size() > 1 ? "s with no keyword (" + std::to_string(bareLines.size()) + ")"
+                                               : " with no keyword") +
+                         " taken as a comment");
   s.positions.reserve(mesh.n_vertices());
   // A vertex the file gave no normal (or texture coordinate) means none for
   // the mesh: normals are then computed for all; no colour means white.

@@ -65,7 +65,7 @@ TEST_F(SceneIo, BareMeshIsCentredAndLit) {
 TEST_F(SceneIo, MissingFile) { expectError((dir_ / "nothing.obj").string(), "no such mesh file"); }
 
 TEST_F(SceneIo, UnreadableMesh) {
-  expectError(write("junk.ply", "ply\ngarbage\n"), "unknown PLY header keyword 'garbage'");
+  expectError(write("junk.ply", "ply\ngarbage\n"), "junk.ply: PLY header has no end_header");
   expectError(write("junk.xyz", "garbage\n"), "cannot read mesh");
 }
 
@@ -92,7 +92,9 @@ TEST_F(SceneIo, BrokenPlyHeadersAndCutData) {
   ASSERT_GT(ply.size(), 1000u);
   std::string mangled = ply;
   mangled.replace(mangled.find("element"), 7, "elemXnt");
-  expectError(write("mangled.ply", mangled), "unknown PLY header keyword 'elemXnt'");
+  // A line with no keyword is a comment (below): the properties after it
+  // then belong to no element.
+  expectError(write("mangled.ply", mangled), "mangled.ply:4: property before any element");
   expectError(write("cut100.ply", ply.substr(0, 100)), "no end_header");
   const size_t header = ply.find("end_header") + 11;
   expectError(write("cutdata.ply", ply.substr(0, header + (ply.size() - header) / 2)), "PLY data is cut");
@@ -103,6 +105,21 @@ TEST_F(SceneIo, BrokenPlyHeadersAndCutData) {
   expectError(write("cutfaces.ply", ascii), "PLY data is cut: 4 of 5 element lines");
   EXPECT_EQ(loadScene(write("whole.ply", ascii + "3 0 2 1\n")).triangles.size(), 2u);
   EXPECT_GT(loadScene(test::assetPath("teacup_4k.ply")).triangles.size(), 3000u);
+  // Old Blender wrote a bare line into the header: taken as a comment,
+  // said once, and the mesh is the one without it (ASCII and binary).
+  const std::string blender = "Created by Blender3D 247 - www.blender.org, source file: \n";
+  const std::string withBare = ascii.substr(0, 21) + blender + ascii.substr(21) + "3 0 2 1\n";
+  const Scene bare = loadScene(write("blender.ply", withBare));
+  EXPECT_EQ(bare.triangles.size(), 2u);
+  EXPECT_EQ(bare.positions, loadScene(write("plain.ply", ascii + "3 0 2 1\n")).positions);
+  ASSERT_EQ(bare.warnings.size(), 1u);
+  EXPECT_NE(bare.warnings[0].find("blender.ply:3: PLY header line with no keyword taken as a comment"),
+            std::string::npos) << bare.warnings[0];
+  const size_t at = ply.find("element");
+  const Scene blenderBinary = loadScene(write("blender_binary.ply", ply.substr(0, at) + blender + blender + ply.substr(at)));
+  EXPECT_EQ(blenderBinary.triangles.size(), loadScene(test::assetPath("teacup_4k.ply")).triangles.size());
+  ASSERT_EQ(blenderBinary.warnings.size(), 1u);
+  EXPECT_NE(blenderBinary.warnings[0].find("header lines with no keyword (2)"), std::string::npos) << blenderBinary.warnings[0];
   // OpenMesh's probe spins on a version that is not a number; an element
   // without properties would let a huge count through the size check.
   std::string version = ascii;
