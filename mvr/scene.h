@@ -2,6 +2,7 @@
 // The scene as flat arrays (structure of arrays): what every back end reads.
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,12 +13,17 @@
 
 namespace mvr {
 
+struct Image;
+
 enum class SpecularModel { Phong, BlinnPhong };
 
 struct Material {
   std::string name = "default";
   glm::vec3 diffuse{0.8f};
   std::string texture;        // image file, empty for none
+  // The texture's texels where they came inside the scene's file (glTF's
+  // embedded images): `texture` then names them, not a file.
+  std::shared_ptr<const Image> textureImage;
   glm::vec3 specular{0.0f};   // zero: no view-dependent pass needed
   float shininess = 32.0f;
   SpecularModel specularModel = SpecularModel::BlinnPhong;

@@ -26,7 +26,7 @@ TextureSet TextureSet::load(const Scene& scene) {
     }
     auto [it, added] = layerOf.emplace(m.texture, int(images.size()));
     if (added) {
-      images.push_back(readImage(m.texture));
+      images.push_back(m.textureImage ? *m.textureImage : readImage(m.texture));
       set.width_ = std::max(set.width_, images.back().width);
       set.height_ = std::max(set.height_, images.back().height);
     }

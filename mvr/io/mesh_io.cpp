@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "mvr/error.h"
+#include "mvr/io/gltf_io.h"
 #include "mvr/io/mesh_check.h"
 
 namespace mvr {
@@ -106,6 +107,7 @@ std::string withCommentedLines(const std::string& path, const std::vector<long>&
 }  // namespace
 
 Scene loadMesh(const std::string& path) {
+  if (isGltfPath(path)) return loadGltf(path);
   silenceOpenMesh();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such mesh file");

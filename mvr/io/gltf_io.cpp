@@ -1,0 +1,398 @@
+#include "mvr/io/gltf_io.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <set>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <tiny_gltf.h>
+
+#include "mvr/error.h"
+#include "mvr/image.h"
+
+namespace mvr {
+namespace {
+
+// Triangles one file may expand to (instancing can multiply a small file).
+constexpr size_t kMaxTriangles = size_t(1) << 28;
+
+size_t componentBytes(int type) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    default: return 0;
+  }
+}
+
+// One accessor's elements, checked against its buffer once: up to four
+// components each, as floats (normalized integers scaled as the spec
+// says) or as unsigned indices.
+class Accessor {
+ public:
+  Accessor(const tinygltf::Model& m, int index, const std::string& where) : where_(where) {
+    if (index < 0 || size_t(index) >= m.accessors.size()) fail(where, "accessor " + std::to_string(index) + " does not exist");
+    const tinygltf::Accessor& a = m.accessors[size_t(index)];
+    if (a.sparse.isSparse) fail(where, "sparse accessors are not read");
+    type_ = a.componentType, normalized_ = a.normalized, count_ = a.count;
+    components_ = a.type == TINYGLTF_TYPE_SCALAR ? 1 : a.type == TINYGLTF_TYPE_VEC2 ? 2
+                  : a.type == TINYGLTF_TYPE_VEC3 ? 3 : a.type == TINYGLTF_TYPE_VEC4 ? 4 : 0;
+    const size_t bytes = componentBytes(type_);
+    if (!components_ || !bytes) fail(where, "accessor " + std::to_string(index) + " has a type we do not read");
+    if (a.bufferView < 0) return;  // all zeros
+    if (size_t(a.bufferView) >= m.bufferViews.size()) fail(where, "buffer view " + std::to_string(a.bufferView) + " does not exist");
+    const tinygltf::BufferView& v = m.bufferViews[size_t(a.bufferView)];
+    if (v.buffer < 0 || size_t(v.buffer) >= m.buffers.size()) fail(where, "buffer " + std::to_string(v.buffer) + " does not exist");
+    const std::vector<unsigned char>& data = m.buffers[size_t(v.buffer)].data;
+    const size_t element = bytes * size_t(components_);
+    stride_ = v.byteStride ? v.byteStride : element;
+    const size_t start = v.byteOffset + a.byteOffset;
+    if (v.byteOffset > data.size() || v.byteLength > data.size() - v.byteOffset ||
+        (count_ && (a.byteOffset > v.byteLength || (count_ - 1) > (v.byteLength - a.byteOffset) / stride_ ||
+                    (count_ - 1) * stride_ + element > v.byteLength - a.byteOffset)))
+      fail(where, "accessor " + std::to_string(index) + " reaches past its buffer");
+    data_ = data.data() + start;
+  }
+
+  size_t count() const { return count_; }
+  int components() const { return components_; }
+
+  glm::vec4 at(size_t k) const {
+    glm::vec4 out(0.0f);
+    if (!data_) return out;
+    const unsigned char* p = data_ + k * stride_;
+    for (int c = 0; c < components_; ++c) out[c] = component(p, c);
+    return out;
+  }
+  uint32_t index(size_t k) const {
+    if (!data_) return 0;
+    const unsigned char* p = data_ + k * stride_;
+    switch (type_) {
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return *p;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return read<uint16_t>(p);
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return read<uint32_t>(p);
+      default: fail(where_, "indices must be unsigned integers");
+    }
+  }
+
+ private:
+  template <class T>
+  static T read(const unsigned char* p) {
+    T v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+  }
+  float component(const unsigned char* p, int c) const {
+    switch (type_) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: return read<float>(p + 4 * c);
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return scaled(float(p[c]), 255.0f);
+      case TINYGLTF_COMPONENT_TYPE_BYTE: return std::max(scaled(float(int8_t(p[c])), 127.0f), -1.0f);
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return scaled(float(read<uint16_t>(p + 2 * c)), 65535.0f);
+      case TINYGLTF_COMPONENT_TYPE_SHORT: return std::max(scaled(float(read<int16_t>(p + 2 * c)), 32767.0f), -1.0f);
+      default: return float(read<uint32_t>(p + 4 * c));
+    }
+  }
+  float scaled(float v, float max) const { return normalized_ ? v / max : v; }
+
+  std::string where_;
+  int type_ = 0, components_ = 0;
+  bool normalized_ = false;
+  size_t count_ = 0, stride_ = 0;
+  const unsigned char* data_ = nullptr;
+};
+
+glm::mat4 localTransform(const tinygltf::Node& n) {
+  if (n.matrix.size() == 16) {
+    glm::dmat4 m;
+    std::copy(n.matrix.begin(), n.matrix.end(), glm::value_ptr(m));  // column-major, as glTF's
+    return glm::mat4(m);
+  }
+  glm::dmat4 m(1.0);
+  if (n.translation.size() == 3) m = glm::translate(m, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
+  if (n.rotation.size() == 4)
+    m *= glm::mat4_cast(glm::normalize(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2])));
+  if (n.scale.size() == 3) m = glm::scale(m, glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
+  return glm::mat4(m);
+}
+
+// glTF's metallic-roughness as our Blinn-Phong material. The lobe: a
+// Beckmann distribution of roughness alpha = roughness^2 is matched by a
+// Blinn-Phong exponent 2 / alpha^2 - 2 (Walter et al. 2007); its colour is
+// the Fresnel reflectance at normal incidence, F0 = mix(0.04, base,
+// metallic), and the diffuse part base (1 - metallic). A lobe wider than
+// exponent 1 (roughness above 0.84) is diffuse to our model: it is
+// dropped, no view-dependent pass is planned for it, and the surface keeps
+// its base colour as diffuse (a rough metal's look; glTF's defaults,
+// metallic 1 and roughness 1, would otherwise be black).
+Material materialOf(const tinygltf::Material& g, size_t index) {
+  Material m;
+  m.name = g.name.empty() ? "material " + std::to_string(index) : g.name;
+  const auto& pbr = g.pbrMetallicRoughness;
+  const glm::vec3 base = pbr.baseColorFactor.size() >= 3
+                             ? glm::vec3(float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]),
+                                         float(pbr.baseColorFactor[2]))
+                             : glm::vec3(1.0f);
+  const float metallic = std::clamp(float(pbr.metallicFactor), 0.0f, 1.0f);
+  const float roughness = std::clamp(float(pbr.roughnessFactor), 0.0f, 1.0f);
+  const float alpha = std::max(roughness * roughness, 1e-3f);
+  const float exponent = 2.0f / (alpha * alpha) - 2.0f;
+  m.diffuse = glm::clamp(base, 0.0f, 1.0f);
+  if (exponent >= 1.0f) {
+    m.shininess = std::min(exponent, 1e4f);
+    m.specular = glm::mix(glm::vec3(0.04f), m.diffuse, metallic);
+    m.diffuse *= 1.0f - metallic;
+  }
+  m.twoSided = g.doubleSided;
+  return m;
+}
+
+// An image tinygltf decoded, as sRGB texels (glTF's base colour is sRGB).
+std::shared_ptr<const Image> texelsOf(const tinygltf::Image& g) {
+  const int w = g.width, h = g.height, c = g.component, bytes = g.bits == 16 ? 2 : 1;
+  if (w <= 0 || h <= 0 || c < 1 || c > 4 || g.image.size() < size_t(w) * h * c * bytes) return nullptr;
+  auto img = std::make_shared<Image>(w, h, PixelType::Srgb8);
+  for (size_t i = 0; i < size_t(w) * h; ++i) {
+    // 16-bit samples: their high byte (little-endian).
+    auto sample = [&](int k) { return g.image[(i * c + size_t(k)) * bytes + (bytes - 1)]; };
+    uint8_t* out = &img->bytes[4 * i];
+    out[0] = sample(0);
+    out[1] = c >= 3 ? sample(1) : out[0];
+    out[2] = c >= 3 ? sample(2) : out[0];
+    out[3] = c == 4 ? sample(3) : c == 2 ? sample(1) : 255;
+  }
+  return img;
+}
+
+class GltfReader {
+ public:
+  GltfReader(const tinygltf::Model& model, const std::string& path) : model_(model), path_(path) {}
+
+  Scene read() {
+    for (size_t i = 0; i < model_.materials.size(); ++i) scene_.materials.push_back(material(i));
+    std::vector<int> roots;
+    if (!model_.scenes.empty()) {
+      const size_t s = model_.defaultScene >= 0 && size_t(model_.defaultScene) < model_.scenes.size()
+                           ? size_t(model_.defaultScene) : 0;
+      roots = model_.scenes[s].nodes;
+    } else {
+      std::vector<bool> child(model_.nodes.size(), false);
+      for (const tinygltf::Node& n : model_.nodes)
+        for (int c : n.children)
+          if (c >= 0 && size_t(c) < child.size()) child[size_t(c)] = true;
+      for (size_t i = 0; i < child.size(); ++i)
+        if (!child[i]) roots.push_back(int(i));
+    }
+    for (const std::string& e : model_.extensionsUsed)
+      if (e == "KHR_texture_transform" || e == "KHR_lights_punctual") warn(e + " not read yet");
+    if (!model_.cameras.empty()) warn("its cameras not read yet: the camera is framed on the scene");
+    if (!model_.animations.empty()) warn("animations not played yet: the scene as it stands");
+    if (!model_.skins.empty()) warn("skins not applied yet: meshes in their bind pose");
+    onPath_.assign(model_.nodes.size(), false);
+    for (int r : roots) node(r, glm::mat4(1.0f));
+    if (scene_.triangles.empty()) fail(path_, "glTF scene has no triangles");
+    if (!anyUv_) scene_.uvs.clear();
+    scene_.source = path_;
+    return std::move(scene_);
+  }
+
+ private:
+  Material material(size_t i) {
+    const tinygltf::Material& g = model_.materials[i];
+    Material m = materialOf(g, i);
+    const tinygltf::TextureInfo& t = g.pbrMetallicRoughness.baseColorTexture;
+    if (t.index >= 0) {
+      if (size_t(t.index) >= model_.textures.size()) fail(path_, "texture " + std::to_string(t.index) + " does not exist");
+      const int source = model_.textures[size_t(t.index)].source;
+      if (source < 0 || size_t(source) >= model_.images.size())
+        fail(path_, "texture " + std::to_string(t.index) + " has no image");
+      if (t.texCoord != 0) warn("baseColorTexture on TEXCOORD_" + std::to_string(t.texCoord) + " read with TEXCOORD_0");
+      m.textureImage = texelsOf(model_.images[size_t(source)]);
+      if (m.textureImage)
+        m.texture = path_ + "#image" + std::to_string(source);
+      else
+        warn("image " + std::to_string(source) + " could not be decoded: drawn untextured");
+    }
+    if (g.alphaMode == "BLEND") warn("alphaMode BLEND drawn opaque");
+    if (g.alphaMode == "MASK") warn("alphaMode MASK drawn opaque (alpha cut-off not read yet)");
+    if (g.emissiveFactor.size() == 3 && (g.emissiveFactor[0] > 0 || g.emissiveFactor[1] > 0 || g.emissiveFactor[2] > 0))
+      warn("emissive colour not read yet");
+    return m;
+  }
+
+  void node(int index, const glm::mat4& parent) {
+    if (index < 0 || size_t(index) >= model_.nodes.size()) fail(path_, "node " + std::to_string(index) + " does not exist");
+    if (onPath_[size_t(index)]) fail(path_, "node " + std::to_string(index) + " is its own ancestor");
+    onPath_[size_t(index)] = true;
+    const tinygltf::Node& n = model_.nodes[size_t(index)];
+    const glm::mat4 world = parent * localTransform(n);
+    if (n.mesh >= 0) {
+      if (size_t(n.mesh) >= model_.meshes.size()) fail(path_, "mesh " + std::to_string(n.mesh) + " does not exist");
+      for (const tinygltf::Primitive& p : model_.meshes[size_t(n.mesh)].primitives) primitive(p, world);
+    }
+    for (int c : n.children) node(c, world);
+    onPath_[size_t(index)] = false;
+  }
+
+  // The primitive's triangles as corner indices, by its mode.
+  std::vector<glm::uvec3> corners(const tinygltf::Primitive& p, size_t vertices) {
+    std::vector<uint32_t> idx;
+    if (p.indices >= 0) {
+      const Accessor a(model_, p.indices, path_);
+      idx.resize(a.count());
+      for (size_t k = 0; k < idx.size(); ++k)
+        if ((idx[k] = a.index(k)) >= vertices) fail(path_, "index " + std::to_string(idx[k]) + " beyond the vertices");
+    } else {
+      idx.resize(vertices);
+      for (size_t k = 0; k < vertices; ++k) idx[k] = uint32_t(k);
+    }
+    std::vector<glm::uvec3> out;
+    const size_t n = idx.size();
+    if (p.mode == TINYGLTF_MODE_TRIANGLES || p.mode == -1) {
+      for (size_t k = 0; k + 2 < n; k += 3) out.emplace_back(idx[k], idx[k + 1], idx[k + 2]);
+    } else if (p.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      for (size_t k = 0; k + 2 < n; ++k)
+        out.emplace_back(idx[k], idx[k + 1 + k % 2], idx[k + 2 - k % 2]);
+    } else if (p.mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+      for (size_t k = 0; k + 2 < n; ++k) out.emplace_back(idx[k + 1], idx[k + 2], idx[0]);
+    }
+    return out;
+  }
+
+  const Accessor* attribute(const tinygltf::Primitive& p, const char* name, std::unique_ptr<Accessor>& holder) {
+    auto it = p.attributes.find(name);
+    if (it == p.attributes.end()) return nullptr;
+    holder = std::make_unique<Accessor>(model_, it->second, path_);
+    return holder.get();
+  }
+
+  void primitive(const tinygltf::Primitive& p, const glm::mat4& world) {
+    if (p.mode != -1 && p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+      warn("points and lines skipped");
+      return;
+    }
+    std::unique_ptr<Accessor> positionHold, normalHold, uvHold, colorHold;
+    const Accessor* position = attribute(p, "POSITION", positionHold);
+    if (!position) {
+      warn("a primitive without POSITION skipped");
+      return;
+    }
+    if (position->components() != 3) fail(path_, "POSITION must be VEC3");
+    const Accessor* normal = attribute(p, "NORMAL", normalHold);
+    const Accessor* uv = attribute(p, "TEXCOORD_0", uvHold);
+    const Accessor* color = attribute(p, "COLOR_0", colorHold);
+    for (const Accessor* a : {normal, uv, color})
+      if (a && a->count() != position->count()) fail(path_, "a primitive's attributes differ in count");
+    if (normal && normal->components() != 3) fail(path_, "NORMAL must be VEC3");
+    std::vector<glm::uvec3> tris = corners(p, position->count());
+    if (scene_.triangles.size() + tris.size() > kMaxTriangles) fail(path_, "more than 2^28 triangles");
+    anyUv_ = anyUv_ || uv;
+    const uint32_t materialId = p.material >= 0 && size_t(p.material) < scene_.materials.size() ? uint32_t(p.material)
+                                                                                                 : defaultMaterial();
+    const glm::mat3 linear(world);
+    const glm::mat3 normalMatrix = glm::transpose(glm::inverse(linear));
+    const bool mirrored = glm::determinant(linear) < 0.0f;
+    auto vertex = [&](uint32_t k, const glm::vec3& n) {
+      scene_.positions.push_back(glm::vec3(world * glm::vec4(glm::vec3(position->at(k)), 1.0f)));
+      scene_.normals.push_back(n);
+      const glm::vec2 t = uv ? glm::vec2(uv->at(k)) : glm::vec2(0.0f);
+      scene_.uvs.emplace_back(t.x, 1.0f - t.y);  // glTF's v runs down the image, ours up
+      scene_.colors.push_back(color ? glm::clamp(glm::vec3(color->at(k)), 0.0f, 1.0f) : glm::vec3(1.0f));
+    };
+    auto unit = [](glm::vec3 v) {
+      const float l = glm::length(v);
+      return l > 0.0f && std::isfinite(l) ? v / l : glm::vec3(0.0f, 0.0f, 1.0f);
+    };
+    if (normal) {
+      const auto base = uint32_t(scene_.positions.size());
+      for (uint32_t k = 0; k < uint32_t(position->count()); ++k) vertex(k, unit(normalMatrix * glm::vec3(normal->at(k))));
+      for (glm::uvec3 t : tris) add(t + base, mirrored, materialId);
+      return;
+    }
+    // No normals: flat ones (the spec), so each triangle its own corners.
+    for (glm::uvec3 t : tris) {
+      if (mirrored) std::swap(t.y, t.z);
+      const glm::vec3 a = glm::vec3(world * glm::vec4(glm::vec3(position->at(t.x)), 1.0f));
+      const glm::vec3 b = glm::vec3(world * glm::vec4(glm::vec3(position->at(t.y)), 1.0f));
+      const glm::vec3 c = glm::vec3(world * glm::vec4(glm::vec3(position->at(t.z)), 1.0f));
+      const glm::vec3 n = unit(glm::cross(b - a, c - a));
+      const auto base = uint32_t(scene_.positions.size());
+      for (uint32_t k : {t.x, t.y, t.z}) vertex(k, n);
+      add(glm::uvec3(base, base + 1, base + 2), false, materialId);
+    }
+  }
+
+  void add(glm::uvec3 t, bool mirrored, uint32_t materialId) {
+    if (t.x == t.y || t.y == t.z || t.x == t.z) {
+      ++scene_.droppedFaces;
+      return;
+    }
+    if (mirrored) std::swap(t.y, t.z);
+    scene_.triangles.push_back(t);
+    scene_.materialIds.push_back(materialId);
+  }
+
+  uint32_t defaultMaterial() {
+    if (defaultMaterial_ < 0) {
+      defaultMaterial_ = int(scene_.materials.size());
+      Material m;
+      m.diffuse = glm::vec3(1.0f);  // the spec's default material: white, rough
+      m.twoSided = false;
+      scene_.materials.push_back(m);
+    }
+    return uint32_t(defaultMaterial_);
+  }
+
+  void warn(const std::string& what) {
+    if (warned_.insert(what).second) scene_.warnings.push_back(path_ + ": " + what);
+  }
+
+  const tinygltf::Model& model_;
+  std::string path_;
+  Scene scene_;
+  std::vector<bool> onPath_;
+  std::set<std::string> warned_;
+  bool anyUv_ = false;
+  int defaultMaterial_ = -1;
+};
+
+std::string firstLine(const std::string& s) {
+  const size_t end = s.find('\n');
+  std::string line = s.substr(0, end);
+  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+  return line;
+}
+
+}  // namespace
+
+bool isGltfPath(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext == ".gltf" || ext == ".glb";
+}
+
+Scene loadGltf(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such glTF file");
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string error, warning;
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const bool ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
+                                : loader.LoadASCIIFromFile(&model, &error, &warning, path);
+  if (!ok) fail(path, error.empty() ? "cannot read glTF" : firstLine(error));
+  Scene scene = GltfReader(model, path).read();
+  if (!warning.empty()) scene.warnings.push_back(path + ": " + firstLine(warning));
+  return scene;
+}
+
+}  // namespace mvr

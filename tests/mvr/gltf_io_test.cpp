@@ -1,0 +1,257 @@
+// glTF 2.0 files the tests write (mvr/io/gltf_io.h): the node hierarchy
+// and instancing, primitive modes and index types, flat normals where a
+// file has none, materials and their mapping, vertex colours, a texture
+// whose texels come through, and bad files as one-line errors.
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "mvr/error.h"
+#include "mvr/image.h"
+#include "mvr/io/image_file.h"
+#include "mvr/io/mesh_io.h"
+#include "mvr/io/scene_io.h"
+#include "tests/support/render_helpers.h"
+
+namespace mvr {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+std::string base64(const std::vector<unsigned char>& bytes) {
+  static const char* abc = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    const uint32_t n = uint32_t(bytes[i]) << 16 | (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0) |
+                       (i + 2 < bytes.size() ? bytes[i + 2] : 0);
+    out += abc[n >> 18 & 63];
+    out += abc[n >> 12 & 63];
+    out += i + 1 < bytes.size() ? abc[n >> 6 & 63] : '=';
+    out += i + 2 < bytes.size() ? abc[n & 63] : '=';
+  }
+  return out;
+}
+
+// A glTF document with one buffer (a data URI) that accessors are appended
+// to, each in a buffer view of its own.
+struct Document {
+  Json json = {{"asset", {{"version", "2.0"}}}, {"buffers", Json::array()}, {"bufferViews", Json::array()},
+               {"accessors", Json::array()}};
+  std::vector<unsigned char> bytes;
+
+  template <class T>
+  int accessor(const std::vector<T>& values, int componentType, const char* type, size_t count) {
+    while (bytes.size() % 4) bytes.push_back(0);
+    const size_t at = bytes.size();
+    bytes.resize(at + values.size() * sizeof(T));
+    std::memcpy(bytes.data() + at, values.data(), values.size() * sizeof(T));
+    json["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at}, {"byteLength", values.size() * sizeof(T)}});
+    json["accessors"].push_back({{"bufferView", json["bufferViews"].size() - 1},
+                                 {"componentType", componentType},
+                                 {"type", type},
+                                 {"count", count}});
+    return int(json["accessors"].size()) - 1;
+  }
+  int positions(const std::vector<float>& xyz) { return accessor(xyz, 5126, "VEC3", xyz.size() / 3); }
+  std::string write(const fs::path& path) {
+    if (!bytes.empty())
+      json["buffers"] = Json::array({{{"byteLength", bytes.size()},
+                                      {"uri", "data:application/octet-stream;base64," + base64(bytes)}}});
+    std::ofstream(path) << json.dump();
+    return path.string();
+  }
+};
+
+class Gltf : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("mvr_gltf_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                                        "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+// One triangle in z = 0; mesh 0 draws it.
+Document triangleDocument() {
+  Document d;
+  const int p = d.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  d.json["meshes"] = Json::array({{{"primitives", Json::array({{{"attributes", {{"POSITION", p}}}}})}}});
+  return d;
+}
+
+TEST_F(Gltf, HierarchyInstancingAndFlatNormals) {
+  Document d = triangleDocument();
+  // Node 0 (translated) has child 1 (scaled, draws mesh 0); node 2 draws
+  // mesh 0 by a matrix. Only the default scene's nodes count: scene 0
+  // would add node 3 too.
+  d.json["nodes"] = Json::array({{{"translation", {10, 0, 0}}, {"children", {1}}},
+                                 {{"scale", {2, 2, 2}}, {"mesh", 0}},
+                                 {{"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 5, 1}}, {"mesh", 0}},
+                                 {{"mesh", 0}}});
+  d.json["scenes"] = Json::array({{{"nodes", {0, 1, 2, 3}}}, {{"nodes", {0, 2}}}});
+  d.json["scene"] = 1;
+  const Scene s = loadMesh(d.write(dir_ / "tree.gltf"));
+  ASSERT_EQ(s.triangles.size(), 2u);
+  // Instance 1: T(10,0,0) S(2); instance 2: z + 5.
+  EXPECT_EQ(s.positions[s.triangles[0].y], glm::vec3(12, 0, 0));
+  EXPECT_EQ(s.positions[s.triangles[0].z], glm::vec3(10, 2, 0));
+  EXPECT_EQ(s.positions[s.triangles[1].y], glm::vec3(1, 0, 5));
+  for (const glm::vec3& n : s.normals) EXPECT_EQ(n, glm::vec3(0, 0, 1));  // flat, counter-clockwise
+  EXPECT_TRUE(s.uvs.empty());
+  EXPECT_TRUE(s.warnings.empty());
+}
+
+TEST_F(Gltf, StripFanIndexTypesAndMirroring) {
+  Document d;
+  const int p = d.positions({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0});
+  const int n = d.accessor(std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, 5126, "VEC3", 4);
+  const int strip = d.accessor(std::vector<uint8_t>{0, 1, 2, 3}, 5121, "SCALAR", 4);
+  const int fan = d.accessor(std::vector<uint16_t>{0, 1, 3, 2}, 5123, "SCALAR", 4);
+  const int lines = d.accessor(std::vector<uint32_t>{0, 1}, 5125, "SCALAR", 2);
+  const Json attributes = {{"POSITION", p}, {"NORMAL", n}};
+  d.json["meshes"] = Json::array({{{"primitives", Json::array({{{"attributes", attributes}, {"indices", strip}, {"mode", 5}},
+                                                               {{"attributes", attributes}, {"indices", fan}, {"mode", 6}},
+                                                               {{"attributes", attributes}, {"indices", lines}, {"mode", 1}}})}}});
+  d.json["nodes"] = Json::array({{{"mesh", 0}}, {{"mesh", 0}, {"scale", {-1, 1, 1}}}});
+  d.json["scenes"] = Json::array({{{"nodes", {0, 1}}}});
+  const Scene s = loadMesh(d.write(dir_ / "modes.gltf"));
+  ASSERT_EQ(s.triangles.size(), 8u);  // 2 + 2 per instance, the lines skipped
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("points and lines skipped"), std::string::npos);
+  // Every triangle faces its normal: counter-clockwise seen from +z, also
+  // in the mirrored instance (its winding flipped, its normals kept +z).
+  for (const glm::uvec3& t : s.triangles) {
+    const glm::vec3 a = s.positions[t.x], b = s.positions[t.y], c = s.positions[t.z];
+    EXPECT_GT(glm::cross(b - a, c - a).z, 0.0f);
+    EXPECT_EQ(s.normals[t.x], glm::vec3(0, 0, 1));
+  }
+}
+
+TEST_F(Gltf, MaterialsVertexColoursAndTexture) {
+  Document d;
+  const int p = d.positions({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0});
+  const int uv = d.accessor(std::vector<float>{0, 1, 1, 1, 1, 0, 0, 0}, 5126, "VEC2", 4);
+  const int colour = d.accessor(std::vector<uint8_t>{255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255},
+                                5121, "VEC4", 4);
+  d.json["accessors"][size_t(colour)]["normalized"] = true;
+  const int idx = d.accessor(std::vector<uint16_t>{0, 1, 2, 0, 2, 3}, 5123, "SCALAR", 6);
+  Image texels(4, 4, PixelType::Srgb8);
+  for (size_t i = 0; i < 16; ++i) std::memcpy(&texels.bytes[4 * i], "\xc8\x28\x14\xff", 4);
+  writeImage(texels, (dir_ / "red.png").string());
+  d.json["images"] = Json::array({{{"uri", "red.png"}}});
+  d.json["textures"] = Json::array({{{"source", 0}}});
+  d.json["materials"] = Json::array(
+      {{{"name", "shiny"},
+        {"doubleSided", true},
+        {"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.25, 1, 1}}, {"metallicFactor", 0}, {"roughnessFactor", 0.5}}}},
+       {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+  d.json["meshes"] = Json::array(
+      {{{"primitives", Json::array({{{"attributes", {{"POSITION", p}, {"TEXCOORD_0", uv}, {"COLOR_0", colour}}},
+                                     {"indices", idx},
+                                     {"material", 0}},
+                                    {{"attributes", {{"POSITION", p}, {"TEXCOORD_0", uv}}}, {"indices", idx}, {"material", 1}}})}}});
+  d.json["nodes"] = Json::array({{{"mesh", 0}}});
+  const Scene s = loadMesh(d.write(dir_ / "materials.gltf"));
+  ASSERT_EQ(s.materials.size(), 2u);
+  const Material& shiny = s.materials[0];
+  EXPECT_EQ(shiny.name, "shiny");
+  EXPECT_EQ(shiny.diffuse, glm::vec3(0.5f, 0.25f, 1.0f));  // metallic 0: all of the base is diffuse
+  EXPECT_EQ(shiny.specular, glm::vec3(0.04f));
+  EXPECT_NEAR(shiny.shininess, 2.0f / (0.25f * 0.25f) - 2.0f, 1e-4f);  // alpha = roughness^2 = 0.25
+  EXPECT_TRUE(shiny.twoSided);
+  // The defaults (metallic 1, roughness 1): a lobe too wide to keep, so
+  // diffuse base colour and no specular pass; single-sided.
+  const Material& textured = s.materials[1];
+  EXPECT_EQ(textured.specular, glm::vec3(0.0f));
+  EXPECT_EQ(textured.diffuse, glm::vec3(1.0f));
+  EXPECT_FALSE(textured.twoSided);
+  ASSERT_TRUE(textured.textureImage);
+  EXPECT_EQ(textured.textureImage->width, 4);
+  EXPECT_EQ(textured.textureImage->pixel(1, 2), glm::vec4(200, 40, 20, 255) / 255.0f);
+  // Vertex colours and uv (v flipped: glTF's runs down the image); no
+  // normals, so flat ones, each triangle its own three corners.
+  ASSERT_EQ(s.colors.size(), 12u);
+  EXPECT_EQ(s.colors[0], glm::vec3(1, 0, 0));
+  EXPECT_EQ(s.colors[6], glm::vec3(1, 1, 1));  // none given
+  EXPECT_EQ(s.uvs[0], glm::vec2(0, 0));
+  EXPECT_EQ(s.uvs[2], glm::vec2(1, 1));
+}
+
+// A quad textured by a glTF image (external PNG, one colour), lit head
+// on: svr's and mvr's views show the texture's colour, and agree.
+TEST_F(Gltf, TexturedQuadMvrAgainstSvr) {
+  test::sharedContext();
+  Document d;
+  const int p = d.positions({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0});
+  const int n = d.accessor(std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, 5126, "VEC3", 4);
+  const int uv = d.accessor(std::vector<float>{0, 1, 1, 1, 1, 0, 0, 0}, 5126, "VEC2", 4);
+  const int idx = d.accessor(std::vector<uint8_t>{0, 1, 2, 0, 2, 3}, 5121, "SCALAR", 6);
+  Image texels(8, 8, PixelType::Srgb8);
+  for (size_t i = 0; i < 64; ++i) std::memcpy(&texels.bytes[4 * i], "\xc8\x28\x14\xff", 4);
+  writeImage(texels, (dir_ / "red.png").string());
+  d.json["images"] = Json::array({{{"uri", "red.png"}}});
+  d.json["textures"] = Json::array({{{"source", 0}}});
+  d.json["materials"] = Json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0}}}}});
+  d.json["meshes"] = Json::array(
+      {{{"primitives", Json::array({{{"attributes", {{"POSITION", p}, {"NORMAL", n}, {"TEXCOORD_0", uv}}},
+                                     {"indices", idx},
+                                     {"material", 0}}})}}});
+  d.json["nodes"] = Json::array({{{"mesh", 0}}});
+  Scene scene = loadScene(d.write(dir_ / "quad.gltf"));
+  scene.lights = {Light{Light::Type::Directional, glm::vec3(0, 0, -1), glm::vec3(1.0f)}};
+  scene.ambient = glm::vec3(0.0f);
+  const ShearingCamera cam(cameraFor(scene, 64, 48), 64, 48, 5);
+  auto svr = makeSvrRenderer(scene, PixelType::U8);
+  auto mvr = makeMvrRenderer(scene, PstMode::Cpu, PixelType::U8);
+  const test::CaptureSink a = test::renderViews(*svr, cam), b = test::renderViews(*mvr, cam);
+  const Image& centre = a.views.at({0, 2});
+  // The middle pixel: texel colour (200, 40, 20) sRGB, lit by 1 head on.
+  const glm::vec4 c = centre.linear(32, 24);
+  EXPECT_NEAR(c.r, decodeSrgb8(reinterpret_cast<const uint8_t*>("\xc8\x28\x14\xff")).r, 0.02f);
+  EXPECT_GT(c.r, 5 * c.g);
+  test::expectCloseOnAnyGl(test::compareViews(a, b), 0.99, 30.0, "glTF textured quad, mvr cpu");
+}
+
+TEST_F(Gltf, BadFilesAreOneLineErrors) {
+  auto expectError = [&](const std::string& path, const std::string& what) {
+    try {
+      loadScene(path);
+      ADD_FAILURE() << "no error for " << path;
+    } catch (const Error& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(fs::path(path).filename().string()), std::string::npos) << msg;
+      EXPECT_NE(msg.find(what), std::string::npos) << msg;
+      EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    }
+  };
+  expectError((dir_ / "none.glb").string(), "no such glTF file");
+  std::ofstream(dir_ / "text.gltf") << "not json";
+  expectError((dir_ / "text.gltf").string(), "");
+  Document cycle = triangleDocument();
+  cycle.json["nodes"] = Json::array({{{"mesh", 0}, {"children", {1}}}, {{"children", {0}}}});
+  cycle.json["scenes"] = Json::array({{{"nodes", {0}}}});
+  expectError(cycle.write(dir_ / "cycle.gltf"), "node 0 is its own ancestor");
+  Document index = triangleDocument();
+  const int far = index.accessor(std::vector<uint16_t>{0, 1, 7}, 5123, "SCALAR", 3);
+  index.json["meshes"][0]["primitives"][0]["indices"] = far;
+  index.json["nodes"] = Json::array({{{"mesh", 0}}});
+  expectError(index.write(dir_ / "index.gltf"), "index 7 beyond the vertices");
+  Document past = triangleDocument();
+  past.json["accessors"][0]["count"] = 1000;
+  past.json["nodes"] = Json::array({{{"mesh", 0}}});
+  expectError(past.write(dir_ / "past.gltf"), "");
+  Document empty;
+  empty.json["nodes"] = Json::array({{{"name", "nothing"}}});
+  expectError(empty.write(dir_ / "empty.gltf"), "glTF scene has no triangles");
+}
+
+}  // namespace
+}  // namespace mvr
