@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <set>
 
@@ -177,6 +178,8 @@ class GltfReader {
 
   Scene read() {
     for (size_t i = 0; i < model_.materials.size(); ++i) scene_.materials.push_back(material(i));
+    for (const tinygltf::Mesh& m : model_.meshes)
+      for (const tinygltf::Primitive& p : m.primitives) anyUv_ = anyUv_ || p.attributes.count("TEXCOORD_0");
     std::vector<int> roots;
     if (!model_.scenes.empty()) {
       const size_t s = model_.defaultScene >= 0 && size_t(model_.defaultScene) < model_.scenes.size()
@@ -198,7 +201,6 @@ class GltfReader {
     onPath_.assign(model_.nodes.size(), false);
     for (int r : roots) node(r, glm::mat4(1.0f));
     if (scene_.triangles.empty()) fail(path_, "glTF scene has no triangles");
-    if (!anyUv_) scene_.uvs.clear();
     scene_.source = path_;
     return std::move(scene_);
   }
@@ -294,7 +296,7 @@ class GltfReader {
     if (normal && normal->components() != 3) fail(path_, "NORMAL must be VEC3");
     std::vector<glm::uvec3> tris = corners(p, position->count());
     if (scene_.triangles.size() + tris.size() > kMaxTriangles) fail(path_, "more than 2^28 triangles");
-    anyUv_ = anyUv_ || uv;
+    reserve(normal ? position->count() : 3 * tris.size(), tris.size());
     const uint32_t materialId = p.material >= 0 && size_t(p.material) < scene_.materials.size() ? uint32_t(p.material)
                                                                                                  : defaultMaterial();
     const glm::mat3 linear(world);
@@ -303,8 +305,10 @@ class GltfReader {
     auto vertex = [&](uint32_t k, const glm::vec3& n) {
       scene_.positions.push_back(glm::vec3(world * glm::vec4(glm::vec3(position->at(k)), 1.0f)));
       scene_.normals.push_back(n);
-      const glm::vec2 t = uv ? glm::vec2(uv->at(k)) : glm::vec2(0.0f);
-      scene_.uvs.emplace_back(t.x, 1.0f - t.y);  // glTF's v runs down the image, ours up
+      if (anyUv_) {
+        const glm::vec2 t = uv ? glm::vec2(uv->at(k)) : glm::vec2(0.0f, 1.0f);
+        scene_.uvs.emplace_back(t.x, 1.0f - t.y);  // glTF's v runs down the image, ours up
+      }
       scene_.colors.push_back(color ? glm::clamp(glm::vec3(color->at(k)), 0.0f, 1.0f) : glm::vec3(1.0f));
     };
     auto unit = [](glm::vec3 v) {
@@ -328,6 +332,18 @@ class GltfReader {
       for (uint32_t k : {t.x, t.y, t.z}) vertex(k, n);
       add(glm::uvec3(base, base + 1, base + 2), false, materialId);
     }
+  }
+
+  // Room for a primitive more, growing geometrically: a file of many
+  // primitives reallocates as often as push_back would, one of a few
+  // large ones not at all.
+  void reserve(size_t vertices, size_t triangles) {
+    auto grow = [](auto& v, size_t more) {
+      if (v.size() + more > v.capacity()) v.reserve(std::max(v.size() + more, 2 * v.capacity()));
+    };
+    grow(scene_.positions, vertices), grow(scene_.normals, vertices), grow(scene_.colors, vertices);
+    if (anyUv_) grow(scene_.uvs, vertices);
+    grow(scene_.triangles, triangles), grow(scene_.materialIds, triangles);
   }
 
   void add(glm::uvec3 t, bool mirrored, uint32_t materialId) {
@@ -387,8 +403,20 @@ Scene loadGltf(const std::string& path) {
   std::string error, warning;
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  const bool ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
-                                : loader.LoadASCIIFromFile(&model, &error, &warning, path);
+  bool ok = false;
+  if (ext == ".glb") {
+    // Read here, into memory not zeroed first: tinygltf's own file read
+    // zero-fills a buffer the size of the file before reading into it.
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec || size > 0xffffffffu) fail(path, ec ? "cannot read" : "GLB file over 4 GiB");
+    std::unique_ptr<unsigned char[]> bytes(new unsigned char[size]);
+    std::ifstream in(path, std::ios::binary);
+    if (!in.read(reinterpret_cast<char*>(bytes.get()), std::streamsize(size))) fail(path, "cannot read");
+    ok = loader.LoadBinaryFromMemory(&model, &error, &warning, bytes.get(), unsigned(size),
+                                     std::filesystem::path(path).parent_path().string());
+  } else {
+    ok = loader.LoadASCIIFromFile(&model, &error, &warning, path);
+  }
   if (!ok) fail(path, error.empty() ? "cannot read glTF" : firstLine(error));
   Scene scene = GltfReader(model, path).read();
   if (!warning.empty()) scene.warnings.push_back(path + ": " + firstLine(warning));
