@@ -3,19 +3,12 @@
 #include "mvr/error.h"
 
 namespace mvr::app {
-// warp's numbers that interp's table declares too were parsed into interp's
-// members (add): given on the command line, they are warp's values.
+// warp's numbers that interp's table declares too were added once, as
+// interp's options (add): given on the command line, they are warp's values.
 void BackendFlags::copyShared(BackendOptions& o) const {
   for (const NumberOption<WarpOptions>& w : kWarpNumbers)
-    for (const NumberOption<InterpOptions>& i : kInterpNumbers) {
-      if (std::string(w.flag) != i.flag) continue;
-      const CLI::Option* given = nullptr;
-      for (const CLI::Option* option : interpOptions_)
-        if (option->check_name(w.flag)) given = option;
-      if (!given || !given->count()) continue;
-      const double v = i.get(o.interp);
-      std::visit([&](auto m) { o.warp.*m = static_cast<std::remove_reference_t<decltype(o.warp.*m)>>(v); }, w.member);
-    }
+    for (const CLI::Option* option : interpOptions_)
+      if (option->check_name(w.flag) && option->count()) w.set(o.warp, option->as<double>());
 }
 
 void BackendFlags::add(CLI::App& app) {

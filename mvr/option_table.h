@@ -52,22 +52,25 @@ struct NumberOption {
   void check(const Options& o) const {
     if (!inRange(get(o))) fail(flag, "must be " + range());
   }
-  // Sets o's member from a spec's text; false where it is not a number.
-  bool parse(const std::string& text, Options& o) const {
-    if (text.empty()) return false;
-    char* end = nullptr;
-    const double v = std::strtod(text.c_str(), &end);
-    if (*end != '\0') return false;
+  // Sets o's member to v; false where the member is an integer and v has
+  // a fraction. An integer out of int's range is left out of range for
+  // check() rather than cast.
+  bool set(Options& o, double v) const {
     return std::visit(
         [&](auto m) {
           using T = std::remove_reference_t<decltype(o.*m)>;
-          // An integer takes no fraction; one out of int's range is left
-          // out of range for check() rather than cast.
           if (std::is_integral_v<T> && v != std::trunc(v)) return false;
           o.*m = std::is_integral_v<T> && !(std::abs(v) < 1e9) ? T(v > 0 ? 1e9 : -1e9) : T(v);
           return true;
         },
         member);
+  }
+  // Sets o's member from a spec's text; false where it is not a number.
+  bool parse(const std::string& text, Options& o) const {
+    if (text.empty()) return false;
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    return *end == '\0' && set(o, v);
   }
 };
 

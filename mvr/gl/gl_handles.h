@@ -12,7 +12,9 @@
 
 namespace mvr::gl {
 
-template <class Traits>
+// Self: the type that derives from it (Buffer, Program, ...), which
+// create() makes.
+template <class Traits, class Self>
 class Object {
  public:
   Object() = default;
@@ -29,7 +31,7 @@ class Object {
   Object(const Object&) = delete;
   Object& operator=(const Object&) = delete;
 
-  static Object create() { return Object(Traits::create()); }
+  static Self create() { return Self(Traits::create()); }
   GLuint id() const { return id_; }
   explicit operator bool() const { return id_ != 0; }
   void reset() {
@@ -61,15 +63,16 @@ struct ShaderTraits {
   static void destroy(GLuint id) { DeleteShader(id); }
 };
 
-using Shader = Object<ShaderTraits>;
+class Shader : public Object<ShaderTraits, Shader> {
+ public:
+  using Object::Object;
+};
 
 // A buffer object and what is done with it: bound to an indexed target,
 // read back, written, cleared.
-class Buffer : public Object<BufferTraits> {
+class Buffer : public Object<BufferTraits, Buffer> {
  public:
   using Object::Object;
-  Buffer(Object&& o) noexcept : Object(std::move(o)) {}
-  static Buffer create() { return Object::create(); }
   // Binding `index` of the shader storage (or uniform) blocks.
   void bindStorage(GLuint index) const { BindBufferBase(GL_SHADER_STORAGE_BUFFER, index, id()); }
   void bindUniform(GLuint index) const { BindBufferBase(GL_UNIFORM_BUFFER, index, id()); }
@@ -100,11 +103,9 @@ class Buffer : public Object<BufferTraits> {
 };
 
 // A vertex array: its buffers and float attributes, bound for drawing.
-class VertexArray : public Object<VertexArrayTraits> {
+class VertexArray : public Object<VertexArrayTraits, VertexArray> {
  public:
   using Object::Object;
-  VertexArray(Object&& o) noexcept : Object(std::move(o)) {}
-  static VertexArray create() { return Object::create(); }
   void bind() const { BindVertexArray(id()); }
   void vertexBuffer(GLuint buffer, GLsizei stride, GLuint binding = 0, GLintptr offset = 0) const {
     VertexArrayVertexBuffer(id(), binding, buffer, offset, stride);
@@ -120,11 +121,9 @@ class VertexArray : public Object<VertexArrayTraits> {
 };
 
 // A framebuffer and its attachments.
-class Framebuffer : public Object<FramebufferTraits> {
+class Framebuffer : public Object<FramebufferTraits, Framebuffer> {
  public:
   using Object::Object;
-  Framebuffer(Object&& o) noexcept : Object(std::move(o)) {}
-  static Framebuffer create() { return Object::create(); }
   void bind() const { BindFramebuffer(GL_FRAMEBUFFER, id()); }
   // texture 0 detaches.
   void attach(GLenum attachment, GLuint texture, GLint level = 0) const {
@@ -138,11 +137,9 @@ class Framebuffer : public Object<FramebufferTraits> {
 
 // A linked program: made current, and its uniforms' locations looked up
 // once (gl_program.h sets them by name).
-class Program : public Object<ProgramTraits> {
+class Program : public Object<ProgramTraits, Program> {
  public:
   using Object::Object;
-  Program(Object&& o) noexcept : Object(std::move(o)) {}
-  static Program create() { return Object::create(); }
   void use() const { UseProgram(id()); }
   GLint location(const char* name) const {
     auto [at, added] = locations_.try_emplace(name, -1);

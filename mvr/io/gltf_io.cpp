@@ -15,6 +15,7 @@
 
 #include "mvr/error.h"
 #include "mvr/image.h"
+#include "mvr/io/mesh_check.h"
 
 namespace mvr {
 namespace {
@@ -390,8 +391,7 @@ std::string firstLine(const std::string& s) {
 }  // namespace
 
 bool isGltfPath(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string ext = lowerExtension(path);
   return ext == ".gltf" || ext == ".glb";
 }
 
@@ -401,10 +401,8 @@ Scene loadGltf(const std::string& path) {
   tinygltf::TinyGLTF loader;
   tinygltf::Model model;
   std::string error, warning;
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   bool ok = false;
-  if (ext == ".glb") {
+  if (lowerExtension(path) == ".glb") {
     // Read here, into memory not zeroed first: tinygltf's own file read
     // zero-fills a buffer the size of the file before reading into it.
     const auto size = std::filesystem::file_size(path, ec);

@@ -370,8 +370,10 @@ void checkOff(const std::string& path) {
 
 }  // namespace
 
+std::string lowerExtension(const std::string& path) { return lower(std::filesystem::path(path).extension().string()); }
+
 size_t checkMeshFile(const std::string& path, std::vector<long>* bareLines) {
-  const std::string ext = lower(std::filesystem::path(path).extension().string());
+  const std::string ext = lowerExtension(path);
   if (ext == ".obj") return checkObj(path);
   if (ext == ".ply") checkPly(path, bareLines);
   if (ext == ".off") checkOff(path);

@@ -40,4 +40,8 @@ void checkSceneGeometry(const Scene& scene, const std::string& where);
 // as a comment: its line number goes to bareLines.
 size_t checkMeshFile(const std::string& path, std::vector<long>* bareLines = nullptr);
 
+// The file name's extension in lower case (".ply"): how the loaders pick a
+// format.
+std::string lowerExtension(const std::string& path);
+
 }  // namespace mvr

@@ -79,6 +79,16 @@ class Gltf : public ::testing::Test {
   fs::path dir_;
 };
 
+// The texel of the textures below: sRGB (200, 40, 20), opaque.
+constexpr uint8_t kRed[4] = {200, 40, 20, 255};
+
+// A side x side PNG of kRed texels.
+void writeRedPng(const fs::path& path, int side) {
+  Image texels(side, side, PixelType::Srgb8);
+  for (size_t i = 0; i < size_t(side) * side; ++i) std::memcpy(&texels.bytes[4 * i], kRed, 4);
+  writeImage(texels, path.string());
+}
+
 // One triangle in z = 0; mesh 0 draws it.
 Document triangleDocument() {
   Document d;
@@ -143,9 +153,7 @@ TEST_F(Gltf, MaterialsVertexColoursAndTexture) {
                                 5121, "VEC4", 4);
   d.json["accessors"][size_t(colour)]["normalized"] = true;
   const int idx = d.accessor(std::vector<uint16_t>{0, 1, 2, 0, 2, 3}, 5123, "SCALAR", 6);
-  Image texels(4, 4, PixelType::Srgb8);
-  for (size_t i = 0; i < 16; ++i) std::memcpy(&texels.bytes[4 * i], "\xc8\x28\x14\xff", 4);
-  writeImage(texels, (dir_ / "red.png").string());
+  writeRedPng(dir_ / "red.png", 4);
   d.json["images"] = Json::array({{{"uri", "red.png"}}});
   d.json["textures"] = Json::array({{{"source", 0}}});
   d.json["materials"] = Json::array(
@@ -194,9 +202,7 @@ TEST_F(Gltf, TexturedQuadMvrAgainstSvr) {
   const int n = d.accessor(std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, 5126, "VEC3", 4);
   const int uv = d.accessor(std::vector<float>{0, 1, 1, 1, 1, 0, 0, 0}, 5126, "VEC2", 4);
   const int idx = d.accessor(std::vector<uint8_t>{0, 1, 2, 0, 2, 3}, 5121, "SCALAR", 6);
-  Image texels(8, 8, PixelType::Srgb8);
-  for (size_t i = 0; i < 64; ++i) std::memcpy(&texels.bytes[4 * i], "\xc8\x28\x14\xff", 4);
-  writeImage(texels, (dir_ / "red.png").string());
+  writeRedPng(dir_ / "red.png", 8);
   d.json["images"] = Json::array({{{"uri", "red.png"}}});
   d.json["textures"] = Json::array({{{"source", 0}}});
   d.json["materials"] = Json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0}}}}});
@@ -215,7 +221,7 @@ TEST_F(Gltf, TexturedQuadMvrAgainstSvr) {
   const Image& centre = a.views.at({0, 2});
   // The middle pixel: texel colour (200, 40, 20) sRGB, lit by 1 head on.
   const glm::vec4 c = centre.linear(32, 24);
-  EXPECT_NEAR(c.r, decodeSrgb8(reinterpret_cast<const uint8_t*>("\xc8\x28\x14\xff")).r, 0.02f);
+  EXPECT_NEAR(c.r, decodeSrgb8(kRed).r, 0.02f);
   EXPECT_GT(c.r, 5 * c.g);
   test::expectCloseOnAnyGl(test::compareViews(a, b), 0.99, 30.0, "glTF textured quad, mvr cpu");
 }
