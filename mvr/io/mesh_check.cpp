@@ -27,11 +27,6 @@ bool parseWhole(std::string_view word, T& value) {
   return !word.empty() && ec == std::errc() && end == word.data() + word.size();
 }
 
-std::string lower(std::string s) {
-  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 // One face corner "v", "v/vt", "v//vn" or "v/vt/vn" against the counts so
 // far; returns its vertex, counted from 1.
 long checkCorner(const std::string& path, long line, const std::string& corner, const long (&defined)[3]) {
@@ -73,19 +68,40 @@ void checkNumbers(const std::string& path, long line, std::istringstream& words,
   }
 }
 
-// Returns the faces with fewer than three distinct corners, which
-// OpenMesh's reader drops without telling.
-size_t checkObj(const std::string& path) {
+// The statements tinyobjloader reads into what we draw; "l" and "p" it
+// reads as points and lines, which we skip.
+bool isDrawnObjStatement(const std::string& key) {
+  static const char* const kDrawn[] = {"v", "vt", "vn", "f", "g", "o", "s", "usemtl", "mtllib"};
+  return std::find_if(std::begin(kDrawn), std::end(kDrawn), [&](const char* k) { return key == k; }) != std::end(kDrawn);
+}
+
+// How many distinct statement keywords a file's warning names at most (a
+// fuzzed file has thousands).
+constexpr size_t kMaxIgnoredNamed = 8;
+
+void noteObjStatement(const std::string& key, long line, ObjStatements& notes) {
+  if (key == "l" || key == "p") {
+    notes.pointsOrLines = true;
+    return;
+  }
+  if (isDrawnObjStatement(key)) return;
+  for (const auto& [known, first] : notes.ignored)
+    if (known == key) return;
+  if (notes.ignored.size() < kMaxIgnoredNamed) notes.ignored.emplace_back(key.substr(0, 24), line);
+}
+
+}  // namespace
+
+void checkObjFile(const std::string& path, ObjStatements* notes) {
   std::ifstream in(path);
-  size_t degenerate = 0;
   std::vector<long> corners;
   long defined[3] = {0, 0, 0};  // v, vt, vn
   long line = 0;
   for (std::string text; std::getline(in, text);) {
-    ++line;
-    // As OpenMesh's reader: trim blanks, then skip a line that is empty, a
-    // comment, or starts with other white space (a form feed): counting
-    // such a "v" line would shift every relative index against OpenMesh's.
+    if (++line == 1 && text.size() >= 2 && ((text[0] == '\xfe' && text[1] == '\xff') || (text[0] == '\xff' && text[1] == '\xfe')))
+      fail(path, "UTF-16 text is not read (save the OBJ as UTF-8)");
+    // Trim blanks, then skip a line that is empty, a comment, or starts
+    // with other white space (a form feed), as OpenMesh's reader did.
     const size_t first = text.find_first_not_of(" \t\r\n");
     if (first == std::string::npos || text[first] == '#' || std::isspace(static_cast<unsigned char>(text[first])))
       continue;
@@ -106,12 +122,16 @@ size_t checkObj(const std::string& path) {
       for (std::string corner; words >> corner;) corners.push_back(checkCorner(path, line, corner, defined));
       if (corners.size() < 3)
         failAt(path, line, "face with " + std::to_string(corners.size()) + " corners (needs 3)");
-      std::sort(corners.begin(), corners.end());
-      if (std::unique(corners.begin(), corners.end()) - corners.begin() < 3) ++degenerate;
+    } else if (key == "usemtl" && notes) {
+      std::string more;
+      notes->spacedNames = notes->spacedNames || (words >> more >> more);
+    } else if (notes) {
+      noteObjStatement(key, line, *notes);
     }
   }
-  return degenerate;
 }
+
+namespace {
 
 int plyTypeBytes(const std::string& type) {
   static const std::map<std::string, int> kBytes{
@@ -370,14 +390,18 @@ void checkOff(const std::string& path) {
 
 }  // namespace
 
-std::string lowerExtension(const std::string& path) { return lower(std::filesystem::path(path).extension().string()); }
+std::string lowerCase(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
 
-size_t checkMeshFile(const std::string& path, std::vector<long>* bareLines) {
+std::string lowerExtension(const std::string& path) { return lowerCase(std::filesystem::path(path).extension().string()); }
+
+void checkMeshFile(const std::string& path, std::vector<long>* bareLines) {
   const std::string ext = lowerExtension(path);
-  if (ext == ".obj") return checkObj(path);
+  if (ext == ".obj") checkObjFile(path, nullptr);
   if (ext == ".ply") checkPly(path, bareLines);
   if (ext == ".off") checkOff(path);
-  return 0;
 }
 
 namespace {

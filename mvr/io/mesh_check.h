@@ -1,12 +1,14 @@
 #pragma once
-// Checks a mesh file before OpenMesh reads it. OpenMesh's readers trust
-// their input: an OBJ face naming a vertex that does not exist corrupts
-// the heap (ImporterT::set_texcoord), a PLY header with a mangled keyword
-// crashes its format probe, one cut inside the header makes it spin, and
-// one cut inside its data loses faces silently (issue 16). These checks
-// are bounded and read the file once; each rejection is one line naming
-// the file and the line or element.
+// Checks a mesh file before a library reads it. OpenMesh's readers trust
+// their input: a PLY header with a mangled keyword crashes its format
+// probe, one cut inside the header makes it spin, and one cut inside its
+// data loses faces silently (issue 16); an OBJ face naming a vertex that
+// does not exist corrupted its heap. These checks are bounded and read
+// the file once; each rejection is one line naming the file and the line
+// or element, which the libraries' own messages do not.
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "mvr/scene.h"
 
@@ -32,16 +34,27 @@ void checkSceneGeometry(const Scene& scene, const std::string& where);
 // counts, properties of known types, end_header), and data long enough for
 // every element (binary: at least each element's fixed bytes; ASCII: a
 // line per element). OFF: its vertex and face counts within what the data
-// after them can hold. STL passes. Throws mvr::Error. Returns the
-// OBJ faces with fewer than three distinct corners, which OpenMesh's OBJ
-// reader drops before its importer sees them (its other readers hand them
-// on, and loadMesh counts them there). A PLY header line that starts with
-// no keyword (old Blender wrote "Created by Blender3D ..." bare) is taken
-// as a comment: its line number goes to bareLines.
-size_t checkMeshFile(const std::string& path, std::vector<long>* bareLines = nullptr);
+// after them can hold. STL passes. Throws mvr::Error. A PLY header line
+// that starts with no keyword (old Blender wrote "Created by Blender3D
+// ..." bare) is taken as a comment: its line number goes to bareLines.
+void checkMeshFile(const std::string& path, std::vector<long>* bareLines = nullptr);
+
+// What an OBJ file says that is not drawn: statements other than v, vt,
+// vn, f, g, o, s, usemtl and mtllib (keyword and first line, the first few
+// met), and whether it has points or lines. And whether a usemtl names a
+// material of several words (3ds Max writes "Material #25").
+struct ObjStatements {
+  std::vector<std::pair<std::string, long>> ignored;
+  bool pointsOrLines = false;
+  bool spacedNames = false;
+};
+
+// The OBJ checks of checkMeshFile, noting the statements not drawn.
+void checkObjFile(const std::string& path, ObjStatements* notes);
 
 // The file name's extension in lower case (".ply"): how the loaders pick a
 // format.
 std::string lowerExtension(const std::string& path);
+std::string lowerCase(std::string s);
 
 }  // namespace mvr

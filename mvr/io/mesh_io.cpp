@@ -25,6 +25,7 @@
 #include "mvr/error.h"
 #include "mvr/io/gltf_io.h"
 #include "mvr/io/mesh_check.h"
+#include "mvr/io/obj_io.h"
 
 namespace mvr {
 namespace {
@@ -108,11 +109,12 @@ std::string withCommentedLines(const std::string& path, const std::vector<long>&
 
 Scene loadMesh(const std::string& path) {
   if (isGltfPath(path)) return loadGltf(path);
+  if (lowerExtension(path) == ".obj") return loadObj(path);
   silenceOpenMesh();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such mesh file");
   std::vector<long> bareLines;
-  const size_t degenerate = checkMeshFile(path, &bareLines);  // OpenMesh trusts its input; this does not
+  checkMeshFile(path, &bareLines);  // OpenMesh trusts its input; this does not
   ReadMesh mesh;
   OpenMesh::IO::Options opt = OpenMesh::IO::Options::VertexNormal |
                               OpenMesh::IO::Options::VertexColor |
@@ -126,7 +128,7 @@ Scene loadMesh(const std::string& path) {
     read = OpenMesh::IO::IOManager().read(text, ".ply", importer, opt);
   }
   if (!read) fail(path, "cannot read mesh (unsupported format or broken file)");
-  const size_t dropped = importer.dropped + degenerate;
+  const size_t dropped = importer.dropped;
   if (mesh.n_faces() == 0)
     fail(path, dropped ? "mesh has no usable triangles (" + std::to_string(dropped) +
                              " faces with repeated or missing corners)"

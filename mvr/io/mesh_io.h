@@ -1,5 +1,6 @@
 #pragma once
-// Triangle meshes from OBJ, PLY, OFF and STL through OpenMesh.
+// Triangle meshes: PLY, OFF and STL through OpenMesh; OBJ (obj_io.h) and
+// glTF (gltf_io.h) through their own readers.
 #include <string>
 
 #include "mvr/scene.h"

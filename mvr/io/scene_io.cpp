@@ -1,5 +1,6 @@
 #include "mvr/io/scene_io.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -156,7 +157,7 @@ class SceneReader {
   }
 
   Scene readMesh(const Json& j, const std::string& where) const {
-    expectObject(j, where, {"file", "transform", "material"});
+    expectObject(j, where, {"file", "transform", "material", "materials"});
     if (!j.contains("file")) bad(where, "no \"file\"");
     Scene mesh;
     try {
@@ -165,18 +166,39 @@ class SceneReader {
       bad(where + ".file", e.what());
     }
     if (j.contains("transform")) applyTransform(mesh, readTransform(j["transform"], where + ".transform"));
-    if (j.contains("material")) {
-      const Json& m = j["material"];
-      if (m.is_string()) {
-        auto it = materials_.find(m.get<std::string>());
-        if (it == materials_.end()) bad(where + ".material", "no material \"" + m.get<std::string>() + "\"");
-        mesh.materials[0] = it->second;
-      } else {
-        mesh.materials[0] = readMaterial(m, where + ".material");
-        mesh.materials[0].name = where;
-      }
+    if (j.contains("material") && j.contains("materials"))
+      bad(where, "\"material\" (the whole file's) and \"materials\" (by name) exclude each other");
+    if (j.contains("material")) {  // one material for every face of the file
+      mesh.materials = {materialOrName(j["material"], where + ".material")};
+      mesh.materialIds.assign(mesh.triangles.size(), 0);
     }
+    if (j.contains("materials")) overrideByName(mesh, j["materials"], where + ".materials");
     return mesh;
+  }
+
+  // A material given inline, or by the name of one in "materials".
+  Material materialOrName(const Json& m, const std::string& where) const {
+    if (!m.is_string()) {
+      Material out = readMaterial(m, where);
+      out.name = where;
+      return out;
+    }
+    auto it = materials_.find(m.get<std::string>());
+    if (it == materials_.end()) bad(where, "no material \"" + m.get<std::string>() + "\"");
+    return it->second;
+  }
+
+  // "materials": {"NAME": material}: each replaces the file's material of
+  // that name (an MTL's newmtl, a glTF material's name).
+  void overrideByName(Scene& mesh, const Json& j, const std::string& where) const {
+    if (!j.is_object()) bad(where, "must be an object of the file's material names");
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      const std::string at = where + "." + it.key();
+      auto named = std::find_if(mesh.materials.begin(), mesh.materials.end(),
+                                [&](const Material& m) { return m.name == it.key(); });
+      if (named == mesh.materials.end()) bad(at, "the file has no material of this name");
+      *named = materialOrName(it.value(), at);
+    }
   }
 
   static void applyTransform(Scene& mesh, const glm::mat4& m) {

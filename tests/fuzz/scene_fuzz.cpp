@@ -3,7 +3,10 @@
 // content.
 // A rejection (mvr::Error) is the expected answer to bad input; anything
 // else (a crash, a sanitizer report, another exception, a hang) is a
-// defect. Scene files may name "m.obj", a valid mesh beside them.
+// defect. Scene files may name "m.obj", a valid mesh beside them. An OBJ
+// input is also written as "lib.mtl", so that one input is both the OBJ
+// and the MTL its "mtllib lib.mtl" reads (each reader skips the other's
+// statements).
 #include <unistd.h>
 
 #include <cstdint>
@@ -42,8 +45,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   // kinds as the saved crashers and seeds were written.
   const char* ext = data[0] >= 253 ? ".glb" : data[0] >= 250 ? ".gltf" : kExtensions[data[0] % 5];
   const std::filesystem::path path = dir / (std::string("input") + ext);
-  {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  const std::filesystem::path mtl = dir / "lib.mtl";
+  for (const std::filesystem::path& file : {path, mtl}) {
+    if (file == mtl && std::string(ext) != ".obj") continue;
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
     out.write(reinterpret_cast<const char*>(data + 1), std::streamsize(size - 1));
   }
   try {
@@ -52,5 +57,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   std::error_code ec;
   std::filesystem::remove(path, ec);
+  std::filesystem::remove(mtl, ec);
   return 0;
 }

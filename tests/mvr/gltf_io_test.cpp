@@ -17,12 +17,15 @@
 #include "mvr/io/mesh_io.h"
 #include "mvr/io/scene_io.h"
 #include "tests/support/render_helpers.h"
+#include "tests/support/solid_png.h"
 
 namespace mvr {
 namespace {
 
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
+using test::kRed;
+using test::writeRedPng;
 
 std::string base64(const std::vector<unsigned char>& bytes) {
   static const char* abc = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -78,16 +81,6 @@ class Gltf : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
   fs::path dir_;
 };
-
-// The texel of the textures below: sRGB (200, 40, 20), opaque.
-constexpr uint8_t kRed[4] = {200, 40, 20, 255};
-
-// A side x side PNG of kRed texels.
-void writeRedPng(const fs::path& path, int side) {
-  Image texels(side, side, PixelType::Srgb8);
-  for (size_t i = 0; i < size_t(side) * side; ++i) std::memcpy(&texels.bytes[4 * i], kRed, 4);
-  writeImage(texels, path.string());
-}
 
 // One triangle in z = 0; mesh 0 draws it.
 Document triangleDocument() {

@@ -233,9 +233,10 @@ TEST_F(SceneIo, AbsurdCoordinatesAndDegenerateMeshes) {
   expectError(write("junkvn.obj", square + "vn 0 x 1\n"), "junkvn.obj:7: normal component 'x'");
   std::string grid;
   for (int i = 0; i < 200; ++i) grid += "v " + std::to_string(i % 20) + " " + std::to_string(i / 20) + " 0\n";
-  grid += "f 1 2 21\n";  // a 19 x 9 grid: a vertex may lie up to 1.9e7 beyond it
-  EXPECT_EQ(loadScene(write("grid.obj", grid + "v 0 0 1e7\n")).positions.size(), 201u);
-  expectError(write("stray.obj", grid + "v 0 0 1e9\n"), "vertex 200 (0, 0, 1e+09) strays");
+  for (int i = 2; i < 200; ++i) grid += "f 1 " + std::to_string(i) + " " + std::to_string(i + 1) + "\n";
+  // A 19 x 9 grid: a vertex may lie up to 1.9e7 beyond it.
+  EXPECT_EQ(loadScene(write("grid.obj", grid + "v 0 0 1e7\nf 1 2 201\n")).positions.size(), 201u);
+  expectError(write("stray.obj", grid + "v 0 0 1e9\nf 1 2 201\n"), "vertex 200 (0, 0, 1e+09) strays");
   expectError(write("line.obj", "v 0 0 0\nv 1 1 1\nv 2 2 2\nf 1 2 3\nf 1 1 2\n"), "every triangle has zero area");
   write("square2.obj", square);
   expectError(write("scaled.json", "{\"meshes\": [{\"file\": \"square2.obj\", \"transform\": {\"scale\": 1e20}}]}"),

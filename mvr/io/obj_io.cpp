@@ -1,0 +1,353 @@
+#include "mvr/io/obj_io.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <unordered_map>
+
+#include <tiny_obj_loader.h>
+
+#include "mvr/error.h"
+#include "mvr/io/mesh_check.h"
+
+namespace mvr {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Each distinct warning once, prefixed with the file.
+class Warnings {
+ public:
+  Warnings(Scene& scene, std::string path) : scene_(scene), path_(std::move(path)) {}
+  void operator()(const std::string& what) {
+    if (said_.insert(what).second) scene_.warnings.push_back(path_ + ": " + what);
+  }
+
+ private:
+  Scene& scene_;
+  std::string path_;
+  std::set<std::string> said_;
+};
+
+// The file `written` names from dir: as written; else with backslashes
+// read as slashes and each part matched without regard to case (files
+// written on Windows). Empty where nothing matches. `how` names the file
+// found where the case differed; `backslashes`, whether they were read.
+std::string findFile(const fs::path& dir, const std::string& written, std::string& how, bool& backslashes) {
+  std::error_code ec;
+  how.clear();
+  backslashes = false;
+  const fs::path exact = dir / written;
+  if (fs::is_regular_file(exact, ec)) return exact.string();
+  std::string slashed = written;
+  std::replace(slashed.begin(), slashed.end(), '\\', '/');
+  const fs::path name(slashed);
+  fs::path at = name.is_absolute() ? name.root_path() : dir;
+  bool caseDiffers = false;
+  for (const fs::path& part : name.relative_path()) {
+    if (part == "." || part.empty()) continue;
+    if (part == ".." || fs::exists(at / part, ec)) {
+      at /= part;
+      continue;
+    }
+    const std::string want = lowerCase(part.string());
+    bool found = false;
+    for (auto it = fs::directory_iterator(at, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
+      if (lowerCase(it->path().filename().string()) == want) {
+        at = it->path(), found = caseDiffers = true;
+        break;
+      }
+    if (!found) return "";
+  }
+  if (!fs::is_regular_file(at, ec)) return "";
+  if (caseDiffers) how = "as " + at.string();
+  backslashes = slashed != written;
+  return at.string();
+}
+
+// tinyobjloader reads a newmtl name to the end of its line but a usemtl
+// name to its first blank: where a file names materials of several words,
+// both are read with their blanks as kJoin, which Material::name turns
+// back.
+constexpr char kJoin = '\x1f';
+
+std::string joined(const std::string& name) {
+  const size_t first = name.find_first_not_of(" \t\r"), last = name.find_last_not_of(" \t\r");
+  std::string out = first == std::string::npos ? "" : name.substr(first, last - first + 1);
+  std::replace_if(out.begin(), out.end(), [](char c) { return c == ' ' || c == '\t'; }, kJoin);
+  return out;
+}
+
+// The OBJ's text with each usemtl name joined.
+std::string withJoinedNames(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string out;
+  for (std::string line; std::getline(in, line);) {
+    const size_t at = line.find_first_not_of(" \t");
+    if (at != std::string::npos && line.compare(at, 7, "usemtl ") == 0) line = "usemtl " + joined(line.substr(at + 7));
+    out += line + '\n';
+  }
+  return out;
+}
+
+// The MTL files `mtllib` names, found from the OBJ's folder as findFile
+// tolerates; remembers each material's folder, where its maps are.
+class MtlFiles final : public tinyobj::MaterialReader {
+ public:
+  MtlFiles(fs::path dir, Warnings& warn, bool join) : dir_(std::move(dir)), warn_(warn), join_(join) {}
+
+  bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* ids, std::string* warn, std::string* err) override {
+    std::string how;
+    bool backslashes = false;
+    const std::string file = findFile(dir_, name, how, backslashes);
+    if (file.empty()) {
+      warn_("material library '" + name + "' not found: its materials are drawn as the default");
+      return false;
+    }
+    if (!how.empty()) warn_("material library '" + name + "' read " + how);
+    if (backslashes) warn_("backslashes in file names read as slashes");
+    std::ifstream in(file);
+    const size_t first = materials->size();
+    tinyobj::LoadMtl(ids, materials, &in, warn, err);
+    folders.resize(materials->size(), fs::path(file).parent_path());
+    for (size_t i = first; join_ && i < materials->size(); ++i) {
+      tinyobj::material_t& m = (*materials)[i];
+      ids->erase(m.name);
+      m.name = joined(m.name);
+      (*ids)[m.name] = int(i);
+    }
+    return true;
+  }
+
+  std::vector<fs::path> folders;  // per material
+
+ private:
+  fs::path dir_;
+  Warnings& warn_;
+  bool join_;
+};
+
+glm::vec3 unitColor(const tinyobj::real_t (&c)[3], const std::string& what, Warnings& warn) {
+  glm::vec3 v(c[0], c[1], c[2]);
+  for (int k = 0; k < 3; ++k)
+    if (!std::isfinite(v[k])) v[k] = 0.0f;
+  if (!isUnitColor(v)) warn(what + " outside [0, 1] clamped");
+  return glm::clamp(v, 0.0f, 1.0f);
+}
+
+// One MTL material as ours: Kd the diffuse colour (map_Kd multiplies it,
+// as the MTL format says), Ks and Ns the Blinn-Phong highlight. What an
+// MTL says that our model has no place for is named in a warning.
+Material materialOf(const tinyobj::material_t& t, const fs::path& folder, Warnings& warn) {
+  Material m;
+  m.name = t.name;
+  std::replace(m.name.begin(), m.name.end(), kJoin, ' ');
+  const std::string of = "material '" + m.name + "': ";
+  m.diffuse = unitColor(t.diffuse, of + "Kd", warn);
+  m.specular = unitColor(t.specular, of + "Ks", warn);
+  m.shininess = std::isfinite(t.shininess) ? std::clamp(float(t.shininess), 1.0f, 1e4f) : 1.0f;
+  if (!t.diffuse_texname.empty()) {
+    std::string how;
+    bool backslashes = false;
+    m.texture = findFile(folder, t.diffuse_texname, how, backslashes);
+    if (m.texture.empty()) warn(of + "map_Kd '" + t.diffuse_texname + "' not found: drawn untextured");
+    if (!how.empty()) warn(of + "map_Kd '" + t.diffuse_texname + "' read " + how);
+    if (backslashes) warn("backslashes in file names read as slashes");
+    const auto& o = t.diffuse_texopt;
+    if (o.scale[0] != 1 || o.scale[1] != 1 || o.origin_offset[0] != 0 || o.origin_offset[1] != 0)
+      warn(of + "map_Kd options -s and -o not read");
+  }
+  if (t.dissolve < 1.0f) warn(of + "transparency (d, Tr) drawn opaque");
+  if (t.emission[0] > 0 || t.emission[1] > 0 || t.emission[2] > 0) warn(of + "emission (Ke) not read");
+  std::vector<std::string> unread;
+  auto note = [&](const std::string& map, const char* key) {
+    if (!map.empty()) unread.push_back(key);
+  };
+  note(t.specular_texname, "map_Ks"), note(t.specular_highlight_texname, "map_Ns");
+  note(t.bump_texname, "bump"), note(t.normal_texname, "norm"), note(t.displacement_texname, "disp");
+  note(t.alpha_texname, "map_d"), note(t.reflection_texname, "refl");
+  for (const auto& [key, value] : t.unknown_parameter) unread.push_back(key.substr(0, 24));
+  if (!unread.empty()) {
+    std::string list;
+    for (const std::string& k : unread) list += (list.empty() ? "" : ", ") + k;
+    warn(of + "not read: " + list);
+  }
+  return m;
+}
+
+// A triangle corner's vertex: position, texture coordinate and normal
+// indices (-1 for none), as one key.
+struct CornerKey {
+  int v, t, n;
+  bool operator==(const CornerKey&) const = default;
+};
+struct CornerHash {
+  size_t operator()(const CornerKey& k) const {
+    return (size_t(uint32_t(k.v)) * 0x9E3779B97F4A7C15ull) ^ (size_t(uint32_t(k.t)) * 0xC2B2AE3D27D4EB4Full) ^
+           size_t(uint32_t(k.n));
+  }
+};
+
+class ObjBuilder {
+ public:
+  ObjBuilder(const tinyobj::attrib_t& a, const std::vector<tinyobj::material_t>& materials,
+             const std::vector<fs::path>& folders, const std::string& path, Scene& scene, Warnings& warn)
+      : a_(a), materials_(materials), folders_(folders), path_(path), scene_(scene), warn_(warn) {}
+
+  void build(const std::vector<tinyobj::shape_t>& shapes) {
+    checkAttributes();
+    for (const tinyobj::shape_t& s : shapes) note(s.mesh);
+    for (const tinyobj::shape_t& s : shapes) faces(s.mesh);
+    if (allNormals_) return;
+    // Smooth normals over each position, shared by its copies.
+    Scene byPosition;
+    for (size_t v = 0; v < a_.vertices.size() / 3; ++v) byPosition.positions.push_back(position(v));
+    byPosition.triangles = positionTriangles_;
+    computeVertexNormals(byPosition);
+    scene_.normals.clear();
+    for (int v : vertexPosition_) scene_.normals.push_back(byPosition.normals[size_t(v)]);
+  }
+
+ private:
+  glm::vec3 position(size_t v) const { return {a_.vertices[3 * v], a_.vertices[3 * v + 1], a_.vertices[3 * v + 2]}; }
+
+  void checkAttributes() {
+    for (size_t v = 0; v < a_.vertices.size() / 3; ++v) {
+      const glm::vec3 p = position(v);
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+        fail(path_, "vertex " + std::to_string(v) + " has a non-finite coordinate");
+      if (3 * v + 2 < a_.colors.size() &&
+          !isUnitColor({a_.colors[3 * v], a_.colors[3 * v + 1], a_.colors[3 * v + 2]}))
+        fail(path_, "vertex " + std::to_string(v) + " has a colour outside [0, 1]");
+    }
+  }
+
+  // Whether every corner has a normal and any a texture coordinate; every
+  // index in range (tinyobjloader does not check a triangle's).
+  void note(const tinyobj::mesh_t& m) {
+    const int vertices = int(a_.vertices.size() / 3), uvs = int(a_.texcoords.size() / 2),
+              normals = int(a_.normals.size() / 3);
+    for (const tinyobj::index_t& i : m.indices) {
+      if (i.vertex_index < 0 || i.vertex_index >= vertices || i.texcoord_index < -1 || i.texcoord_index >= uvs ||
+          i.normal_index < -1 || i.normal_index >= normals)
+        fail(path_, "a face refers to an element that does not exist");
+      allNormals_ = allNormals_ && i.normal_index >= 0;
+      anyUv_ = anyUv_ || i.texcoord_index >= 0;
+    }
+  }
+
+  void faces(const tinyobj::mesh_t& m) {
+    size_t at = 0;
+    for (size_t f = 0; f < m.num_face_vertices.size(); at += m.num_face_vertices[f], ++f) {
+      if (m.num_face_vertices[f] != 3 || at + 3 > m.indices.size()) {
+        ++scene_.droppedFaces;
+        continue;
+      }
+      const tinyobj::index_t* c = &m.indices[at];
+      if (c[0].vertex_index == c[1].vertex_index || c[1].vertex_index == c[2].vertex_index ||
+          c[0].vertex_index == c[2].vertex_index) {
+        ++scene_.droppedFaces;
+        continue;
+      }
+      glm::uvec3 t;
+      for (int k = 0; k < 3; ++k) t[k] = vertex(c[k]);  // in order: vertices numbered as first met
+      scene_.triangles.push_back(t);
+      positionTriangles_.emplace_back(c[0].vertex_index, c[1].vertex_index, c[2].vertex_index);
+      scene_.materialIds.push_back(material(f < m.material_ids.size() ? m.material_ids[f] : -1));
+    }
+  }
+
+  uint32_t vertex(const tinyobj::index_t& i) {
+    const CornerKey key{i.vertex_index, anyUv_ ? i.texcoord_index : -1, allNormals_ ? i.normal_index : -1};
+    auto [it, added] = vertexOf_.emplace(key, uint32_t(scene_.positions.size()));
+    if (!added) return it->second;
+    const auto v = size_t(i.vertex_index);
+    scene_.positions.push_back(position(v));
+    vertexPosition_.push_back(i.vertex_index);
+    scene_.colors.push_back(3 * v + 2 < a_.colors.size()
+                                ? glm::vec3(a_.colors[3 * v], a_.colors[3 * v + 1], a_.colors[3 * v + 2])
+                                : glm::vec3(1.0f));
+    if (anyUv_) {
+      const auto t = size_t(key.t);
+      scene_.uvs.push_back(key.t >= 0 ? glm::vec2(a_.texcoords[2 * t], a_.texcoords[2 * t + 1]) : glm::vec2(0.0f));
+    }
+    if (allNormals_) {
+      const auto n = size_t(key.n);
+      const glm::dvec3 normal(a_.normals[3 * n], a_.normals[3 * n + 1], a_.normals[3 * n + 2]);
+      const double len = glm::length(normal);  // double: a length of 1e20 squared overflows float
+      scene_.normals.push_back(std::isfinite(len) && len > 0 ? glm::vec3(normal / len) : glm::vec3(0, 0, 1));
+    }
+    return it->second;
+  }
+
+  // Our material for the file's (-1: none), each added when first used.
+  uint32_t material(int id) {
+    if (id < 0 || size_t(id) >= materials_.size()) {
+      if (!materials_.empty()) warn_("faces of no material the MTL files define are drawn as the default");
+      id = -1;
+    }
+    auto [it, added] = materialOf_.emplace(id, uint32_t(scene_.materials.size()));
+    if (added)
+      scene_.materials.push_back(id < 0 ? Material{}
+                                        : materialOf(materials_[size_t(id)], folders_[size_t(id)], warn_));
+    return it->second;
+  }
+
+  const tinyobj::attrib_t& a_;
+  const std::vector<tinyobj::material_t>& materials_;
+  const std::vector<fs::path>& folders_;
+  const std::string& path_;
+  Scene& scene_;
+  Warnings& warn_;
+  bool allNormals_ = true, anyUv_ = false;
+  std::unordered_map<CornerKey, uint32_t, CornerHash> vertexOf_;
+  std::map<int, uint32_t> materialOf_;
+  std::vector<int> vertexPosition_;           // per vertex: its position's index
+  std::vector<glm::uvec3> positionTriangles_;  // the triangles by position
+};
+
+void warnStatements(const ObjStatements& notes, Warnings& warn) {
+  if (notes.pointsOrLines) warn("points and lines skipped");
+  if (notes.ignored.empty()) return;
+  std::string list;
+  for (const auto& [key, line] : notes.ignored)
+    list += (list.empty() ? "" : ", ") + key + " (line " + std::to_string(line) + ")";
+  warn("statements not read: " + list);
+}
+
+}  // namespace
+
+Scene loadObj(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) fail(path, "no such mesh file");
+  ObjStatements notes;
+  checkObjFile(path, &notes);  // names the line of a bad index or number, which tinyobjloader does not
+  Scene scene;
+  scene.source = path;
+  Warnings warn(scene, path);
+  warnStatements(notes, warn);
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> materials;
+  std::string tinyWarn, error;
+  MtlFiles mtl(fs::path(path).parent_path(), warn, notes.spacedNames);
+  std::ifstream file(path, std::ios::binary);
+  std::istringstream text(notes.spacedNames ? withJoinedNames(path) : "");
+  std::istream& in = notes.spacedNames ? static_cast<std::istream&>(text) : file;
+  if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &tinyWarn, &error, &in, &mtl, true, true))
+    fail(path, error.empty() ? "cannot read OBJ" : error.substr(0, error.find('\n')));
+  mtl.folders.resize(materials.size(), fs::path(path).parent_path());
+  ObjBuilder(attrib, materials, mtl.folders, path, scene, warn).build(shapes);
+  if (scene.triangles.empty())
+    fail(path, scene.droppedFaces ? "mesh has no usable triangles (" + std::to_string(scene.droppedFaces) +
+                                        " faces with repeated or missing corners)"
+                                  : std::string("mesh has no triangles"));
+  return scene;
+}
+
+}  // namespace mvr
