@@ -8,6 +8,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "mvr/error.h"
+#include "mvr/file_camera.h"
 
 namespace mvr::app {
 namespace {
@@ -40,6 +41,10 @@ void CameraFlags::add(CLI::App& app) {
                  "composite over this linear colour, components 0..1 (alpha 1 if left out)")
       ->type_name("R,G,B[,A]");
   app.add_flag("--opaque", opaque, "alpha 1 everywhere (over --background, default black)");
+  app.add_option("--camera", fileCamera,
+                 "the scene file's camera (glTF), by name or index, as the centre view: its place, direction and "
+                 "vertical field of view, the image plane through the scene's centre (default: framed on the scene)")
+      ->type_name("NAME|INDEX");
 }
 
 void CameraFlags::validate() const {
@@ -52,6 +57,10 @@ void CameraFlags::validate() const {
     if (*end != '\0' || !std::isfinite(z)) fail("--focal", "'" + focal + "' is neither a number nor center");
   }
   backgroundColor();
+}
+
+void CameraFlags::viewThroughFileCamera(Scene& scene, int width, int height) const {
+  if (!fileCamera.empty()) viewThrough(scene, fileCamera, width, height);
 }
 
 double CameraFlags::placeFocalPlane(Scene& scene) const {

@@ -12,6 +12,8 @@
 //                     moving the scene by -Z; manifests keep the scene's
 //                     own world coordinates)
 //   --depthiness S    disparity times S: the track (and rows) scaled by S
+//   --camera NAME|INDEX  the scene file's own camera (glTF) as the centre
+//                     view (mvr/file_camera.h); the options above adjust it
 //   --background RGBA and --opaque: composited in linear light
 //                     (BackgroundSink)
 #include <optional>
@@ -27,12 +29,15 @@ namespace mvr::app {
 
 struct CameraFlags {
   std::optional<double> cone, fov, depthiness;
-  std::string focal, background;
+  std::string focal, background, fileCamera;
   bool opaque = false;
 
   void add(CLI::App& app);
   // Throws mvr::Error naming the option for a value out of range.
   void validate() const;
+  // With --camera: moves the scene into that camera's view and makes it
+  // the scene's camera.
+  void viewThroughFileCamera(Scene& scene, int width, int height) const;
   // Moves the scene so that the focal depth lies on z = 0; returns how far
   // the rig moved along z (0 without --focal).
   double placeFocalPlane(Scene& scene) const;

@@ -67,8 +67,10 @@ void setUp(RenderJob& job, PreparedJob& p) {
   Stopwatch phase;
   if (const shading::ShadingPlan plan = shading::planShading(p.scene); plan.texture || plan.reflection)
     preloadImageCodec();  // a stream of a textured scene reads images too
-  p.imagePlaneZ = job.camera.placeFocalPlane(p.scene);
   const bool synthesize = job.synthesize();
+  if (synthesize && !job.camera.fileCamera.empty()) fail("--camera", "needs a scene (synthesize takes the references' camera)");
+  job.camera.viewThroughFileCamera(p.scene, job.width, job.height);
+  p.imagePlaneZ = job.camera.placeFocalPlane(p.scene);
   CameraSpec spec = synthesize ? job.references->camera : cameraFor(p.scene, job.width, job.height);
   if (synthesize && (job.width != job.references->width || job.height != job.references->height))
     spec.planeHeight = 0.0;  // another size: the image plane's height from its aspect

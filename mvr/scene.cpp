@@ -37,6 +37,22 @@ void Scene::append(const Scene& other) {
   materials.insert(materials.end(), other.materials.begin(), other.materials.end());
   droppedFaces += other.droppedFaces;
   warnings.insert(warnings.end(), other.warnings.begin(), other.warnings.end());
+  fileCameras.insert(fileCameras.end(), other.fileCameras.begin(), other.fileCameras.end());
+}
+
+void Scene::transform(const glm::mat4& m) {
+  // A translation leaves directions as they are, to the bit.
+  const bool turns = glm::mat3(m) != glm::mat3(1.0f);
+  const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(glm::mat3(m))));
+  for (glm::vec3& p : positions) p = glm::vec3(m * glm::vec4(p, 1.0f));
+  for (glm::vec3& n : normals)
+    if (turns) n = glm::vec3(glm::normalize(normalMatrix * glm::dvec3(n)));
+  for (Light& light : lights)
+    if (light.type == Light::Type::Point)
+      light.vector = glm::vec3(m * glm::vec4(light.vector, 1.0f));
+    else if (turns)
+      light.vector = glm::vec3(glm::normalize(glm::dmat3(glm::mat3(m)) * glm::dvec3(light.vector)));
+  for (FileCamera& c : fileCameras) c.toWorld = m * c.toWorld;
 }
 
 }  // namespace mvr

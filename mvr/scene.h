@@ -61,6 +61,15 @@ struct Bounds {
   }
 };
 
+// A camera a scene file holds (glTF's perspective cameras): it sits at
+// toWorld's origin, looks down its -z with +y up. `--camera` makes one the
+// rig's centre view (mvr/file_camera.h).
+struct FileCamera {
+  std::string name;
+  glm::mat4 toWorld{1.0f};
+  double yfov = 0.8;  // vertical field of view, radians
+};
+
 struct Scene {
   // Per vertex.
   std::vector<glm::vec3> positions;
@@ -78,6 +87,7 @@ struct Scene {
   // keep them in float wherever they store them (the G-buffer's albedo).
   bool exactColors = false;
   std::optional<CameraSpec> camera;  // from the scene file, if it had one
+  std::vector<FileCamera> fileCameras;  // the files' own cameras, in world coordinates
   std::string source;                // file it came from, for manifests
   // Faces of the files that could not be used (a repeated corner or one
   // naming a vertex that does not exist): dropped, and counted here.
@@ -92,8 +102,13 @@ struct Scene {
   // Per vertex: its material. A vertex belongs to one mesh, so any of its
   // triangles names it.
   std::vector<uint32_t> vertexMaterials() const;
-  // Appends another scene's geometry and materials (lights stay ours).
+  // Appends another scene's geometry, materials and file cameras (lights
+  // stay ours).
   void append(const Scene& other);
+  // Moves everything placed in the world by m: positions, normals, lights
+  // and file cameras (in double: a scale of 1e-20 inverted is 1e20, and a
+  // normal times that squared overflows float).
+  void transform(const glm::mat4& m);
 };
 
 }  // namespace mvr

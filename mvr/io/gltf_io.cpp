@@ -173,12 +173,35 @@ std::shared_ptr<const Image> texelsOf(const tinygltf::Image& g) {
   return img;
 }
 
+double numberOr(const tinygltf::Value& object, const char* key, int index, double fallback) {
+  if (!object.Has(key)) return fallback;
+  const tinygltf::Value& v = object.Get(key);
+  const tinygltf::Value& n = index < 0 ? v : v.IsArray() && size_t(index) < v.ArrayLen() ? v.Get(index) : v;
+  return n.IsNumber() && std::isfinite(n.GetNumberAsDouble()) ? n.GetNumberAsDouble() : fallback;
+}
+
+// KHR_texture_transform of a texture reference as a matrix on glTF's
+// (u, v): T(offset) R(rotation) S(scale), as the extension defines it.
+glm::mat3 uvTransformOf(const tinygltf::TextureInfo& t) {
+  const auto it = t.extensions.find("KHR_texture_transform");
+  if (it == t.extensions.end() || !it->second.IsObject()) return glm::mat3(1.0f);
+  const tinygltf::Value& x = it->second;
+  const float r = float(numberOr(x, "rotation", -1, 0.0)), c = std::cos(r), s = std::sin(r);
+  const glm::mat3 translation(1, 0, 0, 0, 1, 0, float(numberOr(x, "offset", 0, 0.0)), float(numberOr(x, "offset", 1, 0.0)), 1);
+  const glm::mat3 rotation(c, -s, 0, s, c, 0, 0, 0, 1);  // u' = c u + s v, v' = c v - s u (the ratified text's)
+  const glm::mat3 scale(float(numberOr(x, "scale", 0, 1.0)), 0, 0, 0, float(numberOr(x, "scale", 1, 1.0)), 0, 0, 0, 1);
+  return translation * rotation * scale;
+}
+
 class GltfReader {
  public:
   GltfReader(const tinygltf::Model& model, const std::string& path) : model_(model), path_(path) {}
 
   Scene read() {
-    for (size_t i = 0; i < model_.materials.size(); ++i) scene_.materials.push_back(material(i));
+    for (size_t i = 0; i < model_.materials.size(); ++i) {
+      scene_.materials.push_back(material(i));
+      uvTransforms_.push_back(uvTransformOf(model_.materials[i].pbrMetallicRoughness.baseColorTexture));
+    }
     for (const tinygltf::Mesh& m : model_.meshes)
       for (const tinygltf::Primitive& p : m.primitives) anyUv_ = anyUv_ || p.attributes.count("TEXCOORD_0");
     std::vector<int> roots;
@@ -194,14 +217,12 @@ class GltfReader {
       for (size_t i = 0; i < child.size(); ++i)
         if (!child[i]) roots.push_back(int(i));
     }
-    for (const std::string& e : model_.extensionsUsed)
-      if (e == "KHR_texture_transform" || e == "KHR_lights_punctual") warn(e + " not read yet");
-    if (!model_.cameras.empty()) warn("its cameras not read yet: the camera is framed on the scene");
     if (!model_.animations.empty()) warn("animations not played yet: the scene as it stands");
     if (!model_.skins.empty()) warn("skins not applied yet: meshes in their bind pose");
     onPath_.assign(model_.nodes.size(), false);
     for (int r : roots) node(r, glm::mat4(1.0f));
     if (scene_.triangles.empty()) fail(path_, "glTF scene has no triangles");
+    addLights();
     scene_.source = path_;
     return std::move(scene_);
   }
@@ -213,7 +234,13 @@ class GltfReader {
     const tinygltf::TextureInfo& t = g.pbrMetallicRoughness.baseColorTexture;
     if (t.index >= 0) {
       if (size_t(t.index) >= model_.textures.size()) fail(path_, "texture " + std::to_string(t.index) + " does not exist");
-      const int source = model_.textures[size_t(t.index)].source;
+      const tinygltf::Texture& texture = model_.textures[size_t(t.index)];
+      const int source = texture.source;
+      if (texture.sampler >= 0 && size_t(texture.sampler) < model_.samplers.size()) {
+        const tinygltf::Sampler& wrap = model_.samplers[size_t(texture.sampler)];
+        if (wrap.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT || wrap.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT)
+          warn("texture wrap modes other than REPEAT drawn as REPEAT");
+      }
       if (source < 0 || size_t(source) >= model_.images.size())
         fail(path_, "texture " + std::to_string(t.index) + " has no image");
       if (t.texCoord != 0) warn("baseColorTexture on TEXCOORD_" + std::to_string(t.texCoord) + " read with TEXCOORD_0");
@@ -240,8 +267,75 @@ class GltfReader {
       if (size_t(n.mesh) >= model_.meshes.size()) fail(path_, "mesh " + std::to_string(n.mesh) + " does not exist");
       for (const tinygltf::Primitive& p : model_.meshes[size_t(n.mesh)].primitives) primitive(p, world);
     }
+    if (n.camera >= 0) camera(n, world);
+    if (const auto light = n.extensions.find("KHR_lights_punctual"); light != n.extensions.end())
+      placeLight(light->second, world);
     for (int c : n.children) node(c, world);
     onPath_[size_t(index)] = false;
+  }
+
+  void camera(const tinygltf::Node& n, const glm::mat4& world) {
+    if (size_t(n.camera) >= model_.cameras.size()) fail(path_, "camera " + std::to_string(n.camera) + " does not exist");
+    const tinygltf::Camera& c = model_.cameras[size_t(n.camera)];
+    if (c.type != "perspective") {
+      warn("orthographic cameras skipped");
+      return;
+    }
+    const double yfov = c.perspective.yfov;
+    if (!(yfov > 0.0 && yfov < 3.1)) fail(path_, "camera " + std::to_string(n.camera) + " has a yfov outside (0, 3.1)");
+    const std::string name = !c.name.empty() ? c.name : !n.name.empty() ? n.name : "camera " + std::to_string(n.camera);
+    scene_.fileCameras.push_back({name, world, yfov});
+  }
+
+  void placeLight(const tinygltf::Value& ext, const glm::mat4& world) {
+    const int index = ext.Has("light") && ext.Get("light").IsNumber() ? ext.Get("light").GetNumberAsInt() : -1;
+    if (index < 0 || size_t(index) >= model_.lights.size()) fail(path_, "light " + std::to_string(index) + " does not exist");
+    placedLights_.emplace_back(size_t(index), world);
+  }
+
+  // KHR_lights_punctual's physical units (lux; candela) as our colours in
+  // [0, 1]: each light's illuminance at the centre of the scene's bounds
+  // (our point lights do not fall off, so a point or spot light's is taken
+  // there), scaled so that they sum to 1. The lights keep their balance;
+  // the exposure is ours, as a camera's automatic exposure would be.
+  void addLights() {
+    const glm::vec3 centre = scene_.bounds().center();
+    std::vector<std::pair<double, Light>> lit;  // illuminance, light
+    for (const auto& [index, world] : placedLights_) {
+      const tinygltf::Light& g = model_.lights[index];
+      Light light;
+      if (g.color.size() == 3)
+        light.color = glm::clamp(glm::vec3(float(g.color[0]), float(g.color[1]), float(g.color[2])), 0.0f, 1.0f);
+      const double intensity = std::isfinite(g.intensity) ? std::max(g.intensity, 0.0) : 0.0;
+      double illuminance = intensity;
+      if (g.type == "directional") {
+        const glm::vec3 d = glm::mat3(world) * glm::vec3(0.0f, 0.0f, -1.0f);
+        light.vector = glm::length(d) > 0.0f ? glm::normalize(d) : glm::vec3(0.0f, 0.0f, -1.0f);
+      } else {
+        if (g.type == "spot") warn("spot lights drawn as point lights (their cones not modelled)");
+        light.type = Light::Type::Point;
+        light.vector = glm::vec3(world * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+        const double d = glm::distance(glm::dvec3(light.vector), glm::dvec3(centre));
+        illuminance = intensity / std::max(d * d, 1e-12);
+      }
+      if (g.range > 0.0) warn("light ranges not modelled: lights do not fall off");
+      if (illuminance > 0.0 && std::isfinite(illuminance)) lit.emplace_back(illuminance, light);
+    }
+    if (lit.empty()) {
+      if (!placedLights_.empty()) warn("its lights have no intensity: the default light is used");
+      return;
+    }
+    std::stable_sort(lit.begin(), lit.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    if (lit.size() > size_t(kMaxLights)) {
+      warn(std::to_string(lit.size()) + " lights: the " + std::to_string(kMaxLights) + " brightest are used");
+      lit.resize(size_t(kMaxLights));
+    }
+    double sum = 0.0;
+    for (const auto& l : lit) sum += l.first;
+    for (auto& [illuminance, light] : lit) {
+      light.color *= float(illuminance / sum);
+      scene_.lights.push_back(light);
+    }
   }
 
   // The primitive's triangles as corner indices, by its mode.
@@ -300,6 +394,7 @@ class GltfReader {
     reserve(normal ? position->count() : 3 * tris.size(), tris.size());
     const uint32_t materialId = p.material >= 0 && size_t(p.material) < scene_.materials.size() ? uint32_t(p.material)
                                                                                                  : defaultMaterial();
+    const glm::mat3 uvTransform = materialId < uvTransforms_.size() ? uvTransforms_[materialId] : glm::mat3(1.0f);
     const glm::mat3 linear(world);
     const glm::mat3 normalMatrix = glm::transpose(glm::inverse(linear));
     const bool mirrored = glm::determinant(linear) < 0.0f;
@@ -307,7 +402,7 @@ class GltfReader {
       scene_.positions.push_back(glm::vec3(world * glm::vec4(glm::vec3(position->at(k)), 1.0f)));
       scene_.normals.push_back(n);
       if (anyUv_) {
-        const glm::vec2 t = uv ? glm::vec2(uv->at(k)) : glm::vec2(0.0f, 1.0f);
+        const glm::vec2 t = uv ? glm::vec2(uvTransform * glm::vec3(glm::vec2(uv->at(k)), 1.0f)) : glm::vec2(0.0f, 1.0f);
         scene_.uvs.emplace_back(t.x, 1.0f - t.y);  // glTF's v runs down the image, ours up
       }
       scene_.colors.push_back(color ? glm::clamp(glm::vec3(color->at(k)), 0.0f, 1.0f) : glm::vec3(1.0f));
@@ -376,6 +471,8 @@ class GltfReader {
   std::string path_;
   Scene scene_;
   std::vector<bool> onPath_;
+  std::vector<std::pair<size_t, glm::mat4>> placedLights_;  // light, its node's world transform
+  std::vector<glm::mat3> uvTransforms_;  // per material: its base colour texture's KHR_texture_transform
   std::set<std::string> warned_;
   bool anyUv_ = false;
   int defaultMaterial_ = -1;

@@ -42,10 +42,19 @@ class SceneReader {
     if (!root.contains("meshes")) fail(path_, "no \"meshes\"");
     const Json& meshes = root["meshes"];
     if (!meshes.is_array() || meshes.empty()) bad("meshes", "must be a non-empty array");
-    for (size_t i = 0; i < meshes.size(); ++i)
-      scene.append(readMesh(meshes[i], "meshes[" + std::to_string(i) + "]"));
+    std::vector<Light> fileLights;  // a glTF's KHR_lights_punctual, where the scene file names none
+    for (size_t i = 0; i < meshes.size(); ++i) {
+      const Scene mesh = readMesh(meshes[i], "meshes[" + std::to_string(i) + "]");
+      fileLights.insert(fileLights.end(), mesh.lights.begin(), mesh.lights.end());
+      scene.append(mesh);
+    }
     if (root.contains("lights")) readLights(root["lights"], scene);
-    else scene.lights = defaultLights();
+    else scene.lights = fileLights.empty() ? defaultLights() : fileLights;
+    if (scene.lights.size() > size_t(kMaxLights)) {
+      scene.warnings.push_back(path_ + ": the meshes' files hold " + std::to_string(scene.lights.size()) +
+                               " lights: the first " + std::to_string(kMaxLights) + " are used");
+      scene.lights.resize(size_t(kMaxLights));
+    }
     if (root.contains("ambient")) scene.ambient = color(root["ambient"], "ambient");
     if (root.contains("camera")) scene.camera = readCamera(root["camera"]);
     return scene;
@@ -165,7 +174,7 @@ class SceneReader {
     } catch (const Error& e) {
       bad(where + ".file", e.what());
     }
-    if (j.contains("transform")) applyTransform(mesh, readTransform(j["transform"], where + ".transform"));
+    if (j.contains("transform")) mesh.transform(readTransform(j["transform"], where + ".transform"));
     if (j.contains("material") && j.contains("materials"))
       bad(where, "\"material\" (the whole file's) and \"materials\" (by name) exclude each other");
     if (j.contains("material")) {  // one material for every face of the file
@@ -199,14 +208,6 @@ class SceneReader {
       if (named == mesh.materials.end()) bad(at, "the file has no material of this name");
       *named = materialOrName(it.value(), at);
     }
-  }
-
-  static void applyTransform(Scene& mesh, const glm::mat4& m) {
-    // In double: the inverse of a scale of 1e-20 is 1e20, and the squared
-    // length of a normal times that overflows float (the normal came out 0).
-    const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(glm::mat3(m))));
-    for (glm::vec3& p : mesh.positions) p = glm::vec3(m * glm::vec4(p, 1.0f));
-    for (glm::vec3& n : mesh.normals) n = glm::vec3(glm::normalize(normalMatrix * glm::dvec3(n)));
   }
 
   void readLights(const Json& j, Scene& scene) const {
@@ -304,9 +305,8 @@ Scene loadScene(const std::string& path, bool strict) {
   if (fs::path(path).extension() != ".json") {
     scene = loadMesh(path);
     checkSceneGeometry(scene, path);  // before centring: bounds of a stray vertex overflow
-    const glm::vec3 c = scene.bounds().center();
-    for (glm::vec3& p : scene.positions) p -= c;
-    scene.lights = SceneReader::defaultLights();
+    if (scene.lights.empty()) scene.lights = SceneReader::defaultLights();  // else the file's (glTF)
+    scene.transform(glm::translate(glm::mat4(1.0f), -scene.bounds().center()));
   } else {
     scene = SceneReader(path).read();
     checkSceneGeometry(scene, path);  // after the meshes' transforms

@@ -2,6 +2,7 @@
 // and instancing, primitive modes and index types, flat normals where a
 // file has none, materials and their mapping, vertex colours, a texture
 // whose texels come through, and bad files as one-line errors.
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mvr/error.h"
+#include "mvr/file_camera.h"
 #include "mvr/image.h"
 #include "mvr/io/image_file.h"
 #include "mvr/io/mesh_io.h"
@@ -217,6 +219,94 @@ TEST_F(Gltf, TexturedQuadMvrAgainstSvr) {
   EXPECT_NEAR(c.r, decodeSrgb8(kRed).r, 0.02f);
   EXPECT_GT(c.r, 5 * c.g);
   test::expectCloseOnAnyGl(test::compareViews(a, b), 0.99, 30.0, "glTF textured quad, mvr cpu");
+}
+
+// KHR_texture_transform: the extension's own example (the lower-left
+// quadrant, turned a quarter clockwise) on three corners, worked by hand.
+TEST_F(Gltf, TextureTransformAsTheExtensionDefines) {
+  Document d;
+  const int p = d.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  const int uv = d.accessor(std::vector<float>{0, 0, 1, 0, 0, 1}, 5126, "VEC2", 3);
+  writeRedPng(dir_ / "red.png", 2);
+  d.json["images"] = Json::array({{{"uri", "red.png"}}});
+  d.json["textures"] = Json::array({{{"source", 0}}});
+  const Json transform = {{"offset", {0, 1}}, {"rotation", 1.57079632679}, {"scale", {0.5, 0.5}}};
+  d.json["materials"] = Json::array(
+      {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}, {"extensions", {{"KHR_texture_transform", transform}}}}}}}}});
+  d.json["meshes"] = Json::array(
+      {{{"primitives", Json::array({{{"attributes", {{"POSITION", p}, {"TEXCOORD_0", uv}}}, {"material", 0}}})}}});
+  d.json["nodes"] = Json::array({{{"mesh", 0}}});
+  const Scene s = loadMesh(d.write(dir_ / "transform.gltf"));
+  // glTF (u, v) -> S R T -> (0, 1), (0, 0.5), (0.5, 1); ours flip v.
+  const glm::vec2 expected[3] = {{0, 0}, {0, 0.5}, {0.5, 0}};
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(s.uvs[s.triangles[0][k]].x, expected[k].x, 1e-6) << k;
+    EXPECT_NEAR(s.uvs[s.triangles[0][k]].y, expected[k].y, 1e-6) << k;
+  }
+}
+
+// KHR_lights_punctual: a directional light of 3 lux turned to shine down,
+// and a point light of 100 cd 10 away from the triangle's centre (1 lux
+// there): 3/4 and 1/4 of the exposure. A bare file keeps its lights,
+// moved with the mesh as it is centred.
+TEST_F(Gltf, PunctualLightsKeepTheirBalance) {
+  Document d = triangleDocument();
+  d.json["extensionsUsed"] = {"KHR_lights_punctual"};
+  d.json["extensions"] = {{"KHR_lights_punctual",
+                           {{"lights", Json::array({{{"type", "directional"}, {"intensity", 3}},
+                                                    {{"type", "point"}, {"intensity", 100}, {"color", {1, 0.5, 0}}}})}}}};
+  const Json sun = {{"KHR_lights_punctual", {{"light", 0}}}}, bulb = {{"KHR_lights_punctual", {{"light", 1}}}};
+  d.json["nodes"] = Json::array({{{"mesh", 0}},
+                                 {{"rotation", {-0.70710678, 0, 0, 0.70710678}}, {"extensions", sun}},
+                                 {{"translation", {0.5, 0.5, 10}}, {"extensions", bulb}}});
+  const std::string path = d.write(dir_ / "lights.gltf");
+  const Scene s = loadMesh(path);
+  ASSERT_EQ(s.lights.size(), 2u);
+  EXPECT_EQ(s.lights[0].type, Light::Type::Directional);
+  EXPECT_NEAR(glm::distance(s.lights[0].vector, glm::vec3(0, -1, 0)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::distance(s.lights[0].color, glm::vec3(0.75f)), 0.0f, 1e-6f);
+  EXPECT_EQ(s.lights[1].type, Light::Type::Point);
+  EXPECT_NEAR(glm::distance(s.lights[1].color, glm::vec3(0.25f, 0.125f, 0.0f)), 0.0f, 1e-6f);
+  const Scene centred = loadScene(path);
+  ASSERT_EQ(centred.lights.size(), 2u);
+  EXPECT_NEAR(glm::distance(centred.lights[1].vector, glm::vec3(0, 0, 10)), 0.0f, 1e-6f);
+}
+
+// A file camera as the centre view: the scene in the camera's frame, the
+// image plane through the scene's centre, the plane's height from yfov.
+TEST_F(Gltf, FileCameraBecomesTheCentreView) {
+  Document d = triangleDocument();
+  d.json["cameras"] = Json::array({{{"type", "perspective"}, {"name", "front"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}},
+                                   {{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}}});
+  // "front" 4 in front of the triangle's centre; camera 1 on +x, turned
+  // a quarter about y to look down -x.
+  d.json["nodes"] = Json::array({{{"mesh", 0}},
+                                 {{"translation", {0.5, 0.5, 4}}, {"camera", 0}},
+                                 {{"translation", {4.5, 0.5, 0}}, {"rotation", {0, 0.70710678, 0, 0.70710678}}, {"camera", 1}}});
+  const std::string path = d.write(dir_ / "cameras.gltf");
+  Scene front = loadMesh(path);
+  ASSERT_EQ(front.fileCameras.size(), 2u);
+  const CameraSpec spec = viewThrough(front, "front", 200, 100);
+  EXPECT_NEAR(spec.distance, 4.0, 1e-6);
+  EXPECT_NEAR(spec.planeHeight, 8.0 * std::tan(0.25), 1e-6);
+  EXPECT_NEAR(spec.planeWidth, 2.0 * spec.planeHeight, 1e-6);
+  EXPECT_NEAR(glm::distance(front.positions[0], glm::vec3(-0.5f, -0.5f, 0.0f)), 0.0f, 1e-6f);
+  ASSERT_TRUE(front.camera);
+  Scene side = loadMesh(path);
+  viewThrough(side, "1", 100, 100);
+  EXPECT_NEAR(glm::distance(side.positions[0], glm::vec3(0.0f, -0.5f, -0.5f)), 0.0f, 1e-5f);
+  // The triangle's +z is the camera's -x: it is seen edge on.
+  for (const glm::vec3& n : side.normals) EXPECT_NEAR(glm::distance(n, glm::vec3(-1, 0, 0)), 0.0f, 1e-5f);
+  for (const auto& [which, message] : {std::pair<std::string, std::string>{"back", "'back' is neither a camera of"},
+                                       {"2", "nor an index below 2"}}) {
+    Scene s = loadMesh(path);
+    try {
+      viewThrough(s, which, 100, 100);
+      ADD_FAILURE() << which;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST_F(Gltf, BadFilesAreOneLineErrors) {
