@@ -302,7 +302,7 @@ class SpanRasterizer final : public EpiRasterizer {
     if (layer < 0) return glm::vec3(1.0f);
     const int at = shading_.plan.uv;
     const glm::vec2 uv = pstExtras<2>(pst, at, u), next = pstExtras<2>(pst, at, u + du);
-    return glm::vec3(shading_.textures->sample(layer, uv, shading_.textures->lodFor(next - uv)));
+    return glm::vec3(shading_.textures->sample(layer, uv, shading_.textures->lodFor(layer, next - uv)));
   }
 
   // A slice with a texture vector: its texel at u, and the highlight of

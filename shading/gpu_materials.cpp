@@ -6,15 +6,15 @@ namespace mvr::shading {
 
 GpuMaterials::GpuMaterials(const Scene& scene, const TextureSet& textures,
                            const EnvironmentSet& environment, bool uploadTextures)
-    : materials_(makeMaterialBuffer(scene, textures.materialLayers(), environment.materialMaps())),
+    : materials_(makeMaterialBuffer(scene, textures.materialSlots(), environment.materialMaps())),
       cubeMaps_(environment.uploadCubes()),
       sphereMaps_(environment.uploadSpheres()) {
   if (uploadTextures && !textures.empty()) textures_ = textures.upload();
 }
 
-void GpuMaterials::bind(GLuint textureUnit) const {
+void GpuMaterials::bind() const {
   materials_.bindStorage(1);
-  if (textures_.id()) textures_.bind(textureUnit);
+  for (size_t g = 0; g < textures_.size(); ++g) textures_[g].bind(TextureSet::kFirstUnit + GLuint(g));
   if (cubeMaps_.id()) cubeMaps_.bind(EnvironmentSet::kCubeUnit);
   if (sphereMaps_.id()) sphereMaps_.bind(EnvironmentSet::kSphereUnit);
 }

@@ -1,8 +1,11 @@
 #pragma once
 // The scene's materials as every GL back end reads them: the Materials
 // storage block that glslSpecular() declares (binding 1), carrying each
-// material's texture layer and reflection map, the textures as one
-// mipmapped 2D array, and the reflection maps (EnvironmentSet's units).
+// material's texture group, layer and reflection map, the textures as
+// mipmapped 2D arrays (TextureSet's units), and the reflection maps
+// (EnvironmentSet's units).
+#include <vector>
+
 #include "mvr/gl/gl_handles.h"
 #include "mvr/scene.h"
 #include "shading/environment_set.h"
@@ -13,16 +16,17 @@ namespace mvr::shading {
 class GpuMaterials {
  public:
   // uploadTextures = false: the layers only (paths that never sample the
-  // 2D array, such as MVR's texture vectors).
+  // 2D arrays, such as MVR's texture vectors).
   GpuMaterials(const Scene& scene, const TextureSet& textures, const EnvironmentSet& environment,
                bool uploadTextures = true);
-  // The storage block at binding 1, the texture array (if uploaded) at
-  // textureUnit and the reflection maps.
-  void bind(GLuint textureUnit) const;
+  // The storage block at binding 1, the texture groups (if uploaded) and
+  // the reflection maps, each at its unit.
+  void bind() const;
 
  private:
   gl::Buffer materials_;
-  gl::Texture textures_, cubeMaps_, sphereMaps_;
+  std::vector<gl::Texture> textures_;
+  gl::Texture cubeMaps_, sphereMaps_;
 };
 
 }  // namespace mvr::shading

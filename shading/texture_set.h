@@ -1,8 +1,12 @@
 #pragma once
-// The scene's textures as one set: every material texture resampled to one
-// size (the largest), with one box-filtered MIP chain computed here and
-// uploaded unchanged to a GL 2D array texture, so that the CPU back end,
-// the 1-D texture vectors and every GL back end filter the same texels.
+// The scene's textures, each at its own size with its own box-filtered MIP
+// chain computed here, so that the CPU back end, the 1-D texture vectors
+// and every GL back end filter the same texels. On the GL, textures of one
+// size share a 2D array (a group); up to kMaxGroups groups, each on its
+// own texture unit, and glsl() picks a material's group and layer. A scene
+// with more distinct sizes than that has its smallest textures resampled
+// up into the smallest group that holds them (rare: exporters write a few
+// power-of-two sizes).
 // Coordinates: u to the right, v up (v = 0 is the image's bottom row);
 // wrap mode repeat; trilinear filtering with texel centres at +0.5.
 #include <cstdint>
@@ -18,31 +22,50 @@ namespace mvr::shading {
 
 class TextureSet {
  public:
+  static constexpr int kMaxGroups = 8;
+  static constexpr unsigned kFirstUnit = 8;  // group g on unit kFirstUnit + g
+
   // Loads every distinct texture the materials name (errors name the file).
   static TextureSet load(const Scene& scene);
 
-  bool empty() const { return layers_ == 0; }
-  int width() const { return width_; }
-  int height() const { return height_; }
-  int levels() const { return int(levelSize_.size()); }
+  bool empty() const { return layers_.empty(); }
   // Per material: its layer, or -1 for none.
   const std::vector<int>& materialLayers() const { return materialLayer_; }
+  glm::ivec2 size(int layer) const { return layers_[size_t(layer)].levelSize[0]; }
+  int levels(int layer) const { return int(layers_[size_t(layer)].levelSize.size()); }
+  // Per material: its GL group and the layer within it ({-1, -1} for none).
+  std::vector<glm::ivec2> materialSlots() const;
 
   // Trilinear sample of layer at uv, level of detail lod (clamped).
   glm::vec4 sample(int layer, glm::vec2 uv, float lod) const;
-  // Level of detail for a footprint of duv (texture units) per pixel.
-  float lodFor(glm::vec2 duv) const;
+  // Level of detail in layer for a footprint of duv (texture units) per pixel.
+  float lodFor(int layer, glm::vec2 duv) const;
 
-  // GL 2D array texture with this set's levels (needs a current context).
-  gl::Texture upload() const;
+  // Per group, a GL 2D array texture with its levels (needs a current
+  // context).
+  std::vector<gl::Texture> upload() const;
+
+  // GLSL, after shading::glslMaterials(): the groups' samplers and
+  //   vec4 materialTexel(int material, vec2 uv, vec2 dx, vec2 dy)
+  //     (by textureGrad; vec4(1) for a material without a texture),
+  //   vec4 materialTexelLod(int material, vec2 uv, float lod),
+  //   vec2 materialTextureSize(int material).
+  static const std::string& glsl();
 
  private:
-  glm::vec4 texel(int layer, int level, int x, int y) const;
-  glm::vec4 bilinear(int layer, int level, glm::vec2 uv) const;
+  struct Layer {
+    std::vector<glm::ivec2> levelSize;
+    std::vector<std::vector<uint8_t>> levels;  // sRGB RGBA8, row 0 = v 0
+    int group = 0, slice = 0;
+  };
+  glm::vec4 texel(const Layer& l, int level, int x, int y) const;
+  glm::vec4 bilinear(const Layer& l, int level, glm::vec2 uv) const;
+  void group();
+  static void addLevels(Layer& layer);
 
-  int width_ = 0, height_ = 0, layers_ = 0;
-  std::vector<glm::ivec2> levelSize_;
-  std::vector<std::vector<uint8_t>> levels_;  // per level: layers x h x w sRGB RGBA8, row 0 = v 0
+  std::vector<Layer> layers_;
+  std::vector<glm::ivec2> groupSize_;
+  std::vector<int> groupLayers_;
   std::vector<int> materialLayer_;
 };
 

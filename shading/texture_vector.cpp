@@ -25,7 +25,7 @@ int TextureVectors::add(const TextureSet& textures, int layer, glm::vec2 uv0w, g
     const float u = (i + 0.5f) / k;
     // Footprint of one vector texel on the texture: the level to read.
     const glm::vec2 duv = uvAt(std::min(1.0f, u + 0.5f / k)) - uvAt(std::max(0.0f, u - 0.5f / k));
-    texels_.push_back(textures.sample(layer, uvAt(u), textures.lodFor(duv)));
+    texels_.push_back(textures.sample(layer, uvAt(u), textures.lodFor(layer, duv)));
   }
   addLevels(base, k);
   return base;

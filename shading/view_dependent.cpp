@@ -1,5 +1,6 @@
 #include "shading/view_dependent.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "shading/lighting.h"
@@ -11,7 +12,7 @@ namespace {
 struct GpuMaterial {
   glm::vec4 specular;  // rgb, shininess
   glm::vec4 params;    // model (0 Phong, 1 Blinn-Phong), texture layer, reflection layer, map kind
-  glm::vec4 reflectivity;
+  glm::vec4 reflectivity;  // rgb, texture group
 };
 
 }  // namespace
@@ -39,7 +40,7 @@ const char* glslMaterials() {
 struct Material {
   vec4 specular;  // rgb, shininess
   vec4 params;    // model (0 Phong, 1 Blinn-Phong), texture layer, reflection layer, map kind
-  vec4 reflectivity;
+  vec4 reflectivity;  // rgb, texture group (TextureSet::glsl)
 };
 layout(std430, binding = 1) readonly buffer Materials { Material uMaterials[]; };
 )";
@@ -67,17 +68,17 @@ vec3 specularLight(int material, vec3 p, vec3 nIn, vec3 eye) {
   return src;
 }
 
-gl::Buffer makeMaterialBuffer(const Scene& scene, const std::vector<int>& textureLayer,
+gl::Buffer makeMaterialBuffer(const Scene& scene, const std::vector<glm::ivec2>& textureSlots,
                               const std::vector<EnvironmentSet::Map>& reflectionMaps) {
   std::vector<GpuMaterial> gpu;
   for (size_t i = 0; i < scene.materials.size(); ++i) {
     const Material& m = scene.materials[i];
-    const float tex = i < textureLayer.size() ? float(textureLayer[i]) : -1.0f;
+    const glm::ivec2 slot = i < textureSlots.size() ? textureSlots[i] : glm::ivec2(-1);
     const EnvironmentSet::Map map = i < reflectionMaps.size() ? reflectionMaps[i] : EnvironmentSet::Map{};
     gpu.push_back({glm::vec4(m.specular, m.shininess),
-                   glm::vec4(m.specularModel == SpecularModel::Phong ? 0.0f : 1.0f, tex,
+                   glm::vec4(m.specularModel == SpecularModel::Phong ? 0.0f : 1.0f, float(slot.y),
                              float(map.layer), float(map.kind)),
-                   glm::vec4(m.reflectivity, 0.0f)});
+                   glm::vec4(m.reflectivity, float(std::max(slot.x, 0)))});
   }
   return gl::makeBuffer(gpu.data(), gpu.size());
 }

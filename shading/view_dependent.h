@@ -19,7 +19,8 @@ glm::vec3 specularLight(const Scene& scene, const Material& material, const glm:
                         const glm::vec3& n, const glm::vec3& eye);
 
 // GLSL: the Materials storage block (binding 1) that makeMaterialBuffer
-// fills; params.y of a material is its texture layer.
+// fills; params.y of a material is its texture layer (-1 for none),
+// reflectivity.w its texture group (TextureSet::glsl samples them).
 const char* glslMaterials();
 
 // GLSL: glslMaterials() and
@@ -28,8 +29,9 @@ const char* glslMaterials();
 const std::string& glslSpecular();
 
 // The scene's materials as the storage block glslSpecular() declares.
-// Per material: its texture layer (-1 for none) and reflection map.
-gl::Buffer makeMaterialBuffer(const Scene& scene, const std::vector<int>& textureLayer = {},
+// Per material: its texture's group and layer (TextureSet::materialSlots;
+// -1 for none) and reflection map.
+gl::Buffer makeMaterialBuffer(const Scene& scene, const std::vector<glm::ivec2>& textureSlots = {},
                               const std::vector<EnvironmentSet::Map>& reflectionMaps = {});
 
 }  // namespace mvr::shading

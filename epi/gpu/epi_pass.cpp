@@ -222,7 +222,6 @@ layout(location = 0) out vec4 oColor;
 // Direct: uv divided per pixel; the level of detail from the horizontal
 // footprint only (an EPI has no scanline neighbour; see BENCHMARKS.md).
 const char* const kTextureDirectMain = R"(
-layout(binding = 0) uniform sampler2DArray uTextures;
 void main() {
   prepare();
   vec2 uv = attr2(0);
@@ -233,12 +232,11 @@ void main() {
 #else
   vec2 duv = dFdx(uv);
 #endif
-  float layer = uMaterials[int(vFlat.y)].params.y;
   // The footprint taken as round: the vertical gradient is the horizontal
   // one turned a quarter. Passing it twice makes a degenerate, needle-like
   // footprint that GLs may filter anisotropically (NVIDIA sampled too
   // sharp a level: 34 dB against svr and the CPU spans' 44).
-  oColor = layer < 0.0 ? vec4(1.0) : textureGrad(uTextures, vec3(uv, layer), duv, vec2(-duv.y, duv.x));
+  oColor = materialTexel(int(vFlat.y), uv, duv, vec2(-duv.y, duv.x));
 }
 )";
 
@@ -336,7 +334,7 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bo
     else if (linear())
       fragment += std::string(shading::glslTextureVector()) + kTextureVectorMain;
     else
-      fragment += kTextureDirectMain;
+      fragment += shading::TextureSet::glsl() + kTextureDirectMain;
   }
   std::string vertex = header + (exact ? kExactOutputs : kSliverOutputs);
   if (pulled) {

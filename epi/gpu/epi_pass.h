@@ -41,10 +41,11 @@ class EpiPass {
   void gather(const SliceEnd& e, bool front, float* out) const;
   // Uses the program and sets its uniforms and the blend and depth state.
   void begin(const glm::vec2& scale, const glm::vec3& eye0, const glm::vec3& eyeStep) const;
-  // Texture units the texture pass reads (direct: the 2D array; vector:
-  // the buffer texture of this batch's vectors). Passes after the first
-  // also read the Materials storage block, which the caller binds.
-  static constexpr GLuint kTextureUnit = 0, kVectorUnit = 3;
+  // The texture unit the vector texture pass reads (the buffer texture of
+  // this batch's vectors; direct texturing reads TextureSet's units).
+  // Passes after the first also read the Materials storage block, which
+  // the caller binds.
+  static constexpr GLuint kVectorUnit = 3;
   // Exact mode: how far the GL's sub-pixel snapping may move a PST's edge
   // at a row, per unit of (1 + the edge's slope in pixels per view). Exact
   // quads are widened by it and the fragment keeps only pixel centres in

@@ -130,7 +130,7 @@ class GlRasterizer final : public EpiRasterizer {
     const glm::vec2 scale(2.0f / w, 2.0f / (batch * chunkRows));
     const glm::vec3 eye0(cam.eye(0, row)), eyeStep(cam.eye(1, row) - cam.eye(0, row));
     gl::Enable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
-    if (materials_) materials_->bind(EpiPass::kTextureUnit);
+    if (materials_) materials_->bind();
     // A share's scanlines sit where the whole render puts them (batches
     // start at multiples of the batch size), so its EPIs are the same bytes.
     const IndexRange lines = cam.share().scanlines;
@@ -145,7 +145,7 @@ class GlRasterizer final : public EpiRasterizer {
         geometry_->build(*device, slices.device(), first, count, n);
         vectorTexels_ += geometry_->vectorTexels();
         // The build's compute passes use storage bindings of their own.
-        if (materials_) materials_->bind(EpiPass::kTextureUnit);
+        if (materials_) materials_->bind();
       }
       // The batch's EPIs, filled chunk by chunk as the ring hands them over.
       const EpiBatch epis(sink, pool, row, {own, ownEnd}, w, n, type_);

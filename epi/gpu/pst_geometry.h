@@ -41,11 +41,11 @@ struct SceneTexturing {
 class PstGeometry {
  public:
   // Storage-buffer bindings the pulling vertex shaders read (the Materials
-  // block of the shading passes is binding 1), and the texture units of
-  // the scene's textures and of the vector texels (EpiPass::kTextureUnit,
-  // kVectorUnit).
+  // block of the shading passes is binding 1), and the texture unit of the
+  // vector texels (EpiPass::kVectorUnit; the scene's textures are on
+  // TextureSet's units).
   static constexpr GLuint kRecords = 2, kTriangles = 3, kSlices = 4, kOffsets = 5, kFirstVertex = 6,
-                          kPieces = 7, kVectors = 8, kTextureUnit = 0, kVectorUnit = 3;
+                          kPieces = 7, kVectors = 8, kVectorUnit = 3;
 
   // extraCount: the extras per vertex (ExtremeVertices::extraCount);
   // texturing: extract the scene's texture vectors per batch (it must

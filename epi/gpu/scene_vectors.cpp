@@ -54,10 +54,8 @@ layout(local_size_x = 64) in;
 layout(std430, binding = 8) readonly buffer Base { uint uBase[]; };
 layout(std430, binding = 9) readonly buffer Length { uint uLength[]; };
 layout(std430, binding = 10) writeonly buffer Texels { vec4 uTexels[]; };
-layout(binding = 0) uniform sampler2DArray uTextures;
 uniform uint uTexelCount;
 uniform int uUv;
-uniform float uMaxLod;
 
 vec2 uvAt(End e0, End e1, float u) {
   vec2 a = vec2(endAttribute(e0, uUv), endAttribute(e0, uUv + 1));
@@ -81,11 +79,13 @@ void main() {
   float kf = float(k), u = (float(local) + 0.5) / kf;
   vec2 uv = uvAt(e0, e1, u);
   vec2 duv = uvAt(e0, e1, min(1.0, u + 0.5 / kf)) - uvAt(e0, e1, max(0.0, u - 0.5 / kf));
-  float texels = length(duv * vec2(textureSize(uTextures, 0).xy));
+  int material = int(word & 0x7FFFFFFFu);
+  vec2 size = materialTextureSize(material);
+  float texels = length(duv * size);
   float lod = texels > 0.0 ? log2(texels) : 0.0;
-  lod = clamp(isnan(lod) ? 0.0 : lod, 0.0, uMaxLod);
+  lod = clamp(isnan(lod) ? 0.0 : lod, 0.0, floor(log2(max(size.x, size.y))));
   bool finite = !any(isnan(uv)) && !any(isinf(uv));
-  uTexels[t] = finite ? textureLod(uTextures, vec3(uv - floor(uv), textureLayer(word)), lod) : vec4(0.0);
+  uTexels[t] = finite ? materialTexelLod(material, uv - floor(uv), lod) : vec4(0.0);
 }
 )";
 
@@ -115,7 +115,8 @@ uvec4 sliceVector(uint slice) {
 gl::Program compile(const char* name, int recordStride, const char* main) {
   const std::string header = gl::glslHeader({"MAX_LENGTH " + std::to_string(shading::TextureVectors::kMaxLength)});
   return gl::linkProgram(name, {{GL_COMPUTE_SHADER, header + PstGeometry::glslLibrary(recordStride) +
-                                                        shading::glslMaterials() + kLength + main}});
+                                                        shading::glslMaterials() + shading::TextureSet::glsl() +
+                                                        kLength + main}});
 }
 
 GLuint groups(size_t items) { return GLuint((items + 63) / 64); }
@@ -130,7 +131,6 @@ SceneVectors::SceneVectors(int recordStride, int uvAt, const shading::TextureSet
       levels_(compile("vector-levels", recordStride, kLevels)) {
   if (textures.empty()) fail("SceneVectors", "the scene has no textures");
   gl::setUniform(sample_, "uUv", uvAt);
-  gl::setUniform(sample_, "uMaxLod", float(textures.levels() - 1));
   total_ = gl::makeBuffer<uint32_t>(nullptr, 1);
 }
 

@@ -63,9 +63,6 @@ in vec2 vUv;
 layout(location = 0) out vec4 oAlbedo;  // a = 1 marks covered pixels
 layout(location = 1) out vec4 oNormal;  // w: material index
 #endif
-#ifdef TEXTURE
-layout(binding = 3) uniform sampler2DArray uTextures;
-#endif
 void main() {
   if (!gl_FrontFacing && vCull > 0.5) discard;
 #ifdef PEEL
@@ -73,9 +70,7 @@ void main() {
 #endif
   vec3 albedo = vAlbedo;
 #ifdef TEXTURE
-  float layer = uMaterials[int(vMaterial)].params.y;
-  vec4 texel = texture(uTextures, vec3(vUv, layer));
-  if (layer >= 0.0) albedo *= texel.rgb;
+  albedo *= materialTexel(int(vMaterial), vUv, dFdx(vUv), dFdy(vUv)).rgb;
 #endif
   vec4 normal = vec4(gl_FrontFacing ? vNormal : -vNormal, vMaterial);
 #ifdef COLLECT
@@ -215,7 +210,7 @@ void DeferredPipeline::begin(int width, int height, IndexRange rows) {
   setDepthConvention();
   gl::FrontFace(GL_CW);
   gl::setUniform(lighting_, "uSize", glm::vec2(width, height));
-  materials_.bind(3);  // units 0-2 read the G-buffer
+  materials_.bind();
 }
 
 template <class Draw>
@@ -320,7 +315,8 @@ std::string DeferredPipeline::header() const { return gl::glslHeader() + plan_.g
 gl::Program DeferredPipeline::geometryProgram(const char* name, const std::string& prelude) const {
   return gl::linkProgram(name, {{GL_VERTEX_SHADER, gl::glslHeader() + kSceneVertexInputs + kGeometryVertex},
                                 {GL_FRAGMENT_SHADER, header() + prelude + shading::glslLighting() +
-                                                         shading::glslSpecular() + kGeometryFragment}});
+                                                         shading::glslSpecular() + shading::TextureSet::glsl() +
+                                                         kGeometryFragment}});
 }
 
 }  // namespace mvr

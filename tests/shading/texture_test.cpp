@@ -52,7 +52,7 @@ TEST(TextureSet, ChainHalvesToOneTexelAndSamplesTexelCentres) {
   Scene s = texturedScene("ramp", 8, 4, [](int x, int y) { return glm::vec3(x / 7.0f, y / 3.0f, 0.5f); });
   shading::TextureSet t = shading::TextureSet::load(s);
   ASSERT_FALSE(t.empty());
-  EXPECT_EQ(t.levels(), 4);  // 8x4, 4x2, 2x1, 1x1
+  EXPECT_EQ(t.levels(0), 4);  // 8x4, 4x2, 2x1, 1x1
   // Texel (3, 0) of the bottom row (v = 0 is the image's last row, y = 3).
   const glm::vec4 c = t.sample(0, glm::vec2(3.5f / 8, 0.5f / 4), 0.0f);
   EXPECT_NEAR(c.r, 3 / 7.0f, 1.0f / 255);
@@ -60,7 +60,7 @@ TEST(TextureSet, ChainHalvesToOneTexelAndSamplesTexelCentres) {
   // Repeat: u + 1 is the same texel; the 1x1 level is the mean.
   EXPECT_EQ(t.sample(0, glm::vec2(1 + 3.5f / 8, 0.5f / 4), 0.0f), c);
   EXPECT_NEAR(t.sample(0, glm::vec2(0.3f, 0.6f), 3.0f).r, 0.5f, 2.0f / 255);
-  EXPECT_NEAR(t.lodFor(glm::vec2(4.0f / 8, 0.0f)), 2.0f, 1e-6f);
+  EXPECT_NEAR(t.lodFor(0, glm::vec2(4.0f / 8, 0.0f)), 2.0f, 1e-6f);
 }
 
 TEST(TextureSet, MissingFileIsAnErrorNamingIt) {
@@ -125,7 +125,82 @@ TEST(TextureVectors, PerspectiveIsCorrectedAtExtraction) {
   EXPECT_NEAR(0.5f * (v.texels()[31].r + v.texels()[32].r), expect, 0.02f);
 }
 
+// Nine quads in a row, each with a one-colour texture of its own size
+// (nine sizes: one more than the GL groups), lit head on.
+Scene quadsOfNineSizes() {
+  static const glm::ivec2 kSizes[9] = {{32, 32}, {16, 4}, {8, 8}, {2, 4}, {16, 16}, {4, 4}, {8, 2}, {4, 2}, {2, 2}};
+  const fs::path dir = fs::temp_directory_path() / "mvr_texture_test";
+  fs::create_directories(dir);
+  Scene s;
+  for (int q = 0; q < 9; ++q) {
+    const glm::vec3 colour(float(q % 3) / 2.0f, float(q / 3) / 2.0f, q == 4 ? 0.0f : 1.0f);
+    Image img(kSizes[q].x, kSizes[q].y, PixelType::U8);
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x)
+        for (int k = 0; k < 4; ++k) img.row(y)[x * 4 + k] = uint8_t(k == 3 ? 255 : std::lrint(colour[k] * 255));
+    Material m;
+    m.diffuse = glm::vec3(1.0f);
+    m.texture = (dir / ("size" + std::to_string(q) + ".png")).string();
+    writeImage(img, m.texture);
+    s.materials.push_back(m);
+    const auto base = uint32_t(s.positions.size());
+    for (int c = 0; c < 4; ++c) {
+      const glm::vec2 corner(float(c & 1), float(c >> 1));
+      s.positions.emplace_back(float(q) * 1.2f + corner.x, corner.y, 0.0f);
+      s.normals.emplace_back(0.0f, 0.0f, 1.0f);
+      s.colors.emplace_back(1.0f);
+      s.uvs.push_back(corner);
+    }
+    s.triangles.push_back({base, base + 1, base + 3});
+    s.triangles.push_back({base, base + 3, base + 2});
+    s.materialIds.insert(s.materialIds.end(), 2, uint32_t(q));
+  }
+  s.lights = {Light{Light::Type::Directional, glm::vec3(0, 0, -1), glm::vec3(1.0f)}};
+  s.ambient = glm::vec3(0.0f);
+  return s;
+}
+
+// Each texture keeps its size: no resampling to the largest, except the
+// two smallest of nine sizes, which share the eighth group.
+TEST(TextureSet, TexturesKeepTheirOwnSizes) {
+  const Scene s = quadsOfNineSizes();
+  const shading::TextureSet t = shading::TextureSet::load(s);
+  for (int layer : {0, 1, 2, 3, 4, 5, 6}) EXPECT_EQ(t.size(layer), glm::ivec2(readImage(s.materials[size_t(layer)].texture).width,
+                                                                                readImage(s.materials[size_t(layer)].texture).height)) << layer;
+  EXPECT_EQ(t.size(7), glm::ivec2(4, 2));  // 4 x 2 and 2 x 2 share one group of 4 x 2
+  EXPECT_EQ(t.size(8), glm::ivec2(4, 2));
+  EXPECT_EQ(t.levels(0), 6);  // 32 .. 1
+  EXPECT_EQ(t.levels(1), 5);  // 16 x 4 .. 1 x 1
+  const std::vector<glm::ivec2> slots = t.materialSlots();
+  EXPECT_EQ(slots[7], glm::ivec2(7, 0));
+  EXPECT_EQ(slots[8], glm::ivec2(7, 1));
+  EXPECT_NEAR(t.sample(4, glm::vec2(0.3f, 0.7f), 0.0f).r, 0.5f, 2.0f / 255);  // quad 4: (0.5, 0.5, 0)
+}
+
 class TextureVsSvr : public test::GlTest {};
+
+// Every back end finds each quad's texture among the GL groups: svr's
+// middle of each quad has its colour, and every path agrees with svr.
+TEST_F(TextureVsSvr, TexturesOfManySizesInEveryBackEnd) {
+  const Scene scene = quadsOfNineSizes();
+  const ShearingCamera cam(cameraFor(scene, 216, 32), 216, 32, 3);
+  auto svr = makeSvrRenderer(scene, PixelType::U8);
+  const test::CaptureSink reference = test::renderViews(*svr, cam);
+  const Image& centre = reference.views.at({0, 1});
+  for (int q = 0; q < 9; ++q) {
+    const glm::vec3 expected(readImage(scene.materials[size_t(q)].texture).linear(0, 0));
+    const glm::vec3 at = cam.project(glm::dvec3(float(q) * 1.2f + 0.5f, 0.5f, 0.0f), 1);
+    const glm::vec4 got = centre.linear(int(at.x), int(at.y));
+    EXPECT_NEAR(glm::distance(glm::vec3(got), expected), 0.0f, 0.02f) << "quad " << q;
+  }
+  const test::BackEndsAgainstSvr all = test::compareBackEndsWithSvr(scene, cam);
+  for (const auto& [name, d] : all.difference) EXPECT_GE(d.minPsnr, 35.0) << name;
+  for (TextureMode mode : {TextureMode::Direct, TextureMode::Vector}) {
+    auto mvr = makeMvrRenderer(scene, PstMode::Exact, PixelType::U8, mode);
+    EXPECT_GE(test::compareViews(reference, test::renderViews(*mvr, cam)).minPsnr, 30.0)
+        << (mode == TextureMode::Vector ? "vector" : "direct");
+  }
+}
 
 std::vector<double> perViewPsnr(const test::CaptureSink& a, const test::CaptureSink& b) {
   std::vector<double> out;

@@ -88,15 +88,11 @@ in vec2 vUv;
 in vec3 vReflect;
 #endif
 layout(location = 0) out vec4 oColor;
-#ifdef TEXTURE
-layout(binding = 0) uniform sampler2DArray uTextures;
-#endif
 void main() {
   if (!gl_FrontFacing && vCull > 0.5) discard;
   vec3 c = gl_FrontFacing ? vFront : vBack;
 #ifdef TEXTURE
-  vec4 texel = texture(uTextures, vec3(vUv, uMaterials[int(vMaterial)].params.y));
-  if (uMaterials[int(vMaterial)].params.y >= 0.0) c *= texel.rgb;
+  c *= materialTexel(int(vMaterial), vUv, dFdx(vUv), dFdy(vUv)).rgb;
 #endif
 #ifdef VIEW_DEPENDENT
   c += specularLight(int(vMaterial), vPosition, gl_FrontFacing ? vNormal : -vNormal, vEye);
@@ -171,8 +167,8 @@ std::string fragmentSource(const Scene& scene, bool renamed) {
     for (const char* name :
          {"Front", "Back", "Cull", "Position", "Normal", "Material", "Eye", "Uv", "Reflect"})
       header += std::string("#define v") + name + " g" + name + "\n";
-  return header + shading::glslLighting() + shading::glslSpecular() + shading::glslEnvironment() +
-         kSvrFragment;
+  return header + shading::glslLighting() + shading::glslSpecular() + shading::TextureSet::glsl() +
+         shading::glslEnvironment() + kSvrFragment;
 }
 
 class SvrRenderer final : public Renderer {
@@ -196,7 +192,7 @@ class SvrRenderer final : public Renderer {
     gl::FrontFace(GL_CW);
     target.bind();
     program_.use();
-    materials_.bind(0);
+    materials_.bind();
     buffers_.bind();
     renderEachView(cam, target, sink, stats, [&](int row, int view) {
       ScopedStage s(stats.times, "draw");
@@ -257,7 +253,7 @@ class LayeredSvrRenderer final : public Renderer {
     gl::Buffer eyeBuffer = gl::makeBuffer(eyes.data(), eyes.size());
     views.bindStorage(0);
     eyeBuffer.bindStorage(2);
-    materials_.bind(0);
+    materials_.bind();
     setDepthConvention();
     gl::FrontFace(GL_CW);
     target.bind();
