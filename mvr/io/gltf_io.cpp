@@ -11,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 #include "mvr/error.h"
@@ -217,6 +218,9 @@ class GltfReader {
       for (size_t i = 0; i < child.size(); ++i)
         if (!child[i]) roots.push_back(int(i));
     }
+    for (const std::string& e : model_.extensionsRequired)
+      if (e != "KHR_texture_transform" && e != "KHR_lights_punctual" && e != "KHR_mesh_quantization")
+        warn("requires the extension " + e + ", which is not read: drawn without it");
     if (!model_.animations.empty()) warn("animations not played yet: the scene as it stands");
     if (!model_.skins.empty()) warn("skins not applied yet: meshes in their bind pose");
     onPath_.assign(model_.nodes.size(), false);
@@ -485,6 +489,36 @@ std::string firstLine(const std::string& s) {
   return line;
 }
 
+constexpr const char* kVersionOne = "glTF 1.0 is not read, glTF 2.0 is (re-export, or convert with a glTF 1-to-2 tool)";
+
+// Extensions without which a file's meshes cannot be read at all.
+bool isGeometryExtension(const std::string& e) {
+  return e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression";
+}
+
+std::string unreadExtension(const std::string& e) {
+  return "needs the extension " + e + ", which is not read (re-export without mesh compression)";
+}
+
+// Why tinygltf refused a .gltf, where the file says it plainly: glTF 1
+// ("version": "1.0", or the number 1, which tinygltf cannot read), or a
+// compressed mesh tinygltf finds no data for. Empty where neither.
+std::string refusal(const std::string& path) {
+  if (lowerExtension(path) != ".gltf") return "";
+  std::ifstream in(path);
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (!j.is_object()) return "";
+  if (j.contains("asset") && j["asset"].is_object() && j["asset"].contains("version")) {
+    const nlohmann::json& v = j["asset"]["version"];
+    if ((v.is_number() && v.get<double>() < 2.0) || (v.is_string() && v.get<std::string>().rfind('1', 0) == 0))
+      return kVersionOne;
+  }
+  if (j.contains("extensionsRequired") && j["extensionsRequired"].is_array())
+    for (const nlohmann::json& e : j["extensionsRequired"])
+      if (e.is_string() && isGeometryExtension(e.get<std::string>())) return unreadExtension(e.get<std::string>());
+  return "";
+}
+
 }  // namespace
 
 bool isGltfPath(const std::string& path) {
@@ -507,12 +541,20 @@ Scene loadGltf(const std::string& path) {
     std::unique_ptr<unsigned char[]> bytes(new unsigned char[size]);
     std::ifstream in(path, std::ios::binary);
     if (!in.read(reinterpret_cast<char*>(bytes.get()), std::streamsize(size))) fail(path, "cannot read");
+    if (size >= 8 && std::memcmp(bytes.get(), "glTF", 4) == 0 && bytes[4] == 1 && !bytes[5] && !bytes[6] && !bytes[7])
+      fail(path, kVersionOne);
     ok = loader.LoadBinaryFromMemory(&model, &error, &warning, bytes.get(), unsigned(size),
                                      std::filesystem::path(path).parent_path().string());
   } else {
     ok = loader.LoadASCIIFromFile(&model, &error, &warning, path);
   }
-  if (!ok) fail(path, error.empty() ? "cannot read glTF" : firstLine(error));
+  if (!ok) {
+    const std::string why = refusal(path);
+    fail(path, !why.empty() ? why : error.empty() ? "cannot read glTF" : firstLine(error));
+  }
+  if (!model.asset.version.empty() && model.asset.version[0] == '1') fail(path, kVersionOne);
+  for (const std::string& e : model.extensionsRequired)
+    if (isGeometryExtension(e)) fail(path, unreadExtension(e));
   Scene scene = GltfReader(model, path).read();
   if (!warning.empty()) scene.warnings.push_back(path + ": " + firstLine(warning));
   return scene;

@@ -340,6 +340,20 @@ TEST_F(Gltf, BadFilesAreOneLineErrors) {
   Document empty;
   empty.json["nodes"] = Json::array({{{"name", "nothing"}}});
   expectError(empty.write(dir_ / "empty.gltf"), "glTF scene has no triangles");
+  // glTF 1 (a string or, as old exporters wrote, a number), a GLB of
+  // version 1, and a compressed mesh: each says so.
+  for (const Json& version : {Json("1.0"), Json(1)}) {
+    Document one = triangleDocument();
+    one.json["asset"]["version"] = version;
+    expectError(one.write(dir_ / "one.gltf"), "glTF 1.0 is not read");
+  }
+  std::ofstream(dir_ / "one.glb", std::ios::binary) << std::string("glTF\x01\0\0\0\x14\0\0\0", 12) << "12345678";
+  expectError((dir_ / "one.glb").string(), "glTF 1.0 is not read");
+  Document draco = triangleDocument();
+  draco.json["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+  draco.json["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+  draco.json["nodes"] = Json::array({{{"mesh", 0}}});
+  expectError(draco.write(dir_ / "draco.gltf"), "needs the extension KHR_draco_mesh_compression");
 }
 
 }  // namespace
