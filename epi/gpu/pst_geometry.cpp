@@ -243,8 +243,7 @@ void PstGeometry::build(const GpuVertices& vertices, const GpuSliceTable& table,
   prefixSum_.exclusive(firstVertex_.id(), 0, sliceCount_, indirect_.id(), 0);
   if (sceneVectors_) {
     bindBuffers();
-    materials_->bind();
-    sceneVectors_->build(firstSlice_, sliceCount_, views_);
+    sceneVectors_->build(firstSlice_, sliceCount_, views_, *materials_);
   }
 }
 

@@ -140,7 +140,8 @@ void SceneVectors::setUniforms(const gl::Program& p) const {
   gl::setUniform(p, "uViews", float(views_));
 }
 
-void SceneVectors::build(uint32_t firstSlice, uint32_t sliceCount, int views) {
+void SceneVectors::build(uint32_t firstSlice, uint32_t sliceCount, int views,
+                         const shading::GpuMaterials& materials) {
   firstSlice_ = firstSlice, sliceCount_ = sliceCount, views_ = views;
   texelCount_ = 0;
   if (sliceCount == 0) return;
@@ -148,6 +149,7 @@ void SceneVectors::build(uint32_t firstSlice, uint32_t sliceCount, int views) {
   auto run = [&](const gl::Program& p, size_t items) {
     p.use();
     setUniforms(p);
+    materials.bind();
     base_.bindStorage(kBase);
     length_.bindStorage(kLength);
     if (texels_.id()) texels_.bindStorage(kTexels);

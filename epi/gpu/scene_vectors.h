@@ -17,6 +17,7 @@
 
 #include "mvr/gl/gl_handles.h"
 #include "mvr/gl/prefix_sum.h"
+#include "shading/gpu_materials.h"
 #include "shading/texture_set.h"
 
 namespace mvr {
@@ -34,9 +35,10 @@ class SceneVectors {
 
   // The batch's slices [firstSlice, firstSlice + sliceCount), their pieces
   // written by PstGeometry's count pass. Expects PstGeometry's storage
-  // buffers (records, triangles, slices, pieces) and the scene's
-  // materials with their texture array (at unit textureUnit) bound.
-  void build(uint32_t firstSlice, uint32_t sliceCount, int views);
+  // buffers (records, triangles, slices, pieces) bound; binds materials
+  // (the Materials block and the texture groups) before each pass, as the
+  // prefix sum between them takes binding 1.
+  void build(uint32_t firstSlice, uint32_t sliceCount, int views, const shading::GpuMaterials& materials);
   // Binds the per-slice buffers and the texels' buffer texture at unit
   // `vectorUnit` for the pulling vertex and fragment shaders.
   void bind(GLuint vectorUnit) const;
