@@ -48,7 +48,7 @@ void RenderFlags::add(CLI::App& app) {
 }
 
 void RenderFlags::addShared(CLI::App& app) {
-  app.add_option("SCENE", scene_, "a JSON scene file or a mesh (OBJ, PLY, OFF, STL); default: the bundled scene");
+  app.add_option("SCENE", scene_, "a JSON scene file or a model (glTF, GLB, OBJ with its MTL, PLY, OFF, STL); default: the bundled scene");
   backend_.add(app);
   addOutputShape(app);
 }

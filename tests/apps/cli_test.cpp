@@ -17,6 +17,7 @@
 #include "mvr/io/compare.h"
 #include "mvr/io/image_file.h"
 #include "mvr/io/manifest.h"
+#include "tests/support/asset_scene.h"
 #include "tests/support/cli.h"
 #include "tests/support/gl_fixture.h"
 
@@ -587,6 +588,27 @@ TEST(Cli, FromABareMeshToALookingGlassQuiltInOneCommand) {
   const mvr::Image shot = mvr::readImage((d / "shot.png").string());
   EXPECT_EQ(shot.width, 42);
   EXPECT_EQ(shot.height, 56 + 48);
+}
+
+// A scene file of a glTF and an OBJ with its MTL (tests/support/
+// asset_scene.h) through the outputs a user asks for: a Portrait quilt
+// with depth maps by MVR, and the EPI stream.
+TEST(Cli, RealAssetsToAQuiltDepthMapsAndAStream) {
+  const fs::path d = outDir("real_assets");
+  const std::string scene = test::writeAssetScene(d / "scene");
+  Result r = run("render " + scene + " --quilt portrait --size 42x56 --depth --out " + (d / "quilt").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto m = nlohmann::json::parse(std::ifstream(d / "quilt" / "manifest.json"));
+  EXPECT_EQ(m["views"], 48);
+  EXPECT_EQ(m["notes"]["passes"], "diffuse+texture+view-dependent");
+  const mvr::Image quilt = mvr::readImage((d / "quilt" / m["quilt"].get<std::string>()).string());
+  EXPECT_EQ(quilt.width, 8 * 42);
+  EXPECT_EQ(quilt.height, 6 * 56);
+  EXPECT_TRUE(fs::exists(d / "quilt" / "depth_0047.exr"));
+  const fs::path stream = d / "epis.bin";
+  r = run("stream " + scene + " --views 8 --size 48x32 --to " + stream.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_GT(fs::file_size(stream), size_t(48) * 8 * 32 * 4);
 }
 
 TEST(Cli, BenchPlotsAgainFromItsJson) {

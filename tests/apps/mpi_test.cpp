@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mvr/io/image_file.h"
+#include "tests/support/asset_scene.h"
 #include "tests/support/cli.h"
 
 namespace mvr {
@@ -50,7 +51,9 @@ class MpiRender : public ::testing::TestWithParam<SplitCase> {};
 
 TEST_P(MpiRender, OneTwoAndThreeRanksWriteTheSingleProcessSet) {
   if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed (scripts/setup installs Open MPI)";
-  const std::string args = std::string(GetParam().args) + " --size 64x40 --views 7";
+  std::string args = std::string(GetParam().args) + " --size 64x40 --views 7";
+  if (const size_t at = args.find("{assets}"); at != std::string::npos)
+    args.replace(at, 8, test::writeAssetScene(test::freshDir("mpi_asset_scene")));
   const fs::path single = test::freshDir(std::string("mpi_single_") + GetParam().name);
   ASSERT_EQ(test::runMvr("render " + args + " --out " + single.string()).status, 0);
   const auto expected = imagesIn(single);
@@ -92,7 +95,9 @@ INSTANTIATE_TEST_SUITE_P(
                       SplitCase{"mvr_rows_views", "--backend mvr --rows 4"},  // 3 ranks: a row each, then bands
                       // Bands of sample scanlines and runs of sample views; the depth pass split alike.
                       SplitCase{"mvr_aa_depth", "--backend mvr --rows 3 --aa 2 --aa-views 2 --depth"},
-                      SplitCase{"svr_depth", "--backend svr --depth"}),
+                      SplitCase{"svr_depth", "--backend svr --depth"},
+                      // A glTF and an OBJ with their textures (tests/support/asset_scene.h).
+                      SplitCase{"assets_depth", "{assets} --backend mvr --rows 2 --depth"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 std::string contentsOf(const fs::path& file) {
@@ -107,7 +112,9 @@ class MpiStream : public ::testing::TestWithParam<SplitCase> {};
 
 TEST_P(MpiStream, RanksWriteTheSingleProcessStream) {
   if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
-  const std::string args = std::string(GetParam().args) + " --size 64x40 --views 7";
+  std::string args = std::string(GetParam().args) + " --size 64x40 --views 7";
+  if (const size_t at = args.find("{assets}"); at != std::string::npos)
+    args.replace(at, 8, test::writeAssetScene(test::freshDir("mpi_asset_scene")));
   const fs::path dir = test::freshDir(std::string("mpi_stream_") + GetParam().name);
   fs::create_directories(dir);
   const std::string single = (dir / "single.epi").string();
