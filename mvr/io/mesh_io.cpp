@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "mvr/error.h"
+#include "mvr/io/assimp_import.h"
 #include "mvr/io/gltf_io.h"
 #include "mvr/io/mesh_check.h"
 #include "mvr/io/obj_io.h"
@@ -110,6 +111,10 @@ std::string withCommentedLines(const std::string& path, const std::vector<long>&
 Scene loadMesh(const std::string& path) {
   if (isGltfPath(path)) return loadGltf(path);
   if (lowerExtension(path) == ".obj") return loadObj(path);
+  if (isAssimpPath(path)) return importWithAssimp(path);
+  if (const std::string ext = lowerExtension(path); ext != ".ply" && ext != ".off" && ext != ".stl")
+    fail(path, "not a model format mvr reads ('" + ext + "'): it reads glTF (.gltf, .glb), OBJ, PLY, OFF, STL, FBX, "
+               "Collada (.dae), 3DS and JSON scene files");
   silenceOpenMesh();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such mesh file");

@@ -12,6 +12,7 @@
 #include <tiny_obj_loader.h>
 
 #include "mvr/error.h"
+#include "mvr/io/file_search.h"
 #include "mvr/io/mesh_check.h"
 
 namespace mvr {
@@ -32,42 +33,6 @@ class Warnings {
   std::string path_;
   std::set<std::string> said_;
 };
-
-// The file `written` names from dir: as written; else with backslashes
-// read as slashes and each part matched without regard to case (files
-// written on Windows). Empty where nothing matches. `how` names the file
-// found where the case differed; `backslashes`, whether they were read.
-std::string findFile(const fs::path& dir, const std::string& written, std::string& how, bool& backslashes) {
-  std::error_code ec;
-  how.clear();
-  backslashes = false;
-  const fs::path exact = dir / written;
-  if (fs::is_regular_file(exact, ec)) return exact.string();
-  std::string slashed = written;
-  std::replace(slashed.begin(), slashed.end(), '\\', '/');
-  const fs::path name(slashed);
-  fs::path at = name.is_absolute() ? name.root_path() : dir;
-  bool caseDiffers = false;
-  for (const fs::path& part : name.relative_path()) {
-    if (part == "." || part.empty()) continue;
-    if (part == ".." || fs::exists(at / part, ec)) {
-      at /= part;
-      continue;
-    }
-    const std::string want = lowerCase(part.string());
-    bool found = false;
-    for (auto it = fs::directory_iterator(at, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
-      if (lowerCase(it->path().filename().string()) == want) {
-        at = it->path(), found = caseDiffers = true;
-        break;
-      }
-    if (!found) return "";
-  }
-  if (!fs::is_regular_file(at, ec)) return "";
-  if (caseDiffers) how = "as " + at.string();
-  backslashes = slashed != written;
-  return at.string();
-}
 
 // tinyobjloader reads a newmtl name to the end of its line but a usemtl
 // name to its first blank: where a file names materials of several words,

@@ -1,6 +1,6 @@
 // libFuzzer target: the scene loader (issue 16). The first byte picks the
-// file's kind (JSON scene, PLY, OBJ, STL, OFF, glTF, GLB), the rest is its
-// content.
+// file's kind (JSON scene, PLY, OBJ, STL, OFF, glTF, GLB, Collada, FBX,
+// 3DS), the rest is its content.
 // A rejection (mvr::Error) is the expected answer to bad input; anything
 // else (a crash, a sanitizer report, another exception, a hang) is a
 // defect. Scene files may name "m.obj", a valid mesh beside them. An OBJ
@@ -41,9 +41,14 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const char* const kExtensions[] = {".json", ".ply", ".obj", ".stl", ".off"};
   if (size == 0) return 0;
-  // A first byte from 250 picks glTF (.gltf to 252, .glb above); below, the
-  // kinds as the saved crashers and seeds were written.
-  const char* ext = data[0] >= 253 ? ".glb" : data[0] >= 250 ? ".gltf" : kExtensions[data[0] % 5];
+  // A first byte from 250 picks glTF (.gltf to 252, .glb above), 244 to
+  // 249 assimp's formats (read by mvr-import in a child process); below,
+  // the kinds as the saved crashers and seeds were written.
+  static const char* const kAssimp[] = {".dae", ".fbx", ".3ds"};
+  const char* ext = data[0] >= 253   ? ".glb"
+                    : data[0] >= 250 ? ".gltf"
+                    : data[0] >= 244 ? kAssimp[(data[0] - 244) % 3]
+                                     : kExtensions[data[0] % 5];
   const std::filesystem::path path = dir / (std::string("input") + ext);
   const std::filesystem::path mtl = dir / "lib.mtl";
   for (const std::filesystem::path& file : {path, mtl}) {

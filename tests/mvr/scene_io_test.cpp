@@ -66,7 +66,7 @@ TEST_F(SceneIo, MissingFile) { expectError((dir_ / "nothing.obj").string(), "no 
 
 TEST_F(SceneIo, UnreadableMesh) {
   expectError(write("junk.ply", "ply\ngarbage\n"), "junk.ply: PLY header has no end_header");
-  expectError(write("junk.xyz", "garbage\n"), "cannot read mesh");
+  expectError(write("junk.xyz", "garbage\n"), "not a model format mvr reads ('.xyz'): it reads glTF");
 }
 
 // Issue 16's repros: inputs that corrupted memory or hung inside OpenMesh

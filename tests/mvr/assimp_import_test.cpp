@@ -1,0 +1,129 @@
+// FBX, Collada and 3DS through mvr-import in a child process
+// (mvr/io/assimp_import.h): a Collada file the test writes (a node's
+// transform, two materials, a texture beside it), and the ways it fails,
+// each one line: assimp's message, a crash, no importer, another format.
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "mvr/error.h"
+#include "mvr/io/mesh_io.h"
+#include "tests/support/solid_png.h"
+
+namespace mvr {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A quad of two triangles at z = 0.5 (its node's translation): one
+// textured by red.png (Phong, black specular), one of a Lambert colour.
+const char* const kCollada = R"(<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit name="meter" meter="1"/><up_axis>Y_UP</up_axis></asset>
+  <library_images><image id="img"><init_from>Textures\RED.png</init_from></image></library_images>
+  <library_effects>
+    <effect id="fx"><profile_COMMON>
+      <newparam sid="surf"><surface type="2D"><init_from>img</init_from></surface></newparam>
+      <newparam sid="samp"><sampler2D><source>surf</source></sampler2D></newparam>
+      <technique sid="common"><phong><diffuse><texture texture="samp" texcoord="uv"/></diffuse>
+        <specular><color>0.5 0.5 0.5 1</color></specular><shininess><float>40</float></shininess></phong></technique>
+    </profile_COMMON></effect>
+    <effect id="fx2"><profile_COMMON><technique sid="common"><lambert>
+      <diffuse><color>0.2 0.4 0.6 1</color></diffuse></lambert></technique></profile_COMMON></effect>
+  </library_effects>
+  <library_materials>
+    <material id="mat" name="redtex"><instance_effect url="#fx"/></material>
+    <material id="mat2" name="blue"><instance_effect url="#fx2"/></material>
+  </library_materials>
+  <library_geometries><geometry id="geo"><mesh>
+    <source id="pos"><float_array id="pa" count="12">-1 -1 0 1 -1 0 1 1 0 -1 1 0</float_array>
+      <technique_common><accessor source="#pa" count="4" stride="3"><param name="X" type="float"/>
+        <param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
+    <source id="tc"><float_array id="ta" count="8">0 0 1 0 1 1 0 1</float_array>
+      <technique_common><accessor source="#ta" count="4" stride="2"><param name="S" type="float"/>
+        <param name="T" type="float"/></accessor></technique_common></source>
+    <vertices id="v"><input semantic="POSITION" source="#pos"/></vertices>
+    <triangles material="m1" count="1"><input semantic="VERTEX" source="#v" offset="0"/>
+      <input semantic="TEXCOORD" source="#tc" offset="1" set="0"/><p>0 0 1 1 2 2</p></triangles>
+    <triangles material="m2" count="1"><input semantic="VERTEX" source="#v" offset="0"/>
+      <input semantic="TEXCOORD" source="#tc" offset="1" set="0"/><p>0 0 2 2 3 3</p></triangles>
+  </mesh></geometry></library_geometries>
+  <library_visual_scenes><visual_scene id="scene"><node id="n"><translate>0 0 0.5</translate>
+    <instance_geometry url="#geo"><bind_material><technique_common>
+      <instance_material symbol="m1" target="#mat"><bind_vertex_input semantic="uv" input_semantic="TEXCOORD" input_set="0"/></instance_material>
+      <instance_material symbol="m2" target="#mat2"/>
+    </technique_common></bind_material></instance_geometry></node></visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#scene"/></scene>
+</COLLADA>
+)";
+
+class Assimp : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("mvr_assimp_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                                        "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    unsetenv("MVR_IMPORT");
+    fs::remove_all(dir_);
+  }
+  std::string write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name, std::ios::binary) << text;
+    return (dir_ / name).string();
+  }
+  void expectError(const std::string& path, const std::string& what) {
+    try {
+      loadMesh(path);
+      ADD_FAILURE() << "no error for " << path;
+    } catch (const Error& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(path), std::string::npos) << msg;
+      EXPECT_NE(msg.find(what), std::string::npos) << msg;
+      EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    }
+  }
+  fs::path dir_;
+};
+
+TEST_F(Assimp, ColladaGeometryMaterialsAndTexture) {
+  fs::create_directories(dir_ / "textures");
+  test::writeRedPng(dir_ / "textures" / "red.png", 4);  // named Textures\RED.png in the file
+  const Scene s = loadMesh(write("quad.dae", kCollada));
+  ASSERT_EQ(s.triangles.size(), 2u);
+  for (const glm::vec3& p : s.positions) EXPECT_FLOAT_EQ(p.z, 0.5f);  // the node's transform, flattened
+  ASSERT_EQ(s.uvs.size(), s.positions.size());
+  ASSERT_EQ(s.materials.size(), 2u);
+  const Material& red = s.materials[s.materialIds[0]];
+  EXPECT_EQ(red.name, "redtex");
+  EXPECT_EQ(fs::path(red.texture), dir_ / "textures" / "red.png");
+  EXPECT_EQ(red.specular, glm::vec3(0.5f));
+  EXPECT_EQ(red.shininess, 40.0f);
+  const Material& blue = s.materials[s.materialIds[1]];
+  EXPECT_NEAR(glm::distance(blue.diffuse, glm::vec3(0.2f, 0.4f, 0.6f)), 0.0f, 1e-6f);
+  EXPECT_EQ(blue.specular, glm::vec3(0.0f));  // Lambert: no highlight
+  EXPECT_TRUE(blue.twoSided);
+  bool found = false;
+  for (const std::string& w : s.warnings) found = found || w.find("read as ") != std::string::npos;
+  EXPECT_TRUE(found) << ::testing::PrintToString(s.warnings);
+}
+
+TEST_F(Assimp, FailuresAreOneLine) {
+  expectError(write("junk.fbx", "this is no FBX file"), "");
+  expectError(write("cut.dae", std::string(kCollada).substr(0, 700)), "");
+  expectError((dir_ / "absent.3ds").string(), "no such model file");
+  expectError(write("m.xyz", "x"), "not a model format mvr reads ('.xyz')");
+  // An importer that crashes, and none at all.
+  const std::string crash = write("crash.sh", "#!/bin/sh\nkill -SEGV $$\n");
+  fs::permissions(crash, fs::perms::owner_all);
+  setenv("MVR_IMPORT", crash.c_str(), 1);
+  expectError(write("quad.dae", kCollada), "the importer (assimp) failed on this file (signal 11)");
+  setenv("MVR_IMPORT", (dir_ / "none").c_str(), 1);
+  expectError((dir_ / "quad.dae").string(), "cannot start");
+}
+
+}  // namespace
+}  // namespace mvr
