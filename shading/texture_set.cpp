@@ -135,7 +135,9 @@ std::vector<gl::Texture> TextureSet::upload() const {
   for (size_t g = 0; g < groupSize_.size(); ++g) {
     gl::Texture& tex = groups.emplace_back(GL_TEXTURE_2D_ARRAY);
     const glm::ivec2 size = groupSize_[g];
-    const int levels = int(std::floor(std::log2(std::max(size.x, size.y)))) + 1;
+    // A group's layers share one size, so one chain length.
+    const auto first = std::find_if(layers_.begin(), layers_.end(), [&](const Layer& l) { return l.group == int(g); });
+    const int levels = int(first->levelSize.size());
     // sRGB texels: GL decodes them to linear before filtering.
     gl::TextureStorage3D(tex.id(), levels, GL_SRGB8_ALPHA8, size.x, size.y, groupLayers_[g]);
     for (const Layer& l : layers_) {

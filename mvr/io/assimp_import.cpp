@@ -22,6 +22,7 @@
 #include "mvr/io/file_search.h"
 #include "mvr/io/image_file.h"
 #include "mvr/io/imported_model.h"
+#include "mvr/io/load_warnings.h"
 #include "mvr/io/mesh_check.h"
 
 extern char** environ;
@@ -145,6 +146,7 @@ std::shared_ptr<const Image> decode(const EmbeddedImage& e) {
 // the model; what cannot be had is a warning, and the surface untextured.
 void resolveTextures(ImportedModel& model, const std::string& path) {
   Scene& s = model.scene;
+  LoadWarnings warn(s, path);
   const fs::path dir = fs::path(path).parent_path();
   std::vector<std::shared_ptr<const Image>> decoded(model.embedded.size());
   for (Material& m : s.materials) {
@@ -158,15 +160,15 @@ void resolveTextures(ImportedModel& model, const std::string& path) {
         m.textureImage = decoded[k];
         m.texture = path + "#image" + std::to_string(k);
       } else {
-        s.warnings.push_back(path + ": embedded image " + written + " could not be decoded: drawn untextured");
+        warn("embedded image " + written + " could not be decoded: drawn untextured");
       }
       continue;
     }
     std::string how;
     bool backslashes = false;
     m.texture = findFile(dir, written, how, backslashes);
-    if (m.texture.empty()) s.warnings.push_back(path + ": texture '" + written + "' not found: drawn untextured");
-    if (!how.empty()) s.warnings.push_back(path + ": texture '" + written + "' read " + how);
+    if (m.texture.empty()) warn("texture '" + written + "' not found: drawn untextured");
+    if (!how.empty()) warn("texture '" + written + "' read " + how);
   }
 }
 

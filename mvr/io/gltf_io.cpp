@@ -11,7 +11,6 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -21,6 +20,7 @@
 
 #include "mvr/error.h"
 #include "mvr/image.h"
+#include "mvr/io/load_warnings.h"
 #include "mvr/io/mesh_check.h"
 
 namespace mvr {
@@ -225,9 +225,9 @@ class GltfReader {
     }
     for (const std::string& e : model_.extensionsRequired)
       if (e != "KHR_texture_transform" && e != "KHR_lights_punctual" && e != "KHR_mesh_quantization")
-        warn("requires the extension " + e + ", which is not read: drawn without it");
-    if (!model_.animations.empty()) warn("animations not played yet: the scene as it stands");
-    if (!model_.skins.empty()) warn("skins not applied yet: meshes in their bind pose");
+        warn_("requires the extension " + e + ", which is not read: drawn without it");
+    if (!model_.animations.empty()) warn_("animations not played yet: the scene as it stands");
+    if (!model_.skins.empty()) warn_("skins not applied yet: meshes in their bind pose");
     onPath_.assign(model_.nodes.size(), false);
     for (int r : roots) node(r, glm::mat4(1.0f));
     if (scene_.triangles.empty()) fail(path_, "glTF scene has no triangles");
@@ -248,21 +248,21 @@ class GltfReader {
       if (texture.sampler >= 0 && size_t(texture.sampler) < model_.samplers.size()) {
         const tinygltf::Sampler& wrap = model_.samplers[size_t(texture.sampler)];
         if (wrap.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT || wrap.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT)
-          warn("texture wrap modes other than REPEAT drawn as REPEAT");
+          warn_("texture wrap modes other than REPEAT drawn as REPEAT");
       }
       if (source < 0 || size_t(source) >= model_.images.size())
         fail(path_, "texture " + std::to_string(t.index) + " has no image");
-      if (t.texCoord != 0) warn("baseColorTexture on TEXCOORD_" + std::to_string(t.texCoord) + " read with TEXCOORD_0");
+      if (t.texCoord != 0) warn_("baseColorTexture on TEXCOORD_" + std::to_string(t.texCoord) + " read with TEXCOORD_0");
       m.textureImage = texelsOf(model_.images[size_t(source)]);
       if (m.textureImage)
         m.texture = path_ + "#image" + std::to_string(source);
       else
-        warn("image " + std::to_string(source) + " could not be decoded: drawn untextured");
+        warn_("image " + std::to_string(source) + " could not be decoded: drawn untextured");
     }
-    if (g.alphaMode == "BLEND") warn("alphaMode BLEND drawn opaque");
-    if (g.alphaMode == "MASK") warn("alphaMode MASK drawn opaque (alpha cut-off not read yet)");
+    if (g.alphaMode == "BLEND") warn_("alphaMode BLEND drawn opaque");
+    if (g.alphaMode == "MASK") warn_("alphaMode MASK drawn opaque (alpha cut-off not read yet)");
     if (g.emissiveFactor.size() == 3 && (g.emissiveFactor[0] > 0 || g.emissiveFactor[1] > 0 || g.emissiveFactor[2] > 0))
-      warn("emissive colour not read yet");
+      warn_("emissive colour not read yet");
     return m;
   }
 
@@ -287,7 +287,7 @@ class GltfReader {
     if (size_t(n.camera) >= model_.cameras.size()) fail(path_, "camera " + std::to_string(n.camera) + " does not exist");
     const tinygltf::Camera& c = model_.cameras[size_t(n.camera)];
     if (c.type != "perspective") {
-      warn("orthographic cameras skipped");
+      warn_("orthographic cameras skipped");
       return;
     }
     const double yfov = c.perspective.yfov;
@@ -321,22 +321,22 @@ class GltfReader {
         const glm::vec3 d = glm::mat3(world) * glm::vec3(0.0f, 0.0f, -1.0f);
         light.vector = glm::length(d) > 0.0f ? glm::normalize(d) : glm::vec3(0.0f, 0.0f, -1.0f);
       } else {
-        if (g.type == "spot") warn("spot lights drawn as point lights (their cones not modelled)");
+        if (g.type == "spot") warn_("spot lights drawn as point lights (their cones not modelled)");
         light.type = Light::Type::Point;
         light.vector = glm::vec3(world * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
         const double d = glm::distance(glm::dvec3(light.vector), glm::dvec3(centre));
         illuminance = intensity / std::max(d * d, 1e-12);
       }
-      if (g.range > 0.0) warn("light ranges not modelled: lights do not fall off");
+      if (g.range > 0.0) warn_("light ranges not modelled: lights do not fall off");
       if (illuminance > 0.0 && std::isfinite(illuminance)) lit.emplace_back(illuminance, light);
     }
     if (lit.empty()) {
-      if (!placedLights_.empty()) warn("its lights have no intensity: the default light is used");
+      if (!placedLights_.empty()) warn_("its lights have no intensity: the default light is used");
       return;
     }
     std::stable_sort(lit.begin(), lit.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
     if (lit.size() > size_t(kMaxLights)) {
-      warn(std::to_string(lit.size()) + " lights: the " + std::to_string(kMaxLights) + " brightest are used");
+      warn_(std::to_string(lit.size()) + " lights: the " + std::to_string(kMaxLights) + " brightest are used");
       lit.resize(size_t(kMaxLights));
     }
     double sum = 0.0;
@@ -382,13 +382,13 @@ class GltfReader {
   void primitive(const tinygltf::Primitive& p, const glm::mat4& world) {
     if (p.mode != -1 && p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
         p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-      warn("points and lines skipped");
+      warn_("points and lines skipped");
       return;
     }
     std::unique_ptr<Accessor> positionHold, normalHold, uvHold, colorHold;
     const Accessor* position = attribute(p, "POSITION", positionHold);
     if (!position) {
-      warn("a primitive without POSITION skipped");
+      warn_("a primitive without POSITION skipped");
       return;
     }
     if (position->components() != 3) fail(path_, "POSITION must be VEC3");
@@ -472,9 +472,6 @@ class GltfReader {
     return uint32_t(defaultMaterial_);
   }
 
-  void warn(const std::string& what) {
-    if (warned_.insert(what).second) scene_.warnings.push_back(path_ + ": " + what);
-  }
 
   const tinygltf::Model& model_;
   std::string path_;
@@ -482,7 +479,7 @@ class GltfReader {
   std::vector<bool> onPath_;
   std::vector<std::pair<size_t, glm::mat4>> placedLights_;  // light, its node's world transform
   std::vector<glm::mat3> uvTransforms_;  // per material: its base colour texture's KHR_texture_transform
-  std::set<std::string> warned_;
+  LoadWarnings warn_{scene_, path_};
   bool anyUv_ = false;
   int defaultMaterial_ = -1;
 };

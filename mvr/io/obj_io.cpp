@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <set>
 #include <sstream>
 #include <unordered_map>
 
@@ -13,6 +12,7 @@
 
 #include "mvr/error.h"
 #include "mvr/io/file_search.h"
+#include "mvr/io/load_warnings.h"
 #include "mvr/io/mesh_check.h"
 
 namespace mvr {
@@ -20,19 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Each distinct warning once, prefixed with the file.
-class Warnings {
- public:
-  Warnings(Scene& scene, std::string path) : scene_(scene), path_(std::move(path)) {}
-  void operator()(const std::string& what) {
-    if (said_.insert(what).second) scene_.warnings.push_back(path_ + ": " + what);
-  }
-
- private:
-  Scene& scene_;
-  std::string path_;
-  std::set<std::string> said_;
-};
 
 // tinyobjloader reads a newmtl name to the end of its line but a usemtl
 // name to its first blank: where a file names materials of several words,
@@ -63,7 +50,7 @@ std::string withJoinedNames(const std::string& path) {
 // tolerates; remembers each material's folder, where its maps are.
 class MtlFiles final : public tinyobj::MaterialReader {
  public:
-  MtlFiles(fs::path dir, Warnings& warn, bool join) : dir_(std::move(dir)), warn_(warn), join_(join) {}
+  MtlFiles(fs::path dir, LoadWarnings& warn, bool join) : dir_(std::move(dir)), warn_(warn), join_(join) {}
 
   bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                   std::map<std::string, int>* ids, std::string* warn, std::string* err) override {
@@ -93,11 +80,11 @@ class MtlFiles final : public tinyobj::MaterialReader {
 
  private:
   fs::path dir_;
-  Warnings& warn_;
+  LoadWarnings& warn_;
   bool join_;
 };
 
-glm::vec3 unitColor(const tinyobj::real_t (&c)[3], const std::string& what, Warnings& warn) {
+glm::vec3 unitColor(const tinyobj::real_t (&c)[3], const std::string& what, LoadWarnings& warn) {
   glm::vec3 v(c[0], c[1], c[2]);
   for (int k = 0; k < 3; ++k)
     if (!std::isfinite(v[k])) v[k] = 0.0f;
@@ -108,7 +95,7 @@ glm::vec3 unitColor(const tinyobj::real_t (&c)[3], const std::string& what, Warn
 // One MTL material as ours: Kd the diffuse colour (map_Kd multiplies it,
 // as the MTL format says), Ks and Ns the Blinn-Phong highlight. What an
 // MTL says that our model has no place for is named in a warning.
-Material materialOf(const tinyobj::material_t& t, const fs::path& folder, Warnings& warn) {
+Material materialOf(const tinyobj::material_t& t, const fs::path& folder, LoadWarnings& warn) {
   Material m;
   m.name = t.name;
   std::replace(m.name.begin(), m.name.end(), kJoin, ' ');
@@ -161,7 +148,7 @@ struct CornerHash {
 class ObjBuilder {
  public:
   ObjBuilder(const tinyobj::attrib_t& a, const std::vector<tinyobj::material_t>& materials,
-             const std::vector<fs::path>& folders, const std::string& path, Scene& scene, Warnings& warn)
+             const std::vector<fs::path>& folders, const std::string& path, Scene& scene, LoadWarnings& warn)
       : a_(a), materials_(materials), folders_(folders), path_(path), scene_(scene), warn_(warn) {}
 
   void build(const std::vector<tinyobj::shape_t>& shapes) {
@@ -268,7 +255,7 @@ class ObjBuilder {
   const std::vector<fs::path>& folders_;
   const std::string& path_;
   Scene& scene_;
-  Warnings& warn_;
+  LoadWarnings& warn_;
   bool allNormals_ = true, anyUv_ = false;
   std::unordered_map<CornerKey, uint32_t, CornerHash> vertexOf_;
   std::map<int, uint32_t> materialOf_;
@@ -276,7 +263,7 @@ class ObjBuilder {
   std::vector<glm::uvec3> positionTriangles_;  // the triangles by position
 };
 
-void warnStatements(const ObjStatements& notes, Warnings& warn) {
+void warnStatements(const ObjStatements& notes, LoadWarnings& warn) {
   if (notes.pointsOrLines) warn("points and lines skipped");
   if (notes.ignored.empty()) return;
   std::string list;
@@ -294,7 +281,7 @@ Scene loadObj(const std::string& path) {
   checkObjFile(path, &notes);  // names the line of a bad index or number, which tinyobjloader does not
   Scene scene;
   scene.source = path;
-  Warnings warn(scene, path);
+  LoadWarnings warn(scene, path);
   warnStatements(notes, warn);
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;

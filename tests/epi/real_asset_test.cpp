@@ -48,12 +48,7 @@ INSTANTIATE_TEST_SUITE_P(EveryBackend, RealAssetTest,
                                            "mvr:strip:gpu-psts", "mvr:exact:gpu-psts", "interp:dual",
                                            "interp:dual:spans", "svr-layered", "deferred", "warp:dual:gl",
                                            "warp:dual:cpu"),
-                         [](const auto& info) {
-                           std::string name = info.param;
-                           for (char& c : name)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return name;
-                         });
+                         test::specTestName);
 
 }  // namespace
 }  // namespace mvr

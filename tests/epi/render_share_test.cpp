@@ -67,12 +67,7 @@ INSTANTIATE_TEST_SUITE_P(EveryBackend, RenderShareTest,
                                            "interp:dual:track:gpu-psts", "interp:dual:spans", "interp:hierarchical:1", "svr",
                                            "svr-layered", "deferred", "warp:dual:gl", "warp:dual:cpu",
                                            "warp:hierarchical:cpu"),
-                         [](const auto& info) {
-                           std::string name = info.param;
-                           for (char& c : name)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return name;
-                         });
+                         test::specTestName);
 
 TEST(RenderShare, OutsideTheSetIsAnError) {
   const ShearingCamera cam(CameraSpec{}, 16, 8, 4, 2);

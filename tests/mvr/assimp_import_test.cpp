@@ -11,6 +11,7 @@
 
 #include "mvr/error.h"
 #include "mvr/io/mesh_io.h"
+#include "tests/support/file_test.h"
 #include "tests/support/solid_png.h"
 
 namespace mvr {
@@ -60,33 +61,15 @@ const char* const kCollada = R"(<?xml version="1.0" encoding="utf-8"?>
 </COLLADA>
 )";
 
-class Assimp : public ::testing::Test {
+class Assimp : public test::FileTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("mvr_assimp_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                                        "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
   void TearDown() override {
     unsetenv("MVR_IMPORT");
-    fs::remove_all(dir_);
-  }
-  std::string write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-    return (dir_ / name).string();
+    FileTest::TearDown();
   }
   void expectError(const std::string& path, const std::string& what) {
-    try {
-      loadMesh(path);
-      ADD_FAILURE() << "no error for " << path;
-    } catch (const Error& e) {
-      const std::string msg = e.what();
-      EXPECT_NE(msg.find(path), std::string::npos) << msg;
-      EXPECT_NE(msg.find(what), std::string::npos) << msg;
-      EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
-    }
+    test::expectOneLineError([&] { loadMesh(path); }, path, what);
   }
-  fs::path dir_;
 };
 
 TEST_F(Assimp, ColladaGeometryMaterialsAndTexture) {

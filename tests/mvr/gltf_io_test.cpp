@@ -18,6 +18,7 @@
 #include "mvr/io/image_file.h"
 #include "mvr/io/mesh_io.h"
 #include "mvr/io/scene_io.h"
+#include "tests/support/file_test.h"
 #include "tests/support/gltf_document.h"
 #include "tests/support/render_helpers.h"
 #include "tests/support/solid_png.h"
@@ -31,16 +32,7 @@ using test::Document;
 using test::kRed;
 using test::writeRedPng;
 
-class Gltf : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("mvr_gltf_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                                        "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-};
+class Gltf : public test::FileTest {};
 
 // One triangle in z = 0; mesh 0 draws it.
 Document triangleDocument() {
@@ -258,26 +250,13 @@ TEST_F(Gltf, FileCameraBecomesTheCentreView) {
   for (const auto& [which, message] : {std::pair<std::string, std::string>{"back", "'back' is neither a camera of"},
                                        {"2", "nor an index below 2"}}) {
     Scene s = loadMesh(path);
-    try {
-      viewThrough(s, which, 100, 100);
-      ADD_FAILURE() << which;
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
-    }
+    test::expectOneLineError([&] { viewThrough(s, which, 100, 100); }, "--camera", message);
   }
 }
 
 TEST_F(Gltf, BadFilesAreOneLineErrors) {
   auto expectError = [&](const std::string& path, const std::string& what) {
-    try {
-      loadScene(path);
-      ADD_FAILURE() << "no error for " << path;
-    } catch (const Error& e) {
-      const std::string msg = e.what();
-      EXPECT_NE(msg.find(fs::path(path).filename().string()), std::string::npos) << msg;
-      EXPECT_NE(msg.find(what), std::string::npos) << msg;
-      EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
-    }
+    test::expectOneLineError([&] { loadScene(path); }, fs::path(path).filename().string(), what);
   };
   expectError((dir_ / "none.glb").string(), "no such glTF file");
   std::ofstream(dir_ / "text.gltf") << "not json";

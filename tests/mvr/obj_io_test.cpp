@@ -13,6 +13,7 @@
 #include "mvr/error.h"
 #include "mvr/io/mesh_io.h"
 #include "mvr/io/scene_io.h"
+#include "tests/support/file_test.h"
 #include "tests/support/render_helpers.h"
 #include "tests/support/solid_png.h"
 
@@ -21,21 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class Obj : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("mvr_obj_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                                        "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string write(const fs::path& name, const std::string& text) {
-    fs::create_directories((dir_ / name).parent_path());
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-    return (dir_ / name).string();
-  }
-  fs::path dir_;
-};
+class Obj : public test::FileTest {};
 
 bool anyWarning(const Scene& s, const std::string& text) {
   return std::any_of(s.warnings.begin(), s.warnings.end(),
@@ -152,27 +139,13 @@ TEST_F(Obj, SceneFileOverridesTheFilesMaterials) {
   for (const auto& [entry, message] :
        {std::pair<std::string, std::string>{R"("materials": {"c": "red"})", "meshes[0].materials.c: the file has no material"},
         {R"("materials": {"a": "blue"})", "meshes[0].materials.a: no material \"blue\""},
-        {R"("material": "red", "materials": {})", "exclude each other"}}) {
-    try {
-      scene(entry);
-      ADD_FAILURE() << "no error for " << entry;
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
-    }
-  }
+        {R"("material": "red", "materials": {})", "exclude each other"}})
+    test::expectOneLineError([&] { scene(entry); }, "s.json", message);
 }
 
 TEST_F(Obj, BadFilesAreOneLineErrors) {
   auto expectError = [&](const std::string& path, const std::string& what) {
-    try {
-      loadScene(path);
-      ADD_FAILURE() << "no error for " << path;
-    } catch (const Error& e) {
-      const std::string msg = e.what();
-      EXPECT_NE(msg.find(path), std::string::npos) << msg;
-      EXPECT_NE(msg.find(what), std::string::npos) << msg;
-      EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
-    }
+    test::expectOneLineError([&] { loadScene(path); }, path, what);
   };
   expectError(write("uv.obj", std::string(kSquare) + "f 1/9 2/2 3/3\n"), "uv.obj:10: face refers to texture coordinate 9");
   expectError(write("dots.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1 2 3\n"), "mesh has no triangles");

@@ -6,6 +6,7 @@
 
 #include "mvr/error.h"
 #include "mvr/io/scene_io.h"
+#include "tests/support/file_test.h"
 #include "tests/support/gl_fixture.h"
 
 namespace mvr {
@@ -13,36 +14,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class SceneIo : public ::testing::Test {
+class SceneIo : public test::FileTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("mvr_scene_io_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-            "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name) << text;
-    return (dir_ / name).string();
-  }
-  // Expects loadScene to fail with a message naming the file and containing `what`.
+  // Expects loadScene to fail with one line naming the file and containing `what`.
   void expectError(const std::string& path, const std::string& what, bool strict = false) {
-    try {
-      loadScene(path, strict);
-      FAIL() << "no error for " << path;
-    } catch (const Error& e) {
-      std::string msg = e.what();
-      EXPECT_NE(msg.find(fs::path(path).filename().string()), std::string::npos) << msg;
-      EXPECT_NE(msg.find(what), std::string::npos) << msg;
-      EXPECT_EQ(msg.find('\n'), std::string::npos) << "not one line: " << msg;
-    }
+    test::expectOneLineError([&] { loadScene(path, strict); }, fs::path(path).filename().string(), what);
   }
   std::string cubeJson(const std::string& extra) {
     fs::copy_file(test::assetPath("cube.obj"), dir_ / "cube.obj", fs::copy_options::overwrite_existing);
     return write("scene.json", "{\"meshes\": [{\"file\": \"cube.obj\"}]" + extra + "}");
   }
-  fs::path dir_;
 };
 
 TEST_F(SceneIo, LoadsTheCube) {

@@ -107,4 +107,12 @@ inline BackEndsAgainstSvr compareBackEndsWithSvr(const Scene& scene, const Shear
   return out;
 }
 
+// A back-end spec as a test name ("mvr:strip:gpu-psts" -> mvr_strip_gpu_psts).
+inline std::string specTestName(const ::testing::TestParamInfo<const char*>& info) {
+  std::string name = info.param;
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name;
+}
+
 }  // namespace mvr::test
