@@ -45,6 +45,7 @@ Material materialOf(const aiMaterial& m) {
                                                model == aiShadingMode_PBR_BRDF);
   out.specular = highlight ? colorOf(m, AI_MATKEY_COLOR_SPECULAR, glm::vec3(0.0f)) * strength : glm::vec3(0.0f);
   out.shininess = shininess;
+  out.emission = glm::clamp(colorOf(m, AI_MATKEY_COLOR_EMISSIVE, glm::vec3(0.0f)), 0.0f, 1.0f);
   // Two-sided always: assimp's readers report "one-sided" by default for
   // formats whose files do not say, and a missing back face is worse than
   // one drawn.

@@ -89,14 +89,17 @@ class SpanRasterizer final : public EpiRasterizer {
   }
 
   // Row i's span: the slice's first end xa, the signed width to its
-  // second, and the two ends in order, [lo, hi).
+  // second, and the two ends in order, [lo, hi). Each end is its edge's
+  // own value at the row, never xa + width (which rounds): two slices that
+  // share an edge then test a centre on it against the same float, and
+  // exactly one of them keeps it (no crack along a seam through centres).
   struct RowSpan {
     float xa, width, lo, hi;
   };
   static RowSpan rowSpan(const Pst& pst, int i) {
     const float r = i + 0.5f;
-    const float xa = pst.x0(r), width = pst.width(r);
-    return {xa, width, std::min(xa, xa + width), std::max(xa, xa + width)};
+    const float xa = pst.x0(r), xb = pst.x1(r);
+    return {xa, xb - xa, std::min(xa, xb), std::max(xa, xb)};
   }
 
   // The pixel columns a piece's rows [iFirst, iLast) can reach, and how
@@ -183,12 +186,14 @@ class SpanRasterizer final : public EpiRasterizer {
     const bool oneTexel = colors.vector && colors.vector->length == 1 && colors.vector->knotCount == 0 &&
                           type_ != PixelType::F32;
     if ((colors.vector && !oneTexel) || plan.uv >= 0 || plan.position >= 0 || !paths_.fastDiffuse) {
+      const float cutoff = plan.mask && !colors.vector ? alphaCutoff(material) : 0.0f;
       auto run = [&](int i, int x0, int x1, float xa, float width) {
         float* dz = depth.data() + size_t(i) * w;
         for (int x = x0; x < x1; ++x) {
           const float u = std::clamp((x + 0.5f - xa) / width, 0.0f, 1.0f);
           const float z = pstDepth(pst, u);
           if (!(z > dz[x])) continue;
+          if (cutoff > 0.0f && texel(pst, material, u, 1.0f / width).a < cutoff) continue;  // cut out
           dz[x] = z;
           store(epi, x, i, colors.vector ? vectorColor(colors, u, width, i)
                                          : shade(pst, piece.front, material, u, 1.0f / width, float(i)));
@@ -257,8 +262,8 @@ class SpanRasterizer final : public EpiRasterizer {
       const I4 lanes = {0, 1, 2, 3};
       for (int i = iFirst; i < iLast; i += 4) {
         const F4 r = __builtin_convertvector(i + lanes, F4) + 0.5f;
-        const F4 xa = pst.e0.x0 + (r - 0.5f) * pst.e0.dx;
-        const F4 width = (pst.e1.x0 + (r - 0.5f) * pst.e1.dx) - xa, xb = xa + width;
+        const F4 xa = pst.e0.x0 + (r - 0.5f) * pst.e0.dx, xb = pst.e1.x0 + (r - 0.5f) * pst.e1.dx;
+        const F4 width = xb - xa;  // the ends as rowSpan() has them
         const I4 first = ceilToInt((xb < xa ? xb : xa) - 0.5f), last = ceilToInt((xa < xb ? xb : xa) - 0.5f);
         for (int k = 0; k < std::min(4, iLast - i); ++k)
           if (width[k] != 0) run(i + k, std::max(0, first[k]), std::min(w, last[k]), xa[k], width[k]);
@@ -279,7 +284,12 @@ class SpanRasterizer final : public EpiRasterizer {
   glm::vec3 shade(const Pst& pst, bool front, uint32_t material, float u, float du, float view) const {
     glm::vec3 color = pstColor(pst, front, u);
     const shading::ShadingPlan& plan = shading_.plan;
-    if (plan.uv >= 0) color *= texel(pst, material, u, du);
+    if (plan.uv >= 0) {
+      // The lit colour carries the emission; the multiply must not dim it.
+      const glm::vec3 t(texel(pst, material, u, du));
+      color *= t;
+      if (plan.emission) color += shading_.scene->materials[material].emission * (1.0f - t);
+    }
     if (plan.position < 0) return color;
     const glm::vec3 p = pstExtras<3>(pst, plan.position, u);
     const glm::vec3 n = pstExtras<3>(pst, plan.normal, u) * (front ? 1.0f : -1.0f);
@@ -297,12 +307,18 @@ class SpanRasterizer final : public EpiRasterizer {
 
   // The 2D texture at the exact perspective-correct uv; level of detail
   // from the horizontal footprint, as the GL direct path.
-  glm::vec3 texel(const Pst& pst, uint32_t material, float u, float du) const {
+  glm::vec4 texel(const Pst& pst, uint32_t material, float u, float du) const {
     const int layer = shading_.textures->materialLayers()[material];
-    if (layer < 0) return glm::vec3(1.0f);
+    if (layer < 0) return glm::vec4(1.0f);
     const int at = shading_.plan.uv;
     const glm::vec2 uv = pstExtras<2>(pst, at, u), next = pstExtras<2>(pst, at, u + du);
-    return glm::vec3(shading_.textures->sample(layer, uv, shading_.textures->lodFor(layer, next - uv)));
+    return shading_.textures->sample(layer, uv, shading_.textures->lodFor(layer, next - uv));
+  }
+
+  // A cut-out material's alpha cut-off; 0 for an opaque one.
+  float alphaCutoff(uint32_t material) const {
+    const Material& m = shading_.scene->materials[material];
+    return m.masked() ? m.alphaCutoff : 0.0f;
   }
 
   // A slice with a texture vector: its texel at u, and the highlight of

@@ -25,6 +25,11 @@ Scene depthScene(const Scene& scene, const ShearingCamera& cam, DepthColoring& c
     matte.name = m.name;
     matte.diffuse = glm::vec3(1.0f);
     matte.twoSided = m.twoSided;
+    if (m.masked()) {  // its cut-out's alpha only (TextureSet: exact colours)
+      matte.texture = m.texture;
+      matte.textureImage = m.textureImage;
+      matte.alphaCutoff = m.alphaCutoff;
+    }
     out.materials.push_back(matte);
   }
   const glm::dmat4 v = cam.worldToCamera(0, 0);

@@ -30,6 +30,14 @@ struct Material {
   std::string reflectionMap;  // empty for none
   glm::vec3 reflectivity{1.0f};  // scales the reflected environment
   bool twoSided = true;       // false: back faces are culled
+  // Light the surface gives off itself (glTF's emissive): added after the
+  // lighting and the texture, and not multiplied by either.
+  glm::vec3 emission{0.0f};
+  // Cut-out (glTF's alphaMode MASK): where the texture's alpha is below
+  // this, the surface is not there at all: neither drawn nor hiding what
+  // is behind it. 0: opaque. Only a textured material has a mask.
+  float alphaCutoff = 0.0f;
+  bool masked() const { return alphaCutoff > 0.0f && !texture.empty(); }
 };
 
 // A reflectance, vertex or light colour: every channel in [0, 1] (NaN is

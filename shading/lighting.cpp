@@ -41,9 +41,13 @@ VertexColors litVertexColors(const Scene& scene) {
   VertexColors c;
   c.front.resize(scene.vertexCount());
   c.back.resize(scene.vertexCount());
+  const std::vector<uint32_t> material = scene.vertexMaterials();
   for (size_t v = 0; v < scene.vertexCount(); ++v) {
-    c.front[v] = diffuse(scene, albedo[v], scene.positions[v], scene.normals[v]);
-    c.back[v] = diffuse(scene, albedo[v], scene.positions[v], -scene.normals[v]);
+    // Unclamped sum: interpolated, it equals svr's lit colour plus the
+    // material's emission per pixel.
+    const glm::vec3 e = scene.materials[material[v]].emission;
+    c.front[v] = diffuse(scene, albedo[v], scene.positions[v], scene.normals[v]) + e;
+    c.back[v] = diffuse(scene, albedo[v], scene.positions[v], -scene.normals[v]) + e;
   }
   return c;
 }

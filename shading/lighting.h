@@ -26,7 +26,8 @@ glm::vec3 towardsLight(const Light& light, const glm::vec3& p);
 glm::vec3 diffuse(const Scene& scene, const glm::vec3& albedo, const glm::vec3& position,
                   const glm::vec3& normal);
 
-// Front and back colours per vertex (back: normal flipped, two-sided).
+// Front and back colours per vertex (back: normal flipped, two-sided),
+// the material's emission included (MVR's diffuse pass).
 struct VertexColors {
   std::vector<glm::vec3> front, back;
 };

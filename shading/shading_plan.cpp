@@ -8,6 +8,8 @@ ShadingPlan planShading(const Scene& scene) {
     plan.texture |= !m.texture.empty();
     plan.specular |= m.specular != glm::vec3(0.0f);
     plan.reflection |= !m.reflectionMap.empty();
+    plan.emission |= m.emission != glm::vec3(0.0f);
+    plan.mask |= m.masked();
   }
   if (plan.texture) {
     plan.uv = plan.extraCount;
@@ -48,6 +50,8 @@ std::string ShadingPlan::glslDefines() const {
     if (p == Pass::ViewDependent) s += "#define VIEW_DEPENDENT\n";
   }
   if (reflection) s += "#define REFLECT\n";
+  if (emission) s += "#define EMISSION\n";
+  if (mask) s += "#define MASK\n";
   return s;
 }
 

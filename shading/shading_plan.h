@@ -20,6 +20,13 @@ struct ShadingPlan {
   bool texture = false;     // some material has a texture
   bool specular = false;    // some material has a non-zero specular colour
   bool reflection = false;  // some material has a reflection map
+  // Some material gives off light. It rides in the lit colours; where a
+  // texture pass runs, that pass gives back what its multiply took of it.
+  bool emission = false;
+  // Some material is a cut-out (Material::masked): the pass that writes
+  // depth must sample its texture's alpha. MVR's GL passes add a depth
+  // pass for it.
+  bool mask = false;
 
   // Offsets into the per-vertex extras; -1 when absent.
   int uv = -1;        // 2 floats: texture coordinates
@@ -36,8 +43,8 @@ struct ShadingPlan {
   std::vector<Pass> passes() const;
   std::string passNames() const;  // e.g. "diffuse+texture"
   // "#define TEXTURE", "#define VIEW_DEPENDENT" and "#define REFLECT"
-  // lines for the passes after the first: shaders that compute every pass
-  // at once.
+  // lines for the passes after the first, "#define EMISSION" and "#define
+  // MASK": shaders that compute every pass at once.
   std::string glslDefines() const;
 };
 

@@ -14,6 +14,15 @@ namespace {
 
 int wrap(int i, int n) { return ((i % n) + n) % n; }
 
+// The texels white, their alpha kept: multiplying by them is exact (1.0
+// is exact in every filter), and the alpha still cuts.
+std::shared_ptr<const Image> whiteWithAlphaOf(const Image& image) {
+  auto white = std::make_shared<Image>(image.width, image.height, PixelType::Srgb8);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) white->setLinear(x, y, glm::vec4(1.0f, 1.0f, 1.0f, image.linear(x, y).a));
+  return white;
+}
+
 }  // namespace
 
 TextureSet TextureSet::load(const Scene& scene) {
@@ -29,6 +38,8 @@ TextureSet TextureSet::load(const Scene& scene) {
     if (added) images.push_back(m.textureImage ? m.textureImage : std::make_shared<const Image>(readImage(m.texture)));
     set.materialLayer_.push_back(it->second);
   }
+  if (scene.exactColors)  // colours that are data: a texture only cuts them out
+    for (auto& image : images) image = whiteWithAlphaOf(*image);
   set.layers_.resize(images.size());
   for (size_t i = 0; i < images.size(); ++i) set.layers_[i].levelSize = {{images[i]->width, images[i]->height}};
   set.group();

@@ -13,6 +13,7 @@ struct GpuMaterial {
   glm::vec4 specular;  // rgb, shininess
   glm::vec4 params;    // model (0 Phong, 1 Blinn-Phong), texture layer, reflection layer, map kind
   glm::vec4 reflectivity;  // rgb, texture group
+  glm::vec4 emission;      // rgb, alpha cut-off (0: opaque)
 };
 
 }  // namespace
@@ -41,8 +42,12 @@ struct Material {
   vec4 specular;  // rgb, shininess
   vec4 params;    // model (0 Phong, 1 Blinn-Phong), texture layer, reflection layer, map kind
   vec4 reflectivity;  // rgb, texture group (TextureSet::glsl)
+  vec4 emission;      // rgb, alpha cut-off (0: opaque)
 };
 layout(std430, binding = 1) readonly buffer Materials { Material uMaterials[]; };
+vec3 materialEmission(int material) { return uMaterials[material].emission.rgb; }
+// A cut-out's texel below its cut-off: the surface is not there.
+bool maskedOut(int material, float alpha) { return alpha < uMaterials[material].emission.w; }
 )";
 }
 
@@ -78,7 +83,7 @@ gl::Buffer makeMaterialBuffer(const Scene& scene, const std::vector<glm::ivec2>&
     gpu.push_back({glm::vec4(m.specular, m.shininess),
                    glm::vec4(m.specularModel == SpecularModel::Phong ? 0.0f : 1.0f, float(slot.y),
                              float(map.layer), float(map.kind)),
-                   glm::vec4(m.reflectivity, float(std::max(slot.x, 0)))});
+                   glm::vec4(m.reflectivity, float(std::max(slot.x, 0))), glm::vec4(m.emission, m.masked() ? m.alphaCutoff : 0.0f)});
   }
   return gl::makeBuffer(gpu.data(), gpu.size());
 }

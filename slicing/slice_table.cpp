@@ -48,13 +48,18 @@ void sliceTriangle(const ExtremeVertices& v, uint32_t tri, int bandLo, int bandH
   const Sorted s = sortByY(v, t);
   const float ya = v.y[t[s.a]], yb = v.y[t[s.b]], yc = v.y[t[s.c]];
   const uint32_t corners = uint32_t(s.a) | uint32_t(s.b) << 2 | uint32_t(s.c) << 4;
-  const float invLong = 1.0f / (yc - ya);
   for (int j = first; j < last; ++j) {
     const float y = j + 0.5f;
     const bool lower = y >= yb;
+    // Every edge p -> q (y_p <= y_q) in one form, (y - y_p) / (y_q - y_p):
+    // the triangles that share an edge, where it is long in one and short
+    // in the other, put their ends at the same float, so that no pixel
+    // centre on the seam falls between them (a reciprocal of the long
+    // edge's rounded differently and left such cracks).
+    const float tLong = (y - ya) / (yc - ya);
     const float tShort = lower ? (y - yb) / (yc - yb) : (y - ya) / (yb - ya);
     const uint32_t flags = corners | (lower ? 1u << 6 : 0u) | (s.swap ? 1u << 7 : 0u);
-    emit(j, Slice{tri, (y - ya) * invLong, tShort, flags});
+    emit(j, Slice{tri, tLong, tShort, flags});
   }
 }
 

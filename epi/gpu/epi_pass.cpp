@@ -100,11 +100,13 @@ flat in float vRowBase;
 float gU, gInvW, gView;
 vec2 gNumDen;  // x - x0(r), x1(r) - x0(r)
 void prepare() {
-  float r = gl_FragCoord.y - vRowBase, x0 = vEndX.x + (r - 0.5) * vEndX.y;
+  float r = gl_FragCoord.y - vRowBase;
+  // Each end its own edge's value (as the CPU's rowSpan): slices sharing
+  // an edge test a centre on it against the same value.
+  float x0 = vEndX.x + (r - 0.5) * vEndX.y, x1 = vEndX.z + (r - 0.5) * vEndX.w;
   gView = r - 0.5;
-  gNumDen = vec2(gl_FragCoord.x - x0, vEndX.z + (r - 0.5) * vEndX.w - x0);
+  gNumDen = vec2(gl_FragCoord.x - x0, x1 - x0);
   // The exact span, as the CPU's: centres in [min, max) of the two ends.
-  float x1 = x0 + gNumDen.y;
   // (A slice of no width keeps no centre, so the division below is safe.)
   if (!(gl_FragCoord.x >= min(x0, x1) && gl_FragCoord.x < max(x0, x1))) discard;
   gU = clamp(gNumDen.x / gNumDen.y, 0.0, 1.0);
@@ -237,6 +239,7 @@ void main() {
   // footprint that GLs may filter anisotropically (NVIDIA sampled too
   // sharp a level: 34 dB against svr and the CPU spans' 44).
   oColor = materialTexel(int(vFlat.y), uv, duv, vec2(-duv.y, duv.x));
+  finishTexel();
 }
 )";
 
@@ -267,7 +270,29 @@ void main() {
   float t = b.w > a.w ? clamp((gView + 0.5 - a.w) / (b.w - a.w), 0.0, 1.0) : 0.0;
   oColor.rgb += mix(a.rgb, b.rgb, t);
 #endif
+  finishTexel();
 }
+)";
+
+// What the texture pass does with its texel T (in oColor). The cut-outs'
+// depth pass drops the cut texels. The texture pass multiplies the lit
+// colour, which carries the material's emission E; with EMISSION it blends
+// by two sources, colour = colour * T + E (1 - T), so that the emission
+// comes through undimmed.
+const char* const kFinishTexel = R"(
+#if defined(MASK_DEPTH)
+void finishTexel() {
+  if (maskedOut(int(vFlat.y), oColor.a)) discard;
+}
+#elif defined(EMISSION)
+layout(location = 0, index = 1) out vec4 oFactor;
+void finishTexel() {
+  oFactor = oColor;
+  oColor = vec4(materialEmission(int(vFlat.y)) * (1.0 - oColor.rgb), 0.0);
+}
+#else
+void finishTexel() {}
+#endif
 )";
 
 const char* const kDiffuseMain = R"(
@@ -308,8 +333,10 @@ int passAttributeCount(shading::Pass pass, const EpiShading& shading) {
 
 }  // namespace
 
-EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bool pulled)
-    : mode_(mode), pass_(pass), shading_(shading), count_(passAttributeCount(pass, shading)) {
+EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bool pulled, bool maskDepth)
+    : mode_(mode), pass_(pass), shading_(shading), maskDepth_(maskDepth), count_(passAttributeCount(pass, shading)) {
+  if (maskDepth && (pass != shading::Pass::Texture || shading.sliceVectors || !shading.plan.mask))
+    fail("EpiPass", "a cut-out depth pass is the texture pass of a scene with cut-outs");
   if (pulled && linear() && shading.sliceHighlights)
     fail("EpiPass", "split highlight tracks are not pulled");
   if (shading.sliceVectors && pass != shading::Pass::Texture)
@@ -324,6 +351,8 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bo
   if (pass == shading::Pass::ViewDependent && shading.plan.reflect >= 0) header += "#define REFLECT\n";
   if (pass == shading::Pass::Texture && shading.sliceHighlights) header += "#define HIGHLIGHTS\n";
   if (linear()) header += "#define VECTOR\n";
+  if (emission()) header += "#define EMISSION\n";
+  if (maskDepth) header += "#define MASK_DEPTH\n";
   std::string fragment = header + (exact ? kExactFragment : kSliverFragment) + kAttributeHelpers;
   if (pass == shading::Pass::Diffuse) {
     fragment += kDiffuseMain;
@@ -332,9 +361,9 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bo
     if (pass == shading::Pass::ViewDependent)
       fragment += kViewDependentMain;
     else if (linear())
-      fragment += std::string(shading::glslTextureVector()) + kTextureVectorMain;
+      fragment += std::string(shading::glslTextureVector()) + kFinishTexel + kTextureVectorMain;
     else
-      fragment += shading::TextureSet::glsl() + kTextureDirectMain;
+      fragment += shading::TextureSet::glsl() + kFinishTexel + kTextureDirectMain;
   }
   std::string vertex = header + (exact ? kExactOutputs : kSliverOutputs);
   if (pulled) {
@@ -361,7 +390,13 @@ bool EpiPass::linear() const {
          (shading_.textureMode == TextureMode::Vector || shading_.sliceVectors);
 }
 
-bool EpiPass::first() const { return pass_ == shading::Pass::Diffuse || shading_.sliceVectors; }
+bool EpiPass::emission() const {
+  return pass_ == shading::Pass::Texture && !maskDepth_ && !shading_.sliceVectors && shading_.plan.emission;
+}
+
+bool EpiPass::first() const {
+  return maskDepth_ || shading_.sliceVectors || (pass_ == shading::Pass::Diffuse && !shading_.plan.mask);
+}
 
 int EpiPass::stride() const {
   return mode_ == PstMode::Exact ? 16 + 8 * chunks() : 8 + 4 * chunks();
@@ -395,17 +430,26 @@ float EpiPass::edgeSnap() {
 void EpiPass::begin(const glm::vec2& scale, const glm::vec3& eye0, const glm::vec3& eyeStep) const {
   program_.use();
   gl::setUniform(program_, "uScale", scale);
+  const GLboolean colour = maskDepth_ ? GL_FALSE : GL_TRUE;
+  gl::ColorMask(colour, colour, colour, colour);
   if (first()) {
     gl::Disable(GL_BLEND);
     gl::DepthFunc(GL_GREATER);
     gl::DepthMask(GL_TRUE);
     return;
   }
-  gl::Enable(GL_BLEND);
   gl::DepthFunc(GL_EQUAL);
   gl::DepthMask(GL_FALSE);
+  if (pass_ == shading::Pass::Diffuse) {  // after the cut-outs' depth pass: writes the colour
+    gl::Disable(GL_BLEND);
+    return;
+  }
+  gl::Enable(GL_BLEND);
   if (pass_ == shading::Pass::Texture) {
-    gl::BlendFuncSeparate(GL_DST_COLOR, GL_ZERO, GL_ZERO, GL_ONE);  // colour *= texel
+    if (emission())
+      gl::BlendFuncSeparate(GL_ONE, GL_SRC1_COLOR, GL_ZERO, GL_ONE);  // colour = colour * texel + give-back
+    else
+      gl::BlendFuncSeparate(GL_DST_COLOR, GL_ZERO, GL_ZERO, GL_ONE);  // colour *= texel
   } else {
     gl::BlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);  // colour += highlight
     gl::setUniform(program_, "uEye0", eye0);

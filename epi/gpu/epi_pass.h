@@ -2,7 +2,9 @@
 // One GL shading pass over PST geometry (Halle 6.5: multi-pass shading).
 // Every pass draws the same PST geometry with the same depth; passes after
 // the first test depth EQUAL and blend into the float target: the texture
-// pass multiplies, the view-dependent pass adds.
+// pass multiplies, the view-dependent pass adds. A scene with cut-outs
+// (ShadingPlan::mask) first runs the texture pass as a depth pass that
+// discards the cut texels; the diffuse pass then tests EQUAL too.
 //
 // Each pass needs a few attributes per slice endpoint (divided by w). The
 // vertex layouts (floats):
@@ -22,7 +24,9 @@ class EpiPass {
   // pulled: the vertex shader pulls PST vertices from the GPU slice table
   // (PstGeometry) instead of reading the CPU-built layouts below; split
   // highlight tracks (image slices' knots) are not pulled.
-  EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bool pulled = false);
+  // maskDepth: the cut-outs' depth pass (a texture pass writing depth only).
+  EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bool pulled = false,
+          bool maskDepth = false);
 
   shading::Pass pass() const { return pass_; }
   int attributeCount() const { return count_; }
@@ -32,9 +36,13 @@ class EpiPass {
   // vectors the rasterizer extracts itself). The sliver modes carry u as
   // (u times the slice width, the width, first texel, length).
   bool linear() const;
-  // The pass that writes colour and depth; later passes test depth EQUAL
-  // and blend.
+  // The pass that writes depth (and colour, but for the cut-outs' depth
+  // pass); later passes test depth EQUAL and blend (the diffuse pass after
+  // a cut-outs' depth pass writes its colour).
   bool first() const;
+  // A texture pass that blends by two sources to keep the emission
+  // (ShadingPlan::emission).
+  bool emission() const;
   int stride() const;  // floats per vertex
   const gl::Program& program() const { return program_; }
   // This pass's attributes of one endpoint, divided by w.
@@ -62,6 +70,7 @@ class EpiPass {
   PstMode mode_;
   shading::Pass pass_;
   const EpiShading& shading_;
+  bool maskDepth_ = false;
   int count_ = 0;
   gl::Program program_;
   gl::VertexArray vao_;

@@ -80,10 +80,12 @@ class GlRasterizer final : public EpiRasterizer {
     } else if (gpu) {
       geometry_.emplace(mode, shading_.plan.extraCount);
     }
-    if (shading_.sliceVectors)
+    if (shading_.sliceVectors) {
       passes_.emplace_back(mode, shading::Pass::Texture, shading_, pulled());
-    else
-      for (shading::Pass p : shading_.plan.passes()) passes_.emplace_back(mode, p, shading_, pulled());
+      return;
+    }
+    if (shading_.plan.mask) passes_.emplace_back(mode, shading::Pass::Texture, shading_, pulled(), /*maskDepth=*/true);
+    for (shading::Pass p : shading_.plan.passes()) passes_.emplace_back(mode, p, shading_, pulled());
   }
 
   bool readsDeviceTable() const override { return pulled(); }

@@ -100,10 +100,12 @@ Span spanAt(Track t, int i) {
   Span s;
   float r = float(i) + 0.5;
   precise float xa = t.x.x + (r - 0.5) * t.x.y, x1 = t.x.z + (r - 0.5) * t.x.w;
-  precise float width = x1 - xa, xb = xa + width;
+  precise float width = x1 - xa;
   s.xa = xa;
   s.width = width;
-  float lo = min(xa, xb), hi = max(xa, xb);
+  // The ends themselves, not xa + width (as the CPU's rowSpan): no crack
+  // along an edge two slices share.
+  float lo = min(xa, x1), hi = max(xa, x1);
   // Clamped as floats: ends far outside the image stay representable.
   // A span of no width covers no centre, as the CPU's `width == 0` skip;
   // no test for it here: NVIDIA's compiler (580.159) evaluated

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
+#include "mvr/color.h"
 #include "mvr/error.h"
 #include "mvr/image.h"
 #include "mvr/io/load_warnings.h"
@@ -179,6 +180,15 @@ std::shared_ptr<const Image> texelsOf(const tinygltf::Image& g) {
   return img;
 }
 
+// The mean of an sRGB image's texels in linear light.
+glm::vec3 meanLinearColor(const Image& image) {
+  glm::dvec3 sum(0.0);
+  const size_t n = size_t(image.width) * size_t(image.height);
+  for (size_t i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) sum[k] += linearOfSrgb8(image.bytes[4 * i + size_t(k)]);
+  return glm::vec3(sum / double(std::max<size_t>(n, 1)));
+}
+
 double numberOr(const tinygltf::Value& object, const char* key, int index, double fallback) {
   if (!object.Has(key)) return fallback;
   const tinygltf::Value& v = object.Get(key);
@@ -205,6 +215,7 @@ class GltfReader {
 
   Scene read() {
     for (size_t i = 0; i < model_.materials.size(); ++i) {
+      hidden_.push_back(false);
       scene_.materials.push_back(material(i));
       uvTransforms_.push_back(uvTransformOf(model_.materials[i].pbrMetallicRoughness.baseColorTexture));
     }
@@ -242,17 +253,7 @@ class GltfReader {
     Material m = materialOf(g, i);
     const tinygltf::TextureInfo& t = g.pbrMetallicRoughness.baseColorTexture;
     if (t.index >= 0) {
-      if (size_t(t.index) >= model_.textures.size()) fail(path_, "texture " + std::to_string(t.index) + " does not exist");
-      const tinygltf::Texture& texture = model_.textures[size_t(t.index)];
-      const int source = texture.source;
-      if (texture.sampler >= 0 && size_t(texture.sampler) < model_.samplers.size()) {
-        const tinygltf::Sampler& wrap = model_.samplers[size_t(texture.sampler)];
-        if (wrap.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT || wrap.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT)
-          warn_("texture wrap modes other than REPEAT drawn as REPEAT");
-      }
-      if (source < 0 || size_t(source) >= model_.images.size())
-        fail(path_, "texture " + std::to_string(t.index) + " has no image");
-      if (t.texCoord != 0) warn_("baseColorTexture on TEXCOORD_" + std::to_string(t.texCoord) + " read with TEXCOORD_0");
+      const int source = textureSource(t, "baseColorTexture");
       m.textureImage = texelsOf(model_.images[size_t(source)]);
       if (m.textureImage)
         m.texture = path_ + "#image" + std::to_string(source);
@@ -260,10 +261,59 @@ class GltfReader {
         warn_("image " + std::to_string(source) + " could not be decoded: drawn untextured");
     }
     if (g.alphaMode == "BLEND") warn_("alphaMode BLEND drawn opaque");
-    if (g.alphaMode == "MASK") warn_("alphaMode MASK drawn opaque (alpha cut-off not read yet)");
-    if (g.emissiveFactor.size() == 3 && (g.emissiveFactor[0] > 0 || g.emissiveFactor[1] > 0 || g.emissiveFactor[2] > 0))
-      warn_("emissive colour not read yet");
+    if (g.alphaMode == "MASK") mask(g, m);
+    m.emission = emission(g);
     return m;
+  }
+
+  // alphaMode MASK: alpha is baseColorFactor's times the texture's (COLOR_0's
+  // alpha is not kept). Untextured, the whole material is in or out.
+  void mask(const tinygltf::Material& g, Material& m) {
+    const auto& factor = g.pbrMetallicRoughness.baseColorFactor;
+    const double a = factor.size() == 4 && std::isfinite(factor[3]) ? std::clamp(factor[3], 0.0, 1.0) : 1.0;
+    const double cutoff = std::isfinite(g.alphaCutoff) ? std::clamp(g.alphaCutoff, 0.0, 1.0) : 0.5;
+    if (!m.textureImage) {
+      hidden_.back() = a < cutoff;
+      return;
+    }
+    // texel alpha * a < cutoff  <=>  texel alpha < cutoff / a
+    m.alphaCutoff = a > 0.0 ? float(std::min(cutoff / a, 2.0)) : 2.0f;
+  }
+
+  // The image a texture reference samples, checked.
+  int textureSource(const tinygltf::TextureInfo& t, const std::string& slot) {
+    if (size_t(t.index) >= model_.textures.size()) fail(path_, "texture " + std::to_string(t.index) + " does not exist");
+    const tinygltf::Texture& texture = model_.textures[size_t(t.index)];
+    if (texture.sampler >= 0 && size_t(texture.sampler) < model_.samplers.size()) {
+      const tinygltf::Sampler& wrap = model_.samplers[size_t(texture.sampler)];
+      if (wrap.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT || wrap.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT)
+        warn_("texture wrap modes other than REPEAT drawn as REPEAT");
+    }
+    if (texture.source < 0 || size_t(texture.source) >= model_.images.size())
+      fail(path_, "texture " + std::to_string(t.index) + " has no image");
+    if (t.texCoord != 0) warn_(slot + " on TEXCOORD_" + std::to_string(t.texCoord) + " read with TEXCOORD_0");
+    return texture.source;
+  }
+
+  // emissiveFactor (linear, times KHR_materials_emissive_strength) and
+  // emissiveTexture. We carry one emission colour per material, so a
+  // texture's is its mean: right for a uniform glow, an average for a
+  // patterned one (said once in the warnings).
+  glm::vec3 emission(const tinygltf::Material& g) {
+    glm::vec3 e(0.0f);
+    if (g.emissiveFactor.size() == 3)
+      e = glm::vec3(float(g.emissiveFactor[0]), float(g.emissiveFactor[1]), float(g.emissiveFactor[2]));
+    if (const auto s = g.extensions.find("KHR_materials_emissive_strength"); s != g.extensions.end())
+      e *= float(numberOr(s->second, "emissiveStrength", -1, 1.0));
+    if (!(e.x > 0.0f || e.y > 0.0f || e.z > 0.0f)) return glm::vec3(0.0f);  // NaN too
+    if (g.emissiveTexture.index >= 0) {
+      const int source = textureSource(g.emissiveTexture, "emissiveTexture");
+      if (const std::shared_ptr<const Image> image = texelsOf(model_.images[size_t(source)])) {
+        e *= meanLinearColor(*image);
+        warn_("emissiveTexture drawn as its mean colour");
+      }
+    }
+    return glm::clamp(e, 0.0f, 1.0f);
   }
 
   void node(int index, const glm::mat4& parent) {
@@ -403,6 +453,7 @@ class GltfReader {
     reserve(normal ? position->count() : 3 * tris.size(), tris.size());
     const uint32_t materialId = p.material >= 0 && size_t(p.material) < scene_.materials.size() ? uint32_t(p.material)
                                                                                                  : defaultMaterial();
+    if (materialId < hidden_.size() && hidden_[materialId]) return;  // masked out whole
     const glm::mat3 uvTransform = materialId < uvTransforms_.size() ? uvTransforms_[materialId] : glm::mat3(1.0f);
     const glm::mat3 linear(world);
     const glm::mat3 normalMatrix = glm::transpose(glm::inverse(linear));
@@ -479,6 +530,7 @@ class GltfReader {
   std::vector<bool> onPath_;
   std::vector<std::pair<size_t, glm::mat4>> placedLights_;  // light, its node's world transform
   std::vector<glm::mat3> uvTransforms_;  // per material: its base colour texture's KHR_texture_transform
+  std::vector<bool> hidden_;             // per material: masked out whole (alphaMode MASK, no texture)
   LoadWarnings warn_{scene_, path_};
   bool anyUv_ = false;
   int defaultMaterial_ = -1;

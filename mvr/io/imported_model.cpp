@@ -70,7 +70,8 @@ void writeImportedModel(std::ostream& out, const ImportedModel& model) {
                                    {"specular", vec(m.specular)},
                                    {"shininess", m.shininess},
                                    {"texture", m.texture},
-                                   {"two_sided", m.twoSided}});
+                                   {"two_sided", m.twoSided},
+                                   {"emission", vec(m.emission)}});
   for (const EmbeddedImage& e : model.embedded)
     header["embedded"].push_back({{"hint", e.hint}, {"width", e.width}, {"height", e.height}, {"bytes", e.bytes.size()}});
   // Names from the file may be any bytes: invalid UTF-8 is replaced, not thrown on.
@@ -111,6 +112,7 @@ ImportedModel readImportedModel(const std::string& bytes, const std::string& whe
     mat.shininess = m["shininess"].is_number() ? std::clamp(m["shininess"].get<float>(), 1.0f, 1e4f) : 32.0f;
     mat.texture = m.value("texture", "");
     mat.twoSided = m.value("two_sided", true);
+    if (m.contains("emission")) mat.emission = glm::clamp(color(m["emission"]), 0.0f, 1.0f);
     s.materials.push_back(mat);
   }
   for (const Json& e : h["embedded"]) {

@@ -93,8 +93,9 @@ glm::vec3 unitColor(const tinyobj::real_t (&c)[3], const std::string& what, Load
 }
 
 // One MTL material as ours: Kd the diffuse colour (map_Kd multiplies it,
-// as the MTL format says), Ks and Ns the Blinn-Phong highlight. What an
-// MTL says that our model has no place for is named in a warning.
+// as the MTL format says), Ks and Ns the Blinn-Phong highlight, Ke the
+// emission. What an MTL says that our model has no place for is named in
+// a warning.
 Material materialOf(const tinyobj::material_t& t, const fs::path& folder, LoadWarnings& warn) {
   Material m;
   m.name = t.name;
@@ -115,14 +116,14 @@ Material materialOf(const tinyobj::material_t& t, const fs::path& folder, LoadWa
       warn(of + "map_Kd options -s and -o not read");
   }
   if (t.dissolve < 1.0f) warn(of + "transparency (d, Tr) drawn opaque");
-  if (t.emission[0] > 0 || t.emission[1] > 0 || t.emission[2] > 0) warn(of + "emission (Ke) not read");
+  m.emission = unitColor(t.emission, of + "Ke", warn);
   std::vector<std::string> unread;
   auto note = [&](const std::string& map, const char* key) {
     if (!map.empty()) unread.push_back(key);
   };
   note(t.specular_texname, "map_Ks"), note(t.specular_highlight_texname, "map_Ns");
   note(t.bump_texname, "bump"), note(t.normal_texname, "norm"), note(t.displacement_texname, "disp");
-  note(t.alpha_texname, "map_d"), note(t.reflection_texname, "refl");
+  note(t.alpha_texname, "map_d"), note(t.reflection_texname, "refl"), note(t.emissive_texname, "map_Ke");
   for (const auto& [key, value] : t.unknown_parameter) unread.push_back(key.substr(0, 24));
   if (!unread.empty()) {
     std::string list;

@@ -64,13 +64,20 @@ layout(location = 0) out vec4 oAlbedo;  // a = 1 marks covered pixels
 layout(location = 1) out vec4 oNormal;  // w: material index
 #endif
 void main() {
+#ifdef TEXTURE
+  // Sampled before any discard: the derivatives need the whole quad.
+  vec4 texel = materialTexel(int(vMaterial), vUv, dFdx(vUv), dFdy(vUv));
+#ifdef MASK
+  if (maskedOut(int(vMaterial), texel.a)) discard;
+#endif
+#endif
   if (!gl_FrontFacing && vCull > 0.5) discard;
 #ifdef PEEL
   if (!behindLayer(texelFetch(uPreviousDepth, ivec2(gl_FragCoord.xy), 0).r, gl_FragCoord.z)) discard;
 #endif
   vec3 albedo = vAlbedo;
 #ifdef TEXTURE
-  albedo *= materialTexel(int(vMaterial), vUv, dFdx(vUv), dFdy(vUv)).rgb;
+  albedo *= texel.rgb;
 #endif
   vec4 normal = vec4(gl_FrontFacing ? vNormal : -vNormal, vMaterial);
 #ifdef COLLECT
@@ -138,6 +145,9 @@ void main() {
   vec4 normal = texelFetch(uNormal, px, 0);
   vec3 n = normalize(normal.xyz), p = world.xyz / world.w;
   vec3 c = diffuseLight(albedo.rgb, p, n);
+#ifdef EMISSION
+  c += materialEmission(int(normal.w + 0.5));
+#endif
 #if defined(VIEW_DEPENDENT) && !defined(SEPARATE_HIGHLIGHTS)
   c += specularLight(int(normal.w + 0.5), p, n, uEye);
 #endif

@@ -62,14 +62,14 @@ void main() {
     if (y[m] < y[a]) { uint s = a; a = m; m = s; odd = !odd; }
     float ya = y[a], yb = y[m], yc = y[c];
     uint corners = a | (m << 2) | (c << 4) | (odd ? 0u : 128u);
-    float invLong = 1.0 / (yc - ya);
     for (int j = range.x; j < range.y; ++j) {
       float yy = float(j) + 0.5;
       bool lower = yy >= yb;
       float tShort = lower ? (yy - yb) / (yc - yb) : (yy - ya) / (yb - ya);
       uint cell = uint(j) * uBlocks + b, at = uCells[cell];
       uCells[cell] = at + 1u;
-      uSlices[at] = uvec4(t, floatBitsToUint((yy - ya) * invLong), floatBitsToUint(tShort),
+      // Every edge in one form, as the CPU's (no cracks along shared edges).
+      uSlices[at] = uvec4(t, floatBitsToUint((yy - ya) / (yc - ya)), floatBitsToUint(tShort),
                           corners | (lower ? 64u : 0u));
     }
   }

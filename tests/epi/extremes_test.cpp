@@ -188,5 +188,27 @@ TEST(Extremes, HugeTriangle) {
   expectAgree(d, 0.99);
 }
 
+// A quad larger than every view, split along a diagonal that passes
+// through pixel centres in the centre view (square pixels, the image's
+// centre a pixel corner). The diagonal is one triangle's long edge and the
+// other's short one; their slice ends must be the same float there, or a
+// centre on the seam belongs to neither (it did: a crack of 7 pixels at
+// 96 x 64 until every edge's parameter took one form). Every pixel of
+// every view is covered, in every mode.
+TEST(Extremes, SeamThroughPixelCentresLeavesNoCrack) {
+  test::sharedContext();
+  Scene s = makeScene({{-5, -5, -0.5f}, {5, -5, -0.5f}, {-5, 5, -0.5f}, {5, 5, -0.5f}}, {{0, 1, 3}, {0, 3, 2}});
+  const ShearingCamera cam(cameraSpec(), 96, 72, 5);
+  for (PstMode mode : {PstMode::Cpu, PstMode::Exact, PstMode::Strip, PstMode::Quad, PstMode::Spans}) {
+    auto mvr = makeMvrRenderer(s, mode, PixelType::U8);
+    const test::CaptureSink views = test::renderViews(*mvr, cam);
+    int uncovered = 0;
+    for (const auto& [key, img] : views.views)
+      for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) uncovered += img.row(y)[x * 4 + 3] != 255;
+    EXPECT_EQ(uncovered, 0) << pstModeName(mode);
+  }
+}
+
 }  // namespace
 }  // namespace mvr

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "mvr/color.h"
 #include "mvr/error.h"
 #include "mvr/file_camera.h"
 #include "mvr/image.h"
@@ -104,8 +105,12 @@ TEST_F(Gltf, MaterialsVertexColoursAndTexture) {
   d.json["materials"] = Json::array(
       {{{"name", "shiny"},
         {"doubleSided", true},
-        {"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.25, 1, 1}}, {"metallicFactor", 0}, {"roughnessFactor", 0.5}}}},
-       {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+        {"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.25, 1, 1}}, {"metallicFactor", 0}, {"roughnessFactor", 0.5}}},
+        {"emissiveFactor", {0.4, 0.2, 0.1}},
+        {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 2}}}}}},
+       {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+        {"emissiveFactor", {1, 0.5, 1}},
+        {"emissiveTexture", {{"index", 0}}}}});
   d.json["meshes"] = Json::array(
       {{{"primitives", Json::array({{{"attributes", {{"POSITION", p}, {"TEXCOORD_0", uv}, {"COLOR_0", colour}}},
                                      {"indices", idx},
@@ -120,6 +125,7 @@ TEST_F(Gltf, MaterialsVertexColoursAndTexture) {
   EXPECT_EQ(shiny.specular, glm::vec3(0.04f));
   EXPECT_NEAR(shiny.shininess, 2.0f / (0.25f * 0.25f) - 2.0f, 1e-4f);  // alpha = roughness^2 = 0.25
   EXPECT_TRUE(shiny.twoSided);
+  EXPECT_NEAR(glm::distance(shiny.emission, glm::vec3(0.8f, 0.4f, 0.2f)), 0.0f, 1e-6f);  // times the strength
   // The defaults (metallic 1, roughness 1): a lobe too wide to keep, so
   // diffuse base colour and no specular pass; single-sided.
   const Material& textured = s.materials[1];
@@ -129,6 +135,12 @@ TEST_F(Gltf, MaterialsVertexColoursAndTexture) {
   ASSERT_TRUE(textured.textureImage);
   EXPECT_EQ(textured.textureImage->width, 4);
   EXPECT_EQ(textured.textureImage->pixel(1, 2), glm::vec4(200, 40, 20, 255) / 255.0f);
+  // emissiveTexture: its mean colour (linear) times the factor.
+  const glm::vec3 mean(linearOfSrgb8(200), linearOfSrgb8(40), linearOfSrgb8(20));
+  EXPECT_NEAR(glm::distance(textured.emission, mean * glm::vec3(1, 0.5f, 1)), 0.0f, 1e-5f);
+  EXPECT_TRUE(std::any_of(s.warnings.begin(), s.warnings.end(), [](const std::string& w) {
+    return w.find("emissiveTexture drawn as its mean colour") != std::string::npos;
+  })) << ::testing::PrintToString(s.warnings);
   // Vertex colours and uv (v flipped: glTF's runs down the image); no
   // normals, so flat ones, each triangle its own three corners.
   ASSERT_EQ(s.colors.size(), 12u);

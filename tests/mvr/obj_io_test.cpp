@@ -100,8 +100,9 @@ TEST_F(Obj, MissingLibrariesAndMapsAreWarnings) {
   ASSERT_EQ(s.materials.size(), 2u);
   EXPECT_EQ(s.materials[0].diffuse, glm::vec3(0.2f, 0.4f, 0.6f));
   EXPECT_TRUE(s.materials[0].texture.empty());
+  EXPECT_EQ(s.materials[0].emission, glm::vec3(1, 0, 0));  // Ke
   for (const char* w : {"material library 'gone.mtl' not found", "map_Kd 'absent.png' not found: drawn untextured",
-                        "transparency (d, Tr) drawn opaque", "emission (Ke) not read",
+                        "transparency (d, Tr) drawn opaque",
                         "faces of no material the MTL files define"})
     EXPECT_TRUE(anyWarning(s, w)) << w << " in " << ::testing::PrintToString(s.warnings);
 }

@@ -5,7 +5,8 @@
 // a highlight) and a tetrahedron without normals, with vertex colours,
 // drawn twice through a node hierarchy; the OBJ a quad textured by a
 // 4 x 4 map_Kd (another size: another GL texture group) and a triangle of
-// a Kd-only material. Two lights, one of them a point light.
+// a Kd-only material. The glossy quad and the triangle give off light
+// (emissiveFactor, Ke). Two lights, one of them a point light.
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -39,7 +40,8 @@ inline std::string writeAssetScene(const std::filesystem::path& dir) {
   d.json["textures"] = Json::array({{{"source", 0}}});
   d.json["materials"] = Json::array(
       {{{"name", "glossy"},
-        {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0}, {"roughnessFactor", 0.5}}}},
+        {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0}, {"roughnessFactor", 0.5}}},
+        {"emissiveFactor", {0.1, 0.2, 0.3}}},
        {{"name", "green"}, {"pbrMetallicRoughness", {{"baseColorFactor", {0.3, 0.9, 0.4, 1}}}}}});
   d.json["meshes"] = Json::array(
       {{{"primitives", Json::array({{{"attributes", {{"POSITION", quad}, {"NORMAL", normals}, {"TEXCOORD_0", uv}}},
@@ -56,7 +58,7 @@ inline std::string writeAssetScene(const std::filesystem::path& dir) {
   d.write(dir / "parts.gltf");
 
   std::ofstream(dir / "parts.mtl") << "newmtl checker\nKd 1 1 1\nKs 0 0 0\nmap_Kd blue.png\n"
-                                      "newmtl yellow\nKd 0.9 0.8 0.2\nKs 0 0 0\n";
+                                      "newmtl yellow\nKd 0.9 0.8 0.2\nKs 0 0 0\nKe 0 0.1 0.3\n";
   std::ofstream(dir / "parts.obj") << "mtllib parts.mtl\n"
                                       "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nv 0 0 0.8\n"
                                       "vt 0 0\nvt 3 0\nvt 3 3\nvt 0 3\nvn 0 0 1\n"

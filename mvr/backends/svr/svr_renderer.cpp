@@ -89,10 +89,20 @@ in vec3 vReflect;
 #endif
 layout(location = 0) out vec4 oColor;
 void main() {
+#ifdef TEXTURE
+  // Sampled before any discard: the derivatives need the whole quad.
+  vec4 texel = materialTexel(int(vMaterial), vUv, dFdx(vUv), dFdy(vUv));
+#ifdef MASK
+  if (maskedOut(int(vMaterial), texel.a)) discard;
+#endif
+#endif
   if (!gl_FrontFacing && vCull > 0.5) discard;
   vec3 c = gl_FrontFacing ? vFront : vBack;
 #ifdef TEXTURE
-  c *= materialTexel(int(vMaterial), vUv, dFdx(vUv), dFdy(vUv)).rgb;
+  c *= texel.rgb;
+#endif
+#ifdef EMISSION
+  c += materialEmission(int(vMaterial));
 #endif
 #ifdef VIEW_DEPENDENT
   c += specularLight(int(vMaterial), vPosition, gl_FrontFacing ? vNormal : -vNormal, vEye);
