@@ -111,6 +111,7 @@ void RenderFlags::addRenderOwn(CLI::App& app) {
                  "scanline plus a fixed part) or of equal scanline count")
       ->check(CLI::IsMember({"cost", "count"}))
       ->capture_default_str();
+  sequence_.add(app);
 }
 
 // synthesize: references instead of a scene, the warp back end's options.
@@ -190,6 +191,11 @@ RenderJob RenderFlags::describe(const CLI::App& app) const {
   job.memory = memory_;
   job.splitBy = splitBy_;
   job.aa = aa_;
+  if (command_ == RenderCommand::Render) {
+    job.sequence = sequence_.resolve();
+    if (job.sequence.active() && job.streaming())
+      fail("--frames", "a sequence is written as image sets: not with --stream");
+  }
   return job;
 }
 

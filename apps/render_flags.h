@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "apps/render_job.h"
+#include "apps/sequence_flags.h"
 #include "mvr/io/image_file.h"
 
 namespace mvr::app {
@@ -46,6 +47,7 @@ class RenderFlags {
   WarpOptions warp_;
   CameraFlags camera_;
   Supersampling aa_;
+  SequenceFlags sequence_;
 };
 
 }  // namespace mvr::app

@@ -145,6 +145,7 @@ int runJob(RenderJob& job) {
   start(job, prepared);
   setUp(job, prepared);
   planMemory(job, prepared);
+  if (job.sequence.active()) return writeSequence(job, prepared);
   return job.streaming() ? writeStream(job, prepared) : writeSet(job, prepared);
 }
 

@@ -14,6 +14,7 @@
 #include "apps/memory_check.h"
 #include "apps/quilt_layout.h"
 #include "apps/render_command.h"
+#include "apps/sequence_flags.h"
 #include "mvr/backends/warp/warp_renderer.h"
 #include "mvr/frames/frame_chain.h"
 #include "mvr/gl/gl_context.h"
@@ -53,6 +54,13 @@ struct RenderJob {
   std::string splitBy;
   CameraFlags camera;
   Supersampling aa;
+  Sequence sequence;  // frames: a sequence of sets (sequence_output.cpp)
+  // One frame of a sequence, as its set's manifest records it.
+  struct Frame {
+    int index = 0;
+    double time = 0.0, degrees = 0.0;
+  };
+  std::optional<Frame> frame;
 
   bool streaming() const { return !stream.empty(); }
   bool synthesize() const { return command == RenderCommand::Synthesize; }
@@ -91,5 +99,6 @@ JobSplit splitFor(const RenderJob& job, const PreparedJob& prepared);
 int runJob(RenderJob& job);
 int writeSet(const RenderJob& job, PreparedJob& prepared);
 int writeStream(const RenderJob& job, PreparedJob& prepared);
+int writeSequence(const RenderJob& job, PreparedJob& prepared);
 
 }  // namespace mvr::app

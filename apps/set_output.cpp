@@ -70,6 +70,8 @@ void describe(const RenderJob& job, const PreparedJob& p, const SetRun& run, Man
   m["counters"] = run.stats.counters;
   m["notes"] = run.stats.notes;
   m["pixel_origin"] = "top-left; view i at camera x = track[0] + i * view_spacing";
+  if (job.frame)
+    m["frame"] = {{"index", job.frame->index}, {"time_s", job.frame->time}, {"turntable_deg", job.frame->degrees}};
   if (run.quilt) {
     m["quilt"] = run.quilt->fileName(job.format, run.quiltAspect);
     m["quilt_layout"] = {{"columns", run.quilt->columns()},
@@ -171,6 +173,7 @@ int writeSet(const RenderJob& job, PreparedJob& p) {
     writer.commit();
   }
   const int views = job.views * job.rows;
+  if (job.frame) return 0;  // the sequence reports its frames
   std::fprintf(stderr, "mvr: rendered %d view%s of %dx%d with %s to %s in %.3f s%s\n", views, views == 1 ? "" : "s",
                job.width, job.height, p.label(job.backend).c_str(), job.out.c_str(), run.total.seconds(),
                run.scratchNote.c_str());

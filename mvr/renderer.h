@@ -61,6 +61,11 @@ class Renderer {
   virtual FrameOrder order() const = 0;
   // All rows x views of the camera, in the renderer's natural order.
   virtual void render(const ShearingCamera& camera, FrameSink& sink, RenderStats& stats) = 0;
+  // The scene it renders moved in place (mvr/scene_pose.h: new positions
+  // and normals, the same vertices, triangles and materials): derive again
+  // what depends on them before the next render. False: this renderer
+  // cannot follow; the caller makes a new one.
+  virtual bool sceneMoved() { return false; }
 };
 
 }  // namespace mvr

@@ -40,13 +40,18 @@ void Scene::append(const Scene& other) {
   fileCameras.insert(fileCameras.end(), other.fileCameras.begin(), other.fileCameras.end());
 }
 
-void Scene::transform(const glm::mat4& m) {
+void Scene::transformGeometry(const glm::mat4& m) {
   // A translation leaves directions as they are, to the bit.
   const bool turns = glm::mat3(m) != glm::mat3(1.0f);
   const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(glm::mat3(m))));
   for (glm::vec3& p : positions) p = glm::vec3(m * glm::vec4(p, 1.0f));
   for (glm::vec3& n : normals)
     if (turns) n = glm::vec3(glm::normalize(normalMatrix * glm::dvec3(n)));
+}
+
+void Scene::transform(const glm::mat4& m) {
+  transformGeometry(m);
+  const bool turns = glm::mat3(m) != glm::mat3(1.0f);
   for (Light& light : lights)
     if (light.type == Light::Type::Point)
       light.vector = glm::vec3(m * glm::vec4(light.vector, 1.0f));

@@ -117,6 +117,8 @@ struct Scene {
   // and file cameras (in double: a scale of 1e-20 inverted is 1e20, and a
   // normal times that squared overflows float).
   void transform(const glm::mat4& m);
+  // The positions and normals alone (a model turning under fixed lights).
+  void transformGeometry(const glm::mat4& m);
 };
 
 }  // namespace mvr

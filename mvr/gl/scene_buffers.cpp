@@ -32,6 +32,14 @@ std::vector<glm::vec2> vertexUvs(const Scene& scene) {
 
 }  // namespace
 
+void SceneBuffers::move(const Scene& scene) {
+  // New buffers: makeBuffer's storage is immutable.
+  positions_ = gl::makeBuffer(scene.positions.data(), scene.positions.size());
+  normals_ = gl::makeBuffer(scene.normals.data(), scene.normals.size());
+  attach(vao_.id(), 0, positions_, 3);
+  attach(vao_.id(), 1, normals_, 3);
+}
+
 SceneBuffers::SceneBuffers(const Scene& scene, const std::vector<glm::vec3>& albedo,
                            const std::vector<float>& cullFlags)
     : positions_(gl::makeBuffer(scene.positions.data(), scene.positions.size())),

@@ -17,6 +17,8 @@ class SceneBuffers {
   // the same vertices.
   void draw(const gl::Buffer& indices, GLsizei count) const;
   GLsizei indexCount() const { return indexCount_; }
+  // The scene moved (mvr/scene_pose.h): its positions and normals again.
+  void move(const Scene& scene);
 
  private:
   gl::Buffer positions_, normals_, albedo_, cull_, materials_, uvs_, indices_;

@@ -55,6 +55,9 @@ class DeferredPipeline {
   // rows (window rows, top first) the passes draw; the targets are still
   // cleared whole, so rows outside stay empty. Default: every row.
   void begin(int width, int height, IndexRange rows = {0, -1});
+  // The scene moved (mvr/scene_pose.h): lit per pixel, so its new
+  // positions and normals are all.
+  void sceneMoved(const Scene& scene) { buffers_.move(scene); }
   // The G-buffers this pipeline fills.
   GBuffer makeGBuffer(int width, int height) const { return GBuffer(width, height, exactAlbedo_); }
   // previous: the G-buffer of the layer in front (depth peeling), or null.

@@ -10,8 +10,12 @@ namespace {
 
 class DeferredRenderer final : public Renderer {
  public:
-  DeferredRenderer(const Scene& scene, PixelType type) : type_(type), pipeline_(scene) {}
+  DeferredRenderer(const Scene& scene, PixelType type) : scene_(scene), type_(type), pipeline_(scene) {}
   std::string name() const override { return "deferred"; }
+  bool sceneMoved() override {
+    pipeline_.sceneMoved(scene_);
+    return true;
+  }
   FrameOrder order() const override { return FrameOrder::View; }
 
   void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
@@ -31,6 +35,7 @@ class DeferredRenderer final : public Renderer {
   }
 
  private:
+  const Scene& scene_;
   PixelType type_;
   DeferredPipeline pipeline_;
 };

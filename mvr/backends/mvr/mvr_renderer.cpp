@@ -24,6 +24,15 @@ class MvrRenderer final : public Renderer {
         rasterizer_(makeRasterizer(mode, type, shading_, builder)), bounds_(scene.bounds()) {}
 
   std::string name() const override { return "mvr"; }
+
+  // Per frame of a sequence only the lighting, the extreme-vertex transform
+  // and the slicing are redone; textures, shaders and the rasterizer stay.
+  bool sceneMoved() override {
+    lit_.reset();
+    gpuTransform_.reset();
+    bounds_ = scene_.bounds();
+    return true;
+  }
   FrameOrder order() const override { return FrameOrder::Epi; }
 
   void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {

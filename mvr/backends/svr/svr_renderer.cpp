@@ -192,6 +192,10 @@ class SvrRenderer final : public Renderer {
     shading::setLightUniforms(program_, scene_);
   }
   std::string name() const override { return "svr"; }
+  bool sceneMoved() override {  // lit per vertex in the shader: new positions and normals are all
+    buffers_.move(scene_);
+    return true;
+  }
   FrameOrder order() const override { return FrameOrder::View; }
 
   void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
@@ -243,6 +247,10 @@ class LayeredSvrRenderer final : public Renderer {
     shading::setLightUniforms(program_, scene_);
   }
   std::string name() const override { return "svr-layered"; }
+  bool sceneMoved() override {
+    buffers_.move(scene_);
+    return true;
+  }
   FrameOrder order() const override { return FrameOrder::View; }
 
   void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
@@ -331,6 +339,7 @@ class PerViewLayeredSvrRenderer final : public Renderer {
  public:
   PerViewLayeredSvrRenderer(const Scene& scene, PixelType type) : svr_(scene, type) {}
   std::string name() const override { return "svr-layered"; }
+  bool sceneMoved() override { return svr_.sceneMoved(); }
   FrameOrder order() const override { return FrameOrder::View; }
   void render(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) override {
     svr_.render(cam, sink, stats);

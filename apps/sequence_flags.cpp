@@ -1,0 +1,76 @@
+#include "apps/sequence_flags.h"
+
+#include <cmath>
+
+#include "mvr/error.h"
+
+namespace mvr::app {
+
+void SequenceFlags::add(CLI::App& app) {
+  app.add_option("--frames", frames_,
+                 "render a sequence of N frames, each a complete set in frame_0000/, frame_0001/, ... "
+                 "(views, quilt, depth maps as asked, its manifest with its time), listed in sequence.json")
+      ->type_name("N");
+  app.add_option("--fps", fps_, "frames per second of the sequence's time (default 30)")->type_name("F");
+  app.add_option("--time", time_,
+                 "the sequence's time: frame k at A + k / fps; with B and without --frames, enough frames "
+                 "to cover [A, B)")
+      ->type_name("A[:B]");
+  app.add_option("--turntable", turntable_,
+                 "turn the scene about the vertical axis through the centre of its bounds by DEG over the "
+                 "sequence (frame k: DEG k / N; 360 loops without a repeated frame); positive turns +x "
+                 "toward -z; lights and camera stay")
+      ->type_name("DEG");
+  app.add_flag("--resume", resume_, "keep the frames of an earlier run of this sequence that are complete");
+}
+
+namespace {
+
+double number(const std::string& text, const char* flag) {
+  size_t used = 0;
+  double v = 0.0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || !std::isfinite(v)) fail(flag, "'" + text + "' is not a number");
+  return v;
+}
+
+}  // namespace
+
+Sequence SequenceFlags::resolve() const {
+  Sequence s;
+  s.resume = resume_;
+  if (fps_) {
+    if (!(*fps_ > 0.0 && std::isfinite(*fps_))) fail("--fps", "must be a positive number of frames per second");
+    s.fps = *fps_;
+  }
+  if (!time_.empty()) {
+    const size_t colon = time_.find(':');
+    s.start = number(time_.substr(0, colon), "--time");
+    if (colon != std::string::npos) {
+      s.end = number(time_.substr(colon + 1), "--time");
+      if (!(*s.end > s.start)) fail("--time", "the end B must come after the start A");
+    }
+  }
+  if (turntable_) {
+    if (!std::isfinite(*turntable_)) fail("--turntable", "must be a finite angle in degrees");
+    s.turntable = *turntable_;
+  }
+  if (frames_) {
+    if (*frames_ < 1 || *frames_ > 1000000) fail("--frames", "must be 1 to 1000000");
+    s.frames = *frames_;
+  } else if (s.end) {
+    // Frames at A + k / fps inside [A, B).
+    s.frames = std::max(1, int(std::ceil((*s.end - s.start) * s.fps - 1e-9)));
+    if ((*s.end - s.start) * s.fps > 1e6) fail("--time", "more than 1000000 frames at this --fps");
+  } else if (turntable_ || fps_ || !time_.empty() || resume_) {
+    fail(turntable_ ? "--turntable" : fps_ ? "--fps" : resume_ ? "--resume" : "--time",
+         "needs a sequence: --frames N or --time A:B");
+  }
+  return s;
+}
+
+}  // namespace mvr::app

@@ -1,0 +1,37 @@
+#pragma once
+// A sequence of frames from one process (issue 47): its command-line flags
+// and what they resolve to. Frame k shows the scene at time
+// t_k = start + k / fps; a turntable turns it by degrees * k / frames.
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace mvr::app {
+
+struct Sequence {
+  int frames = 0;  // 0: a still, no sequence
+  double fps = 30.0, start = 0.0;
+  std::optional<double> end;  // --time A:B
+  double turntable = 0.0;     // degrees over the whole sequence
+  bool resume = false;        // skip the frames that are complete
+
+  bool active() const { return frames > 0; }
+  double timeOf(int k) const { return start + k / fps; }
+  double degreesAt(int k) const { return turntable * k / frames; }
+};
+
+class SequenceFlags {
+ public:
+  void add(CLI::App& app);
+  // After parsing; throws mvr::Error naming the flag for a bad value.
+  Sequence resolve() const;
+
+ private:
+  std::optional<int> frames_;
+  std::optional<double> fps_, turntable_;
+  std::string time_;
+  bool resume_ = false;
+};
+
+}  // namespace mvr::app

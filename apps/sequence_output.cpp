@@ -1,0 +1,108 @@
+// A sequence as a job's output (issue 47): one set per frame from one
+// process. The scene is read, GL started and the renderer built once; per
+// frame the scene is posed in place and the renderer follows it
+// (Renderer::sceneMoved: MVR redoes its lighting, transform and slicing
+// only), or, for a back end that cannot, is built again.
+//
+// A frame's set is written into a hidden folder and renamed into place
+// once its manifest is written: frame_0000/ appears complete or not at all,
+// so --resume keeps exactly the frames that are there.
+#include <cstdio>
+#include <filesystem>
+#include <system_error>
+
+#include <nlohmann/json.hpp>
+
+#include "apps/render_job.h"
+#include "mvr/backends/backend.h"
+#include "mvr/error.h"
+#include "mvr/io/atomic_file.h"
+#include "mvr/scene_pose.h"
+
+namespace mvr::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string frameName(int k) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04d", k);
+  return name;
+}
+
+void replaceFolder(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  fs::remove_all(to, ec);
+  if (ec) fail(to.string(), "cannot replace: " + ec.message());
+  fs::rename(from, to, ec);
+  if (ec) fail(to.string(), "cannot move the finished frame into place: " + ec.message());
+}
+
+nlohmann::json frameRecord(const RenderJob::Frame& f) {
+  return {{"dir", frameName(f.index)}, {"time_s", f.time}, {"turntable_deg", f.degrees}};
+}
+
+// sequence.json, written last: the frames and how they were made.
+void writeSequenceManifest(const RenderJob& job, const PreparedJob& p, const nlohmann::json& frames) {
+  const Sequence& s = job.sequence;
+  nlohmann::json m = {{"frames", frames},
+                      {"frame_count", s.frames},
+                      {"fps", s.fps},
+                      {"time_s", {s.start, s.end ? *s.end : s.timeOf(s.frames)}},
+                      {"turntable", {{"degrees", s.turntable}, {"axis", "+y through the bounds centre of frame 0"}}},
+                      {"scene", p.scene.source},
+                      {"views", job.views},
+                      {"rows", job.rows},
+                      {"width", job.width},
+                      {"height", job.height}};
+  const std::string text = m.dump(2) + "\n";
+  writeFileAtomically((fs::path(job.out) / "sequence.json").string(),
+                      std::as_bytes(std::span(text.data(), text.size())));
+}
+
+}  // namespace
+
+int writeSequence(const RenderJob& job, PreparedJob& p) {
+  if (p.mpi) fail("--frames", "a sequence is not split across ranks yet: run it without mpirun");
+  const Sequence& s = job.sequence;
+  const Scene still = p.scene;
+  const glm::vec3 pivot = still.bounds().center();
+  const Stopwatch total;
+  fs::create_directories(job.out);
+  nlohmann::json frames = nlohmann::json::array();
+  double posed = 0.0;  // the renderer's scene is frame 0's
+  int rendered = 0;
+  for (int k = 0; k < s.frames; ++k) {
+    const RenderJob::Frame frame{k, s.timeOf(k), s.degreesAt(k)};
+    const fs::path final = fs::path(job.out) / frameName(k);
+    if (s.resume && fs::exists(final / "manifest.json")) {
+      frames.push_back(frameRecord(frame));
+      continue;
+    }
+    if (frame.degrees != posed) {
+      poseGeometry(p.scene, still, turntable(pivot, frame.degrees));
+      if (!p.renderer->sceneMoved()) p.renderer = makeRenderer(job.backend, p.scene, job.type);
+      posed = frame.degrees;
+    }
+    RenderJob one = job;
+    one.frame = frame;
+    const fs::path partial = fs::path(job.out) / ("." + frameName(k) + ".partial");
+    std::error_code ec;
+    fs::remove_all(partial, ec);
+    one.out = partial.string();
+    if (const int status = writeSet(one, p); status != 0) return status;
+    replaceFolder(partial, final);
+    frames.push_back(frameRecord(frame));
+    ++rendered;
+    const double each = total.seconds() / rendered;
+    std::fprintf(stderr, "mvr: frame %d of %d (t %.3f s, %.1f deg) done, %.3f s a frame, about %.0f s left\n", k + 1,
+                 s.frames, frame.time, frame.degrees, each, each * (s.frames - k - 1));
+  }
+  writeSequenceManifest(job, p, frames);
+  std::fprintf(stderr, "mvr: rendered %d of %d frames (%d views each) to %s in %.3f s\n", rendered, s.frames,
+               job.views * job.rows, job.out.c_str(), total.seconds());
+  return 0;
+}
+
+}  // namespace mvr::app

@@ -1,0 +1,21 @@
+#pragma once
+// A scene at a moment of a sequence (issue 47): its geometry posed from the
+// still scene it was loaded as, in place, so that a renderer holding the
+// scene sees it move (Renderer::sceneMoved). Lights and the files' cameras
+// stay where they are in the world: a turntable turns the model under the
+// studio's lights, before a camera that does not move.
+#include <glm/glm.hpp>
+
+#include "mvr/scene.h"
+
+namespace mvr {
+
+// Turns by `degrees` about the vertical (+y) axis through `pivot`,
+// right-handed: a positive angle turns +x toward -z.
+glm::mat4 turntable(const glm::vec3& pivot, double degrees);
+
+// scene's positions and normals become still's moved by m. The two have
+// the same vertices (scene began as a copy of still).
+void poseGeometry(Scene& scene, const Scene& still, const glm::mat4& m);
+
+}  // namespace mvr
