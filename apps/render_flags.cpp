@@ -111,7 +111,7 @@ void RenderFlags::addRenderOwn(CLI::App& app) {
                  "scanline plus a fixed part) or of equal scanline count")
       ->check(CLI::IsMember({"cost", "count"}))
       ->capture_default_str();
-  sequence_.add(app);
+  if (command_ == RenderCommand::Render) sequence_.add(app);  // references do not move
 }
 
 // synthesize: references instead of a scene, the warp back end's options.
@@ -195,6 +195,7 @@ RenderJob RenderFlags::describe(const CLI::App& app) const {
     job.sequence = sequence_.resolve();
     if (job.sequence.active() && job.streaming())
       fail("--frames", "a sequence is written as image sets: not with --stream");
+    if (job.sequence.video && !job.quilt) fail("--video", "encodes the quilts: give --quilt");
   }
   return job;
 }

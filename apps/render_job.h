@@ -4,6 +4,7 @@
 // GL side by side, the camera, the renderer), the memory plan (what is held
 // for reordering, decided before anything renders), and the output: an
 // image set (set_output.cpp) or the EPI-major stream (stream_output.cpp).
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -83,6 +84,8 @@ struct PreparedJob {
   bool reorders = false, depthReorders = false;
   ReorderMemory reorder, depthReorder;
   std::optional<PngRows> pngRows;  // EPIs straight into PNG views
+  // A sequence's video: each frame's finished quilt, with its file name.
+  std::function<void(const Image& quilt, const std::string& name)> quiltOut;
   bool scratch = false;            // the colour's reorder spills to a scratch file
   size_t rowBytes = 0, depthRowBytes = 0;
 

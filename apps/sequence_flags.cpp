@@ -22,6 +22,11 @@ void SequenceFlags::add(CLI::App& app) {
                  "toward -z; lights and camera stay")
       ->type_name("DEG");
   app.add_flag("--resume", resume_, "keep the frames of an earlier run of this sequence that are complete");
+  app.add_flag("--video", video_,
+               "with --quilt: also write the quilts as one video, quilt_qs{C}x{R}a{aspect}.mp4 (H.264 in "
+               "yuv420p, as Looking Glass players load), encoded while the frames render");
+  app.add_option("--crf", crf_, "the video's quality: 0 (lossless) to 51 (worst); default 18, visually lossless")
+      ->type_name("Q");
 }
 
 namespace {
@@ -43,6 +48,12 @@ double number(const std::string& text, const char* flag) {
 Sequence SequenceFlags::resolve() const {
   Sequence s;
   s.resume = resume_;
+  s.video = video_;
+  if (crf_) {
+    if (*crf_ < 0 || *crf_ > 51) fail("--crf", "must be 0 to 51");
+    if (!video_) fail("--crf", "sets the quality of --video");
+    s.crf = *crf_;
+  }
   if (fps_) {
     if (!(*fps_ > 0.0 && std::isfinite(*fps_))) fail("--fps", "must be a positive number of frames per second");
     s.fps = *fps_;
@@ -66,8 +77,8 @@ Sequence SequenceFlags::resolve() const {
     // Frames at A + k / fps inside [A, B).
     s.frames = std::max(1, int(std::ceil((*s.end - s.start) * s.fps - 1e-9)));
     if ((*s.end - s.start) * s.fps > 1e6) fail("--time", "more than 1000000 frames at this --fps");
-  } else if (turntable_ || fps_ || !time_.empty() || resume_) {
-    fail(turntable_ ? "--turntable" : fps_ ? "--fps" : resume_ ? "--resume" : "--time",
+  } else if (turntable_ || fps_ || !time_.empty() || resume_ || video_) {
+    fail(turntable_ ? "--turntable" : fps_ ? "--fps" : resume_ ? "--resume" : video_ ? "--video" : "--time",
          "needs a sequence: --frames N or --time A:B");
   }
   return s;

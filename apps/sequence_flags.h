@@ -15,6 +15,8 @@ struct Sequence {
   std::optional<double> end;  // --time A:B
   double turntable = 0.0;     // degrees over the whole sequence
   bool resume = false;        // skip the frames that are complete
+  bool video = false;         // the quilts as one MP4 (mvr/io/quilt_video.h)
+  int crf = 18;               // its H.264 quality: 0 lossless .. 51
 
   bool active() const { return frames > 0; }
   double timeOf(int k) const { return start + k / fps; }
@@ -31,7 +33,8 @@ class SequenceFlags {
   std::optional<int> frames_;
   std::optional<double> fps_, turntable_;
   std::string time_;
-  bool resume_ = false;
+  bool resume_ = false, video_ = false;
+  std::optional<int> crf_;
 };
 
 }  // namespace mvr::app

@@ -9,6 +9,8 @@
 // so --resume keeps exactly the frames that are there.
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <optional>
 #include <system_error>
 
 #include <nlohmann/json.hpp>
@@ -17,6 +19,8 @@
 #include "mvr/backends/backend.h"
 #include "mvr/error.h"
 #include "mvr/io/atomic_file.h"
+#include "mvr/io/image_file.h"
+#include "mvr/io/quilt_video.h"
 #include "mvr/scene_pose.h"
 
 namespace mvr::app {
@@ -38,6 +42,38 @@ void replaceFolder(const fs::path& from, const fs::path& to) {
   fs::rename(from, to, ec);
   if (ec) fail(to.string(), "cannot move the finished frame into place: " + ec.message());
 }
+
+// The video of the sequence's quilts, started with the first (which names
+// it): the frames rendered here, and those an earlier run left (--resume)
+// read back from their sets.
+class VideoOut {
+ public:
+  VideoOut(const RenderJob& job) : job_(job) {}
+  void add(const Image& quilt, const std::string& name) {
+    if (!video_) {
+      path_ = (fs::path(job_.out) / name).string();
+      video_.emplace(path_, quilt.width, quilt.height, job_.sequence.fps, job_.sequence.crf, job_.sequence.frames);
+    }
+    video_->add(quilt);
+  }
+  void addKept(const fs::path& frame) {
+    const auto m = nlohmann::json::parse(std::ifstream(frame / "manifest.json"), nullptr, false);
+    if (!m.is_object() || !m.contains("quilt") || !m["quilt"].is_string())
+      fail(frame.string(), "has no quilt to put in the video: render it again without --resume");
+    const std::string file = m["quilt"].get<std::string>();
+    add(readImage((frame / file).string()), fs::path(file).replace_extension(".mp4").string());
+  }
+  void finish() {
+    if (!video_) return;
+    video_->finish();
+    std::fprintf(stderr, "mvr: wrote %s\n", path_.c_str());
+  }
+
+ private:
+  const RenderJob& job_;
+  std::optional<QuiltVideo> video_;
+  std::string path_;
+};
 
 nlohmann::json frameRecord(const RenderJob::Frame& f) {
   return {{"dir", frameName(f.index)}, {"time_s", f.time}, {"turntable_deg", f.degrees}};
@@ -71,12 +107,18 @@ int writeSequence(const RenderJob& job, PreparedJob& p) {
   const Stopwatch total;
   fs::create_directories(job.out);
   nlohmann::json frames = nlohmann::json::array();
+  std::optional<VideoOut> video;
+  if (s.video) {
+    video.emplace(job);
+    p.quiltOut = [&](const Image& quilt, const std::string& name) { video->add(quilt, name); };
+  }
   double posed = 0.0;  // the renderer's scene is frame 0's
   int rendered = 0;
   for (int k = 0; k < s.frames; ++k) {
     const RenderJob::Frame frame{k, s.timeOf(k), s.degreesAt(k)};
     const fs::path final = fs::path(job.out) / frameName(k);
     if (s.resume && fs::exists(final / "manifest.json")) {
+      if (video) video->addKept(final);
       frames.push_back(frameRecord(frame));
       continue;
     }
@@ -99,6 +141,8 @@ int writeSequence(const RenderJob& job, PreparedJob& p) {
     std::fprintf(stderr, "mvr: frame %d of %d (t %.3f s, %.1f deg) done, %.3f s a frame, about %.0f s left\n", k + 1,
                  s.frames, frame.time, frame.degrees, each, each * (s.frames - k - 1));
   }
+  if (video) video->finish();
+  p.quiltOut = nullptr;
   writeSequenceManifest(job, p, frames);
   std::fprintf(stderr, "mvr: rendered %d of %d frames (%d views each) to %s in %.3f s\n", rendered, s.frames,
                job.views * job.rows, job.out.c_str(), total.seconds());

@@ -129,10 +129,12 @@ void renderColor(const RenderJob& job, PreparedJob& p, ImageSetWriter& writer, S
   run.quiltAspect = job.quilt && job.quilt->aspect > 0.0 ? job.quilt->aspect : double(job.width) / job.height;
   inPhase(mpi, [&] {
     if (run.split) run.split->assemble();
-    if (run.quilt)
+    if (run.quilt) {
       writer.putExtra(run.quilt->fileName(job.format, run.quiltAspect), run.quilt->quilt(),
                       {{"Exif:UserComment", quiltMetadata(job.views * job.rows, run.quilt->columns(),
                                                           run.quilt->tileRows(), run.quiltAspect)}});
+      if (p.quiltOut) p.quiltOut(run.quilt->quilt(), run.quilt->fileName("mp4", run.quiltAspect));
+    }
     if (mpi) writer.flush();
   });
   run.reorder = chain.reorderInfo();
