@@ -72,7 +72,11 @@ class Encoder {
     codec_->color_trc = AVCOL_TRC_IEC61966_2_1;  // the quilt's sRGB values
     if (format_->oformat->flags & AVFMT_GLOBALHEADER) codec_->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
     av_opt_set(codec_->priv_data, "crf", std::to_string(crf).c_str(), 0);
-    av_opt_set(codec_->priv_data, "preset", "medium", 0);
+    // superfast: the encoder shares the cores with the renderer; on 2 cores
+    // a 12-frame Portrait turntable took 5.8 s at medium, 4.4 s at veryfast
+    // and 3.7 s here (the PNG quilts alone: 2.1 s). crf holds the quality;
+    // the file is larger.
+    av_opt_set(codec_->priv_data, "preset", "superfast", 0);
     if (const int e = avcodec_open2(codec_, codec, nullptr); e < 0) die("cannot open the H.264 encoder: " + averror(e));
     if (avcodec_parameters_from_context(stream_->codecpar, codec_) < 0) die("cannot describe the video stream");
     stream_->time_base = codec_->time_base;
