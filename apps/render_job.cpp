@@ -143,6 +143,7 @@ FrameChainSpec PreparedJob::chainSpec(const RenderJob& job) const {
 int runJob(RenderJob& job) {
   PreparedJob prepared;
   start(job, prepared);
+  if (job.sequence.active()) startSequence(job, prepared);
   setUp(job, prepared);
   planMemory(job, prepared);
   if (job.sequence.active()) return writeSequence(job, prepared);

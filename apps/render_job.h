@@ -84,6 +84,8 @@ struct PreparedJob {
   bool reorders = false, depthReorders = false;
   ReorderMemory reorder, depthReorder;
   std::optional<PngRows> pngRows;  // EPIs straight into PNG views
+  // A sequence: the scene as it was read; p.scene is posed from it.
+  std::shared_ptr<const Scene> still;
   // A sequence's video: each frame's finished quilt, with its file name.
   std::function<void(const Image& quilt, const std::string& name)> quiltOut;
   bool scratch = false;            // the colour's reorder spills to a scratch file
@@ -102,6 +104,9 @@ JobSplit splitFor(const RenderJob& job, const PreparedJob& prepared);
 int runJob(RenderJob& job);
 int writeSet(const RenderJob& job, PreparedJob& prepared);
 int writeStream(const RenderJob& job, PreparedJob& prepared);
+// A sequence's frame count (an animation's length) and its frame 0, posed
+// before the camera is framed on it.
+void startSequence(RenderJob& job, PreparedJob& prepared);
 int writeSequence(const RenderJob& job, PreparedJob& prepared);
 
 }  // namespace mvr::app

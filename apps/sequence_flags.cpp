@@ -9,7 +9,8 @@ namespace mvr::app {
 void SequenceFlags::add(CLI::App& app) {
   app.add_option("--frames", frames_,
                  "render a sequence of N frames, each a complete set in frame_0000/, frame_0001/, ... "
-                 "(views, quilt, depth maps as asked, its manifest with its time), listed in sequence.json")
+                 "(views, quilt, depth maps as asked, its manifest with its time), listed in sequence.json; "
+                 "without it, a sequence flag renders the scene's animation to its end")
       ->type_name("N");
   app.add_option("--fps", fps_, "frames per second of the sequence's time (default 30)")->type_name("F");
   app.add_option("--time", time_,
@@ -25,6 +26,8 @@ void SequenceFlags::add(CLI::App& app) {
   app.add_flag("--video", video_,
                "with --quilt: also write the quilts as one video, quilt_qs{C}x{R}a{aspect}.mp4 (H.264 in "
                "yuv420p, as Looking Glass players load), encoded while the frames render");
+  app.add_option("--clip", clip_, "play only the scene's animation clip of this name (default: every clip together)")
+      ->type_name("NAME");
   app.add_option("--crf", crf_, "the video's quality: 0 (lossless) to 51 (worst); default 18, visually lossless")
       ->type_name("Q");
 }
@@ -77,11 +80,22 @@ Sequence SequenceFlags::resolve() const {
     // Frames at A + k / fps inside [A, B).
     s.frames = std::max(1, int(std::ceil((*s.end - s.start) * s.fps - 1e-9)));
     if ((*s.end - s.start) * s.fps > 1e6) fail("--time", "more than 1000000 frames at this --fps");
-  } else if (turntable_ || fps_ || !time_.empty() || resume_ || video_) {
-    fail(turntable_ ? "--turntable" : fps_ ? "--fps" : resume_ ? "--resume" : video_ ? "--video" : "--time",
-         "needs a sequence: --frames N or --time A:B");
+  } else if (turntable_ || fps_ || !time_.empty() || resume_ || video_ || !clip_.empty()) {
+    s.untilAnimationEnds = true;  // checked once the scene is read
+    s.flagWithoutLength = turntable_ ? "--turntable" : fps_ ? "--fps" : resume_ ? "--resume" : video_ ? "--video"
+                          : !clip_.empty() ? "--clip" : "--time";
   }
+  s.clip = clip_;
   return s;
+}
+
+void Sequence::fromAnimation(double length) {
+  if (!untilAnimationEnds) return;
+  if (!(length > start))
+    fail(flagWithoutLength, length > 0.0 ? "the scene's animation ends before --time's start"
+                                         : "needs a sequence: --frames N or --time A:B (the scene has no animation)");
+  frames = std::max(1, int(std::ceil((length - start) * fps - 1e-9)));
+  untilAnimationEnds = false;
 }
 
 }  // namespace mvr::app

@@ -17,8 +17,15 @@ struct Sequence {
   bool resume = false;        // skip the frames that are complete
   bool video = false;         // the quilts as one MP4 (mvr/io/quilt_video.h)
   int crf = 18;               // its H.264 quality: 0 lossless .. 51
+  std::string clip;           // the one animation clip that plays ("": all)
+  // No --frames or --time B: as many frames as the scene's animation
+  // lasts, known once the scene is read (fromAnimation()).
+  bool untilAnimationEnds = false;
+  std::string flagWithoutLength;  // the flag that asked for it, for its error
 
-  bool active() const { return frames > 0; }
+  bool active() const { return frames > 0 || untilAnimationEnds; }
+  // Frames at start + k / fps inside [start, length).
+  void fromAnimation(double length);
   double timeOf(int k) const { return start + k / fps; }
   double degreesAt(int k) const { return turntable * k / frames; }
 };
@@ -35,6 +42,7 @@ class SequenceFlags {
   std::string time_;
   bool resume_ = false, video_ = false;
   std::optional<int> crf_;
+  std::string clip_;
 };
 
 }  // namespace mvr::app

@@ -99,10 +99,27 @@ void writeSequenceManifest(const RenderJob& job, const PreparedJob& p, const nlo
                       std::as_bytes(std::span(text.data(), text.size())));
 }
 
+// The scene at frame k: from the still, animated to t_k, turned by the
+// frame's angle about the pivot.
+void pose(const RenderJob& job, PreparedJob& p, const RenderJob::Frame& frame, const glm::vec3& pivot) {
+  const glm::mat4 turn = turntable(pivot, frame.degrees);
+  poseGeometry(p.scene, *p.still, turn);
+  poseAnimations(p.scene, frame.time, job.sequence.clip, turn);
+}
+
 }  // namespace
 
-int writeSequence(const RenderJob& job, PreparedJob& p) {
+void startSequence(RenderJob& job, PreparedJob& p) {
   if (p.mpi) fail("--frames", "a sequence is not split across ranks yet: run it without mpirun");
+  Sequence& s = job.sequence;
+  if (!s.clip.empty() && !hasClip(p.scene, s.clip))
+    fail("--clip", "the scene has no animation clip named '" + s.clip + "'");
+  s.fromAnimation(animationLength(p.scene, s.clip));
+  p.still = std::make_shared<const Scene>(p.scene);
+  if (!p.scene.animations.empty()) pose(job, p, {0, s.timeOf(0), 0.0}, glm::vec3(0.0f));
+}
+
+int writeSequence(const RenderJob& job, PreparedJob& p) {
   const Sequence& s = job.sequence;
   // Every frame allocates the same large buffers (the quilt, the reorder
   // volume, the EPIs) and frees them: kept in the heap instead of given back
@@ -111,8 +128,7 @@ int writeSequence(const RenderJob& job, PreparedJob& p) {
   // quilt on 2 cores, in the kernel).
   mallopt(M_MMAP_THRESHOLD, 1 << 30);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
-  const Scene still = p.scene;
-  const glm::vec3 pivot = still.bounds().center();
+  const glm::vec3 pivot = p.scene.bounds().center();  // frame 0's
   const Stopwatch total;
   const StageTimes startup = p.startup;  // the process's, in every frame's manifest
   fs::create_directories(job.out);
@@ -122,7 +138,8 @@ int writeSequence(const RenderJob& job, PreparedJob& p) {
     video.emplace(job);
     p.quiltOut = [&](const Image& quilt, const std::string& name) { video->add(quilt, name); };
   }
-  double posed = 0.0;  // the renderer's scene is frame 0's
+  const bool animated = !p.scene.animations.empty();
+  int posed = 0;  // the renderer's scene is frame 0's
   int rendered = 0;
   for (int k = 0; k < s.frames; ++k) {
     const RenderJob::Frame frame{k, s.timeOf(k), s.degreesAt(k)};
@@ -132,10 +149,10 @@ int writeSequence(const RenderJob& job, PreparedJob& p) {
       frames.push_back(frameRecord(frame));
       continue;
     }
-    if (frame.degrees != posed) {
-      poseGeometry(p.scene, still, turntable(pivot, frame.degrees));
+    if (k != posed && (animated || frame.degrees != s.degreesAt(posed))) {
+      pose(job, p, frame, pivot);
       if (!p.renderer->sceneMoved()) p.renderer = makeRenderer(job.backend, p.scene, job.type);
-      posed = frame.degrees;
+      posed = k;
     }
     RenderJob one = job;
     one.frame = frame;

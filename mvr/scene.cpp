@@ -38,6 +38,7 @@ void Scene::append(const Scene& other) {
   droppedFaces += other.droppedFaces;
   warnings.insert(warnings.end(), other.warnings.begin(), other.warnings.end());
   fileCameras.insert(fileCameras.end(), other.fileCameras.begin(), other.fileCameras.end());
+  for (const auto& a : other.animations) animations.push_back(a->offset(uint32_t(base)));
 }
 
 void Scene::transformGeometry(const glm::mat4& m) {
@@ -58,6 +59,11 @@ void Scene::transform(const glm::mat4& m) {
     else if (turns)
       light.vector = glm::vec3(glm::normalize(glm::dmat3(glm::mat3(m)) * glm::dvec3(light.vector)));
   for (FileCamera& c : fileCameras) c.toWorld = m * c.toWorld;
+  for (auto& a : animations) {
+    auto moved = std::make_shared<SceneAnimation>(*a);
+    moved->outer = m * moved->outer;
+    a = std::move(moved);
+  }
 }
 
 }  // namespace mvr

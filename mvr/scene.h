@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "mvr/camera.h"
+#include "mvr/scene_animation.h"
 
 namespace mvr {
 
@@ -96,6 +97,9 @@ struct Scene {
   bool exactColors = false;
   std::optional<CameraSpec> camera;  // from the scene file, if it had one
   std::vector<FileCamera> fileCameras;  // the files' own cameras, in world coordinates
+  // The files' animations (mvr/scene_animation.h): what poses the scene at
+  // a time of a sequence. Empty for a still scene.
+  std::vector<std::shared_ptr<const SceneAnimation>> animations;
   std::string source;                // file it came from, for manifests
   // Faces of the files that could not be used (a repeated corner or one
   // naming a vertex that does not exist): dropped, and counted here.

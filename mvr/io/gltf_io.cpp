@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -237,11 +238,12 @@ class GltfReader {
     for (const std::string& e : model_.extensionsRequired)
       if (e != "KHR_texture_transform" && e != "KHR_lights_punctual" && e != "KHR_mesh_quantization")
         warn_("requires the extension " + e + ", which is not read: drawn without it");
-    if (!model_.animations.empty()) warn_("animations not played yet: the scene as it stands");
     if (!model_.skins.empty()) warn_("skins not applied yet: meshes in their bind pose");
+    if (!model_.animations.empty()) animation_ = std::make_shared<SceneAnimation>();
     onPath_.assign(model_.nodes.size(), false);
-    for (int r : roots) node(r, glm::mat4(1.0f));
+    for (int r : roots) node(r, glm::mat4(1.0f), -1);
     if (scene_.triangles.empty()) fail(path_, "glTF scene has no triangles");
+    if (animation_) readClips();
     addLights();
     scene_.source = path_;
     return std::move(scene_);
@@ -316,21 +318,108 @@ class GltfReader {
     return glm::clamp(e, 0.0f, 1.0f);
   }
 
-  void node(int index, const glm::mat4& parent) {
+  // parentSlot: the parent's place in the animation's node list (-1: a root).
+  void node(int index, const glm::mat4& parent, int parentSlot) {
     if (index < 0 || size_t(index) >= model_.nodes.size()) fail(path_, "node " + std::to_string(index) + " does not exist");
     if (onPath_[size_t(index)]) fail(path_, "node " + std::to_string(index) + " is its own ancestor");
     onPath_[size_t(index)] = true;
     const tinygltf::Node& n = model_.nodes[size_t(index)];
     const glm::mat4 world = parent * localTransform(n);
+    const int slot = animation_ ? animatedNode(index, parentSlot) : -1;
     if (n.mesh >= 0) {
       if (size_t(n.mesh) >= model_.meshes.size()) fail(path_, "mesh " + std::to_string(n.mesh) + " does not exist");
-      for (const tinygltf::Primitive& p : model_.meshes[size_t(n.mesh)].primitives) primitive(p, world);
+      for (const tinygltf::Primitive& p : model_.meshes[size_t(n.mesh)].primitives) {
+        if (animation_) {
+          instance_ = &animation_->instances.emplace_back();
+          instance_->node = slot;
+          instance_->first = uint32_t(scene_.positions.size());
+        }
+        primitive(p, world);
+        instance_ = nullptr;
+      }
     }
     if (n.camera >= 0) camera(n, world);
     if (const auto light = n.extensions.find("KHR_lights_punctual"); light != n.extensions.end())
       placeLight(light->second, world);
-    for (int c : n.children) node(c, world);
+    for (int c : n.children) node(c, world, slot);
     onPath_[size_t(index)] = false;
+  }
+
+  // The node in the animation's list (parents before children), with its
+  // rest transform; slots_ maps the file's node to its places.
+  int animatedNode(int index, int parentSlot) {
+    const tinygltf::Node& n = model_.nodes[size_t(index)];
+    AnimatedNode a;
+    a.parent = parentSlot;
+    if (n.matrix.size() == 16) {
+      a.hasMatrix = true;
+      a.matrix = localTransform(n);
+    } else {
+      if (n.translation.size() == 3) a.translation = glm::vec3(float(n.translation[0]), float(n.translation[1]), float(n.translation[2]));
+      if (n.rotation.size() == 4)
+        a.rotation = glm::normalize(glm::quat(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]), float(n.rotation[2])));
+      if (n.scale.size() == 3) a.scale = glm::vec3(float(n.scale[0]), float(n.scale[1]), float(n.scale[2]));
+    }
+    const int slot = int(animation_->nodes.size());
+    animation_->nodes.push_back(a);
+    slots_[index].push_back(slot);
+    return slot;
+  }
+
+  // The file's animations as clips of node TRS channels.
+  void readClips() {
+    for (size_t i = 0; i < model_.animations.size(); ++i) {
+      const tinygltf::Animation& g = model_.animations[i];
+      AnimationClip clip;
+      clip.name = g.name.empty() ? "animation " + std::to_string(i) : g.name;
+      for (const tinygltf::AnimationChannel& c : g.channels) channel(g, c, clip);
+      if (!clip.channels.empty()) animation_->clips.push_back(std::move(clip));
+    }
+    if (animation_->clips.empty()) return;
+    scene_.animations.push_back(std::move(animation_));
+  }
+
+  void channel(const tinygltf::Animation& g, const tinygltf::AnimationChannel& c, AnimationClip& clip) {
+    if (c.target_path == "weights") {
+      warn_("morph target weights not played: meshes in their base shape");
+      return;
+    }
+    const auto path = c.target_path == "translation" ? AnimationChannel::Path::Translation
+                      : c.target_path == "rotation"  ? AnimationChannel::Path::Rotation
+                      : c.target_path == "scale"     ? AnimationChannel::Path::Scale
+                                                     : throw Error(path_ + ": animation channel of path '" +
+                                                                   c.target_path.substr(0, 40) + "' is not glTF 2.0");
+    if (c.sampler < 0 || size_t(c.sampler) >= g.samplers.size()) fail(path_, "animation sampler " + std::to_string(c.sampler) + " does not exist");
+    const auto where = slots_.find(c.target_node);
+    if (where == slots_.end()) return;  // a node outside the scene drawn
+    const tinygltf::AnimationSampler& s = g.samplers[size_t(c.sampler)];
+    AnimationChannel ch;
+    ch.path = path;
+    ch.interpolation = s.interpolation == "STEP"          ? AnimationChannel::Interpolation::Step
+                       : s.interpolation == "CUBICSPLINE" ? AnimationChannel::Interpolation::CubicSpline
+                                                          : AnimationChannel::Interpolation::Linear;
+    const Accessor input(model_, s.input, path_), output(model_, s.output, path_);
+    if (input.components() != 1) fail(path_, "animation input must be SCALAR times");
+    if (output.components() != ch.components()) fail(path_, "animation output of " + c.target_path + " has the wrong type");
+    const size_t perKey = ch.interpolation == AnimationChannel::Interpolation::CubicSpline ? 3 : 1;
+    if (input.count() == 0 || output.count() != perKey * input.count())
+      fail(path_, "animation sampler has " + std::to_string(output.count()) + " values for " + std::to_string(input.count()) + " times");
+    for (size_t k = 0; k < input.count(); ++k) {
+      const float t = input.at(k).x;
+      if (!std::isfinite(t) || (k > 0 && !(t > ch.times.back()))) fail(path_, "animation times must rise and be finite");
+      ch.times.push_back(t);
+    }
+    for (size_t k = 0; k < output.count(); ++k) {
+      const glm::vec4 v = output.at(k);
+      for (int j = 0; j < ch.components(); ++j) {
+        if (!std::isfinite(v[j])) fail(path_, "animation values must be finite");
+        ch.values.push_back(v[j]);
+      }
+    }
+    for (int slot : where->second) {
+      ch.node = slot;
+      clip.channels.push_back(ch);
+    }
   }
 
   void camera(const tinygltf::Node& n, const glm::mat4& world) {
@@ -458,9 +547,13 @@ class GltfReader {
     const glm::mat3 linear(world);
     const glm::mat3 normalMatrix = glm::transpose(glm::inverse(linear));
     const bool mirrored = glm::determinant(linear) < 0.0f;
-    auto vertex = [&](uint32_t k, const glm::vec3& n) {
+    auto vertex = [&](uint32_t k, const glm::vec3& n, const glm::vec3& local) {
       scene_.positions.push_back(glm::vec3(world * glm::vec4(glm::vec3(position->at(k)), 1.0f)));
       scene_.normals.push_back(n);
+      if (instance_) {
+        instance_->positions.push_back(glm::vec3(position->at(k)));
+        instance_->normals.push_back(local);
+      }
       if (anyUv_) {
         const glm::vec2 t = uv ? glm::vec2(uvTransform * glm::vec3(glm::vec2(uv->at(k)), 1.0f)) : glm::vec2(0.0f, 1.0f);
         scene_.uvs.emplace_back(t.x, 1.0f - t.y);  // glTF's v runs down the image, ours up
@@ -473,7 +566,8 @@ class GltfReader {
     };
     if (normal) {
       const auto base = uint32_t(scene_.positions.size());
-      for (uint32_t k = 0; k < uint32_t(position->count()); ++k) vertex(k, unit(normalMatrix * glm::vec3(normal->at(k))));
+      for (uint32_t k = 0; k < uint32_t(position->count()); ++k)
+        vertex(k, unit(normalMatrix * glm::vec3(normal->at(k))), glm::vec3(normal->at(k)));
       for (glm::uvec3 t : tris) add(t + base, mirrored, materialId);
       return;
     }
@@ -484,8 +578,12 @@ class GltfReader {
       const glm::vec3 b = glm::vec3(world * glm::vec4(glm::vec3(position->at(t.y)), 1.0f));
       const glm::vec3 c = glm::vec3(world * glm::vec4(glm::vec3(position->at(t.z)), 1.0f));
       const glm::vec3 n = unit(glm::cross(b - a, c - a));
+      const glm::vec3 la(position->at(t.x)), lb(position->at(t.y)), lc(position->at(t.z));
+      // world's n in the node's space: the cross product moves by det(M) M^-T,
+      // the normal matrix by M^-T.
+      const glm::vec3 local = glm::cross(lb - la, lc - la) * (mirrored ? -1.0f : 1.0f);
       const auto base = uint32_t(scene_.positions.size());
-      for (uint32_t k : {t.x, t.y, t.z}) vertex(k, n);
+      for (uint32_t k : {t.x, t.y, t.z}) vertex(k, n, local);
       add(glm::uvec3(base, base + 1, base + 2), false, materialId);
     }
   }
@@ -531,6 +629,9 @@ class GltfReader {
   std::vector<std::pair<size_t, glm::mat4>> placedLights_;  // light, its node's world transform
   std::vector<glm::mat3> uvTransforms_;  // per material: its base colour texture's KHR_texture_transform
   std::vector<bool> hidden_;             // per material: masked out whole (alphaMode MASK, no texture)
+  std::shared_ptr<SceneAnimation> animation_;  // when the file has animations
+  AnimatedInstance* instance_ = nullptr;       // the primitive being read, when animated
+  std::map<int, std::vector<int>> slots_;      // a file node's places in animation_->nodes
   LoadWarnings warn_{scene_, path_};
   bool anyUv_ = false;
   int defaultMaterial_ = -1;

@@ -25,6 +25,7 @@ extern "C" {
 
 #include "mvr/io/compare.h"
 #include "mvr/io/image_file.h"
+#include "tests/support/animated_gltf.h"
 #include "tests/support/cli.h"
 
 namespace mvr {
@@ -183,6 +184,40 @@ TEST(Sequence, ResumeKeepsTheCompleteFrames) {
   EXPECT_TRUE(fs::exists(dir / "seq" / "frame_0002" / "manifest.json"));
   EXPECT_FALSE(fs::exists(dir / "seq" / ".frame_0002.partial"));
   EXPECT_EQ(readVideo(dir / "seq" / "quilt_qs2x2a1.33.mp4").frames, 3);  // the kept frame's quilt read back
+}
+
+// An animated glTF without --frames: its animation's length at --fps 2
+// (t = 0, 0.5, 1, 1.5 of [0, 2)); frame 3 is a still render of the file
+// posed at 1.5 by hand, through a scene file with its own camera.
+TEST(Sequence, AnimationFramesAreStillRendersOfThePosedFile) {
+  const fs::path dir = test::freshDir("sequence_animation");
+  fs::create_directories(dir);
+  test::writeAnimatedGltf(dir / "anim.gltf", true);
+  test::writeAnimatedGltf(dir / "posed.gltf", false, 1.5);
+  const char* camera = R"("camera": {"distance": 8, "image_plane": 5, "track": [-1, 1], "near": 4, "far": 12})";
+  std::ofstream(dir / "anim.json") << R"({"meshes": [{"file": "anim.gltf"}], )" << camera << "}";
+  std::ofstream(dir / "posed.json") << R"({"meshes": [{"file": "posed.gltf"}], )" << camera << "}";
+  const test::CliResult r = test::runMvr("render " + (dir / "anim.json").string() + kShape + " --fps 2 --clip Walk --out " +
+                                         (dir / "seq").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "seq" / "frame_0003" / "manifest.json"));
+  EXPECT_FALSE(fs::exists(dir / "seq" / "frame_0004"));
+  ASSERT_EQ(test::runMvr("render " + (dir / "posed.json").string() + kShape + " --out " + (dir / "posed").string()).status, 0);
+  for (int v = 0; v < 4; ++v) {
+    const std::string view = "view_000" + std::to_string(v) + ".png";
+    const ImageDifference d = compareImages(readImage((dir / "posed" / view).string()),
+                                            readImage((dir / "seq" / "frame_0003" / view).string()));
+    EXPECT_GE(d.psnr, 40.0) << view;
+    EXPECT_GE(d.closeFraction, 0.995) << view;
+    // Frame 0 is the rest pose: the animation shows.
+    EXPECT_LT(compareImages(readImage((dir / "posed" / view).string()),
+                            readImage((dir / "seq" / "frame_0000" / view).string())).psnr, 30.0) << view;
+  }
+  const test::CliResult missing =
+      test::runMvr("render " + (dir / "anim.json").string() + kShape + " --clip Run --out " + (dir / "run").string());
+  EXPECT_EQ(missing.status, 1);
+  EXPECT_NE(missing.err.find("--clip: the scene has no animation clip named 'Run'"), std::string::npos) << missing.err;
+  EXPECT_FALSE(fs::exists(dir / "run"));
 }
 
 TEST(Sequence, BadValuesAreOneLineErrors) {

@@ -57,7 +57,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     out.write(reinterpret_cast<const char*>(data + 1), std::streamsize(size - 1));
   }
   try {
-    mvr::loadScene(path.string(), size % 2 == 0);
+    mvr::Scene scene = mvr::loadScene(path.string(), size % 2 == 0);
+    // An animated file is posed too (before its keys, between, after).
+    for (double t : {-1.0, 0.37, 1e9}) mvr::poseAnimations(scene, t, "", glm::mat4(1.0f));
   } catch (const mvr::Error&) {
   }
   std::error_code ec;

@@ -1,0 +1,80 @@
+#pragma once
+// A scene file's animations (glTF's, issue 47): the node hierarchy with its
+// rest transforms, the clips' channels, and each mesh instance's vertices
+// in its node's space, so that the scene can be posed at any time t.
+// Node TRS channels with LINEAR (slerp for rotations), STEP and
+// CUBICSPLINE interpolation (glTF 2.0, appendix C). A time before a
+// channel's first key holds its first value, after its last key its last.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+namespace mvr {
+
+struct Scene;
+
+struct AnimationChannel {
+  enum class Path { Translation, Rotation, Scale };
+  enum class Interpolation { Linear, Step, CubicSpline };
+  int node = 0;
+  Path path = Path::Translation;
+  Interpolation interpolation = Interpolation::Linear;
+  std::vector<float> times;   // ascending
+  std::vector<float> values;  // per key 3 or 4 floats; CUBICSPLINE: in-tangent, value, out-tangent
+  int components() const { return path == Path::Rotation ? 4 : 3; }
+  // The channel's value at time t (a rotation as x, y, z, w, normalised).
+  glm::vec4 sample(double t) const;
+};
+
+struct AnimationClip {
+  std::string name;
+  std::vector<AnimationChannel> channels;
+  double duration() const;  // its last key's time
+};
+
+struct AnimatedNode {
+  int parent = -1;
+  bool hasMatrix = false;  // glTF: a node with a matrix is not animated
+  glm::mat4 matrix{1.0f};
+  glm::vec3 translation{0.0f}, scale{1.0f};
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+};
+
+// A mesh drawn at a node: the scene's vertices [first, first + local
+// positions' size) are these, moved by the node's world transform.
+struct AnimatedInstance {
+  int node = 0;
+  uint32_t first = 0;
+  std::vector<glm::vec3> positions, normals;  // in the node's space
+};
+
+struct SceneAnimation {
+  std::vector<AnimatedNode> nodes;
+  std::vector<AnimationClip> clips;
+  std::vector<AnimatedInstance> instances;
+  glm::mat4 outer{1.0f};  // what moved the file's scene after loading (a scene file's transform)
+
+  // The longest clip's, or the named one's (-1: every clip).
+  double duration(int clip = -1) const;
+  int clipNamed(const std::string& name) const;  // -1 when none
+  // Each node's world transform at time t with the clip (-1: every clip
+  // plays, -2: none); outer included.
+  std::vector<glm::mat4> worldAt(double t, int clip) const;
+  // The instances' vertices of `scene` at time t, moved last by `after`.
+  void pose(Scene& scene, double t, int clip, const glm::mat4& after) const;
+  // The same animation for a scene appended after `vertexBase` vertices.
+  std::shared_ptr<SceneAnimation> offset(uint32_t vertexBase) const;
+};
+
+// Every animation of the scene (one per animated file) at time t, moved
+// last by `after`. clip: the name of the one clip that plays ("": all);
+// a file without it stays at rest.
+void poseAnimations(Scene& scene, double t, const std::string& clip, const glm::mat4& after);
+// The longest of the scene's clips, or of those named `clip`; 0: none.
+double animationLength(const Scene& scene, const std::string& clip);
+bool hasClip(const Scene& scene, const std::string& clip);
+
+}  // namespace mvr
