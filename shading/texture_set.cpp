@@ -164,6 +164,22 @@ std::vector<gl::Texture> TextureSet::upload() const {
   return groups;
 }
 
+const char* TextureSet::glslSurfaceTexel() {
+  // Only with TEXTURE: a function that samples makes the arrays' samplers
+  // active, which a program of a scene without textures must not have.
+  return R"(
+#ifdef TEXTURE
+vec4 surfaceTexel(int material, vec2 uv) {
+  vec4 texel = materialTexel(material, uv, dFdx(uv), dFdy(uv));
+#ifdef MASK
+  if (maskedOut(material, texel.a)) discard;
+#endif
+  return texel;
+}
+#endif
+)";
+}
+
 const std::string& TextureSet::glsl() {
   static const std::string src = [] {
     std::string samplers, grad, lod, size;

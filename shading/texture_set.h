@@ -51,6 +51,11 @@ class TextureSet {
   //   vec4 materialTexelLod(int material, vec2 uv, float lod),
   //   vec2 materialTextureSize(int material).
   static const std::string& glsl();
+  // GLSL after glsl() and glslMaterials() (view_dependent.h): `vec4
+  // surfaceTexel(int material, vec2 uv)`, the texel with the screen's
+  // gradients, a cut-out's texel below its cut-off discarded (MASK). Call
+  // it before any other discard: the gradients need the whole quad.
+  static const char* glslSurfaceTexel();
 
  private:
   struct Layer {

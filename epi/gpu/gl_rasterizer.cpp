@@ -185,6 +185,13 @@ class GlRasterizer final : public EpiRasterizer {
     ring.drain();
     stats.times.add("gpu_wait", ring.waitSeconds());
     gl::Disable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
+    // The passes' blending back to GL's defaults: a two-source blend left
+    // on made the next renderer's draw into two colour targets (deferred's
+    // G-buffer) an INVALID_OPERATION.
+    gl::Disable(GL_BLEND);
+    gl::BlendFunc(GL_ONE, GL_ZERO);
+    gl::ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl::DepthMask(GL_TRUE);
     setDepthConvention();
     gl::checkError("EPI rasterization");
     stats.counters["epis_per_draw"] = batch;

@@ -65,11 +65,7 @@ layout(location = 1) out vec4 oNormal;  // w: material index
 #endif
 void main() {
 #ifdef TEXTURE
-  // Sampled before any discard: the derivatives need the whole quad.
-  vec4 texel = materialTexel(int(vMaterial), vUv, dFdx(vUv), dFdy(vUv));
-#ifdef MASK
-  if (maskedOut(int(vMaterial), texel.a)) discard;
-#endif
+  vec4 texel = surfaceTexel(int(vMaterial), vUv);
 #endif
   if (!gl_FrontFacing && vCull > 0.5) discard;
 #ifdef PEEL
@@ -326,7 +322,7 @@ gl::Program DeferredPipeline::geometryProgram(const char* name, const std::strin
   return gl::linkProgram(name, {{GL_VERTEX_SHADER, gl::glslHeader() + kSceneVertexInputs + kGeometryVertex},
                                 {GL_FRAGMENT_SHADER, header() + prelude + shading::glslLighting() +
                                                          shading::glslSpecular() + shading::TextureSet::glsl() +
-                                                         kGeometryFragment}});
+                                                         shading::TextureSet::glslSurfaceTexel() + kGeometryFragment}});
 }
 
 }  // namespace mvr

@@ -37,10 +37,7 @@ TEST_P(RealAssetTest, RendersCloseToSvr) {
   const std::string spec = GetParam();
   auto renderer = makeRenderer(parseBackendSpec(spec), scene, PixelType::U8);
   const test::CaptureSink views = test::renderViews(*renderer, cam);
-  const bool fromViews = spec.rfind("interp", 0) == 0 || spec.rfind("warp", 0) == 0;
-  const auto d = test::compareViews(reference, views);
-  std::printf("%s: min PSNR %.2f dB\n", spec.c_str(), d.minPsnr);
-  EXPECT_GE(d.minPsnr, fromViews ? 22.0 : 35.0) << spec;
+  test::expectCloseToSvr(reference, views, spec, 35.0);
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryBackend, RealAssetTest,

@@ -235,6 +235,10 @@ TEST_F(TextureVsSvr, EmissionIsAddedAfterTheTextureInEveryBackEnd) {
     EXPECT_GE(test::compareViews(reference, test::renderViews(*mvr, cam)).minPsnr, 30.0)
         << (mode == TextureMode::Vector ? "vector" : "direct");
   }
+  // After MVR's two-source blending, another renderer in the same context
+  // draws into two targets (deferred's G-buffer): the blend must be off.
+  auto deferred = makeDeferredRenderer(scene, PixelType::U8);
+  EXPECT_GE(test::compareViews(reference, test::renderViews(*deferred, cam)).minPsnr, 35.0);
 }
 
 std::vector<double> perViewPsnr(const test::CaptureSink& a, const test::CaptureSink& b) {

@@ -1,6 +1,7 @@
 #pragma once
 // Renders a scene with a named back end into memory, as views.
 #include <cctype>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <memory>
@@ -105,6 +106,17 @@ inline BackEndsAgainstSvr compareBackEndsWithSvr(const Scene& scene, const Shear
     out.passes[pstModeName(mode)] = stats.notes["passes"];
   }
   return out;
+}
+
+// A back end's views of a scene against svr's (reference), at least `views`
+// dB of min PSNR, or `fromViews` dB for interp and warp, which fill views
+// from a few rendered ones. Prints the figure.
+inline void expectCloseToSvr(const CaptureSink& reference, const CaptureSink& views, const std::string& spec,
+                             double psnr, double fromViews = 22.0) {
+  const bool filled = spec.rfind("interp", 0) == 0 || spec.rfind("warp", 0) == 0;
+  const SetDifference d = compareViews(reference, views);
+  std::printf("%s: min PSNR %.2f dB\n", spec.c_str(), d.minPsnr);
+  EXPECT_GE(d.minPsnr, filled ? fromViews : psnr) << spec;
 }
 
 // A back-end spec as a test name ("mvr:strip:gpu-psts" -> mvr_strip_gpu_psts).

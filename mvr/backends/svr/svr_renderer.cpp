@@ -90,11 +90,7 @@ in vec3 vReflect;
 layout(location = 0) out vec4 oColor;
 void main() {
 #ifdef TEXTURE
-  // Sampled before any discard: the derivatives need the whole quad.
-  vec4 texel = materialTexel(int(vMaterial), vUv, dFdx(vUv), dFdy(vUv));
-#ifdef MASK
-  if (maskedOut(int(vMaterial), texel.a)) discard;
-#endif
+  vec4 texel = surfaceTexel(int(vMaterial), vUv);
 #endif
   if (!gl_FrontFacing && vCull > 0.5) discard;
   vec3 c = gl_FrontFacing ? vFront : vBack;
@@ -178,7 +174,7 @@ std::string fragmentSource(const Scene& scene, bool renamed) {
          {"Front", "Back", "Cull", "Position", "Normal", "Material", "Eye", "Uv", "Reflect"})
       header += std::string("#define v") + name + " g" + name + "\n";
   return header + shading::glslLighting() + shading::glslSpecular() + shading::TextureSet::glsl() +
-         shading::glslEnvironment() + kSvrFragment;
+         shading::TextureSet::glslSurfaceTexel() + shading::glslEnvironment() + kSvrFragment;
 }
 
 class SvrRenderer final : public Renderer {
