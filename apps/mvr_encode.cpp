@@ -86,9 +86,10 @@ class Encoder {
     if (const int e = avformat_write_header(format_, nullptr); e < 0) die(path + ": cannot write: " + averror(e));
     frame_ = av_frame_alloc();
     packet_ = av_packet_alloc();
+    if (!frame_ || !packet_) die("out of memory");
     frame_->format = AV_PIX_FMT_YUV420P, frame_->width = w, frame_->height = h;
     frame_->color_range = AVCOL_RANGE_MPEG, frame_->colorspace = AVCOL_SPC_BT709;
-    if (!frame_ || !packet_ || av_frame_get_buffer(frame_, 0) < 0) die("out of memory");
+    if (av_frame_get_buffer(frame_, 0) < 0) die("out of memory");
     scale_ = sws_getContext(w, h, AV_PIX_FMT_RGBA, w, h, AV_PIX_FMT_YUV420P, SWS_BICUBIC | SWS_ACCURATE_RND, nullptr,
                             nullptr, nullptr);
     if (!scale_) die("cannot convert RGBA to yuv420p");

@@ -20,6 +20,7 @@
 #include "mvr/error.h"
 #include "mvr/image.h"
 #include "mvr/io/file_search.h"
+#include "mvr/io/helper_program.h"
 #include "mvr/io/image_file.h"
 #include "mvr/io/imported_model.h"
 #include "mvr/io/load_warnings.h"
@@ -34,17 +35,6 @@ namespace fs = std::filesystem;
 
 constexpr int kTimeoutSeconds = 300;
 constexpr size_t kMaxOutput = size_t(8) << 30;
-
-// mvr-import: MVR_IMPORT, else beside the running program.
-std::string helperPath(const std::string& path) {
-  if (const char* env = std::getenv("MVR_IMPORT"); env && *env) return env;
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  const fs::path helper = self.parent_path() / "mvr-import";
-  if (ec || access(helper.c_str(), X_OK) != 0)
-    fail(path, "FBX, Collada and 3DS files are read by mvr-import, which is not beside this program (or set MVR_IMPORT)");
-  return helper.string();
-}
 
 struct ChildOutput {
   std::string out, err;
@@ -182,7 +172,7 @@ bool isAssimpPath(const std::string& path) {
 Scene importWithAssimp(const std::string& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) fail(path, "no such model file");
-  const ChildOutput child = run(helperPath(path), path);
+  const ChildOutput child = run(helperProgram("mvr-import", "MVR_IMPORT", path, "FBX, Collada and 3DS files are read"), path);
   if (child.timedOut) fail(path, "the importer (assimp) took more than " + std::to_string(kTimeoutSeconds) + " s");
   if (WIFSIGNALED(child.status))
     fail(path, "the importer (assimp) failed on this file (signal " + std::to_string(WTERMSIG(child.status)) +

@@ -15,6 +15,7 @@
 
 #include "mvr/color.h"
 #include "mvr/error.h"
+#include "mvr/io/helper_program.h"
 
 extern char** environ;
 
@@ -22,15 +23,6 @@ namespace mvr {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string encoderPath(const std::string& path) {
-  if (const char* env = std::getenv("MVR_ENCODE"); env && *env) return env;
-  std::error_code ec;
-  const fs::path helper = fs::read_symlink("/proc/self/exe", ec).parent_path() / "mvr-encode";
-  if (ec || access(helper.c_str(), X_OK) != 0)
-    fail(path, "videos are encoded by mvr-encode, which is not beside this program (or set MVR_ENCODE)");
-  return helper.string();
-}
 
 std::string readAll(int fd) {
   std::string s;
@@ -49,7 +41,7 @@ std::string readAll(int fd) {
 
 QuiltVideo::QuiltVideo(std::string path, int width, int height, double fps, int crf, int frames)
     : path_(std::move(path)), width_(width), height_(height), rgba_(size_t(width) * height * 4) {
-  const std::string helper = encoderPath(path_);
+  const std::string helper = helperProgram("mvr-encode", "MVR_ENCODE", path_, "videos are encoded");
   int in[2], err[2];
   if (pipe2(in, O_CLOEXEC) != 0) fail(path_, "cannot start mvr-encode (pipe)");
   if (pipe2(err, O_CLOEXEC) != 0) {

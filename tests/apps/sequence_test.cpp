@@ -55,6 +55,20 @@ fs::path writeScene(const fs::path& dir, double turnDegrees) {
 
 const char* const kShape = " --views 4 --size 64x48";
 
+std::string viewFile(const fs::path& set, int v) { return (set / ("view_000" + std::to_string(v) + ".png")).string(); }
+
+// Each of the 4 views of set `frame` is `expected`'s within 40 dB and one
+// 8-bit step on 99.5% of pixels; and view v of `a` is visibly not `b`'s
+// (< 30 dB), the motion showing.
+void expectViewsLike(const fs::path& frame, const fs::path& expected, const fs::path& a, const fs::path& b) {
+  for (int v = 0; v < 4; ++v) {
+    const ImageDifference d = compareImages(readImage(viewFile(expected, v)), readImage(viewFile(frame, v)));
+    EXPECT_GE(d.psnr, 40.0) << viewFile(frame, v);
+    EXPECT_GE(d.closeFraction, 0.995) << viewFile(frame, v);
+    EXPECT_LT(compareImages(readImage(viewFile(a, v)), readImage(viewFile(b, v))).psnr, 30.0) << viewFile(b, v);
+  }
+}
+
 TEST(Sequence, TurntableFramesAreStillRendersOfTheTurnedScene) {
   const fs::path dir = test::freshDir("sequence_turn");
   const fs::path scene = writeScene(dir, 0);
@@ -70,16 +84,8 @@ TEST(Sequence, TurntableFramesAreStillRendersOfTheTurnedScene) {
   // Frame 2 of 3 over 90 degrees: turned by 60.
   const fs::path turned = writeScene(dir, 60);
   ASSERT_EQ(test::runMvr("render " + turned.string() + kShape + " --out " + (dir / "turned").string()).status, 0);
-  for (int v = 0; v < 4; ++v) {
-    const std::string view = "view_000" + std::to_string(v) + ".png";
-    const ImageDifference d = compareImages(readImage((dir / "turned" / view).string()),
-                                            readImage((dir / "seq" / "frame_0002" / view).string()));
-    EXPECT_GE(d.psnr, 40.0) << view;
-    EXPECT_GE(d.closeFraction, 0.995) << view;
-    // Not the still: the turn shows.
-    EXPECT_LT(compareImages(readImage((dir / "still" / view).string()),
-                            readImage((dir / "seq" / "frame_0002" / view).string())).psnr, 30.0) << view;
-  }
+  // Not the still: the turn shows.
+  expectViewsLike(dir / "seq" / "frame_0002", dir / "turned", dir / "still", dir / "seq" / "frame_0002");
   // Each frame's manifest has its time and turn; sequence.json lists them.
   const auto frame = nlohmann::json::parse(std::ifstream(dir / "seq" / "frame_0001" / "manifest.json"));
   EXPECT_EQ(frame["frame"]["index"], 1);
@@ -203,16 +209,8 @@ TEST(Sequence, AnimationFramesAreStillRendersOfThePosedFile) {
   EXPECT_TRUE(fs::exists(dir / "seq" / "frame_0003" / "manifest.json"));
   EXPECT_FALSE(fs::exists(dir / "seq" / "frame_0004"));
   ASSERT_EQ(test::runMvr("render " + (dir / "posed.json").string() + kShape + " --out " + (dir / "posed").string()).status, 0);
-  for (int v = 0; v < 4; ++v) {
-    const std::string view = "view_000" + std::to_string(v) + ".png";
-    const ImageDifference d = compareImages(readImage((dir / "posed" / view).string()),
-                                            readImage((dir / "seq" / "frame_0003" / view).string()));
-    EXPECT_GE(d.psnr, 40.0) << view;
-    EXPECT_GE(d.closeFraction, 0.995) << view;
-    // Frame 0 is the rest pose: the animation shows.
-    EXPECT_LT(compareImages(readImage((dir / "posed" / view).string()),
-                            readImage((dir / "seq" / "frame_0000" / view).string())).psnr, 30.0) << view;
-  }
+  // Frame 0 is the rest pose: the animation shows.
+  expectViewsLike(dir / "seq" / "frame_0003", dir / "posed", dir / "posed", dir / "seq" / "frame_0000");
   const test::CliResult missing =
       test::runMvr("render " + (dir / "anim.json").string() + kShape + " --clip Run --out " + (dir / "run").string());
   EXPECT_EQ(missing.status, 1);

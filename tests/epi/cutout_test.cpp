@@ -65,13 +65,9 @@ TEST_P(CutOutTest, CutTexelsNeitherDrawNorHide) {
   test::sharedContext();
   static const Scene scene = cutOutScene();
   const ShearingCamera cam(cameraFor(scene, 96, 64), 96, 64, 5);
-  static const test::CaptureSink reference = [&] {
-    auto svr = makeSvrRenderer(scene, PixelType::U8);
-    return test::renderViews(*svr, cam);
-  }();
+  static const test::CaptureSink reference = test::renderSpec("svr", scene, cam);
   const std::string spec = GetParam();
-  auto renderer = makeRenderer(parseBackendSpec(spec), scene, PixelType::U8);
-  const test::CaptureSink views = test::renderViews(*renderer, cam);
+  const test::CaptureSink views = test::renderSpec(spec, scene, cam);
   for (const test::CaptureSink* set : {&reference, &views}) {
     const Image& centre = set->views.at({0, 2});
     auto colourAt = [&](float x) {

@@ -30,13 +30,9 @@ TEST_P(RealAssetTest, RendersCloseToSvr) {
   test::sharedContext();
   const Scene& scene = assetScene();
   const ShearingCamera cam(cameraFor(scene, 96, 64), 96, 64, 9);
-  static const test::CaptureSink reference = [&] {
-    auto svr = makeSvrRenderer(scene, PixelType::U8);
-    return test::renderViews(*svr, cam);
-  }();
+  static const test::CaptureSink reference = test::renderSpec("svr", scene, cam);
   const std::string spec = GetParam();
-  auto renderer = makeRenderer(parseBackendSpec(spec), scene, PixelType::U8);
-  const test::CaptureSink views = test::renderViews(*renderer, cam);
+  const test::CaptureSink views = test::renderSpec(spec, scene, cam);
   test::expectCloseToSvr(reference, views, spec, 35.0);
 }
 

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "mvr/backends/backend.h"
 #include "mvr/backends/deferred/deferred_renderer.h"
 #include "mvr/backends/mvr/mvr_renderer.h"
 #include "mvr/backends/svr/svr_renderer.h"
@@ -106,6 +107,12 @@ inline BackEndsAgainstSvr compareBackEndsWithSvr(const Scene& scene, const Shear
     out.passes[pstModeName(mode)] = stats.notes["passes"];
   }
   return out;
+}
+
+// Every view of the camera by the back end a spec names ("svr", "mvr:exact").
+inline CaptureSink renderSpec(const std::string& spec, const Scene& scene, const ShearingCamera& cam) {
+  auto renderer = makeRenderer(parseBackendSpec(spec), scene, PixelType::U8);
+  return renderViews(*renderer, cam);
 }
 
 // A back end's views of a scene against svr's (reference), at least `views`
