@@ -54,7 +54,8 @@ class Accessor {
     if (a.sparse.isSparse) fail(where, "sparse accessors are not read");
     type_ = a.componentType, normalized_ = a.normalized, count_ = a.count;
     components_ = a.type == TINYGLTF_TYPE_SCALAR ? 1 : a.type == TINYGLTF_TYPE_VEC2 ? 2
-                  : a.type == TINYGLTF_TYPE_VEC3 ? 3 : a.type == TINYGLTF_TYPE_VEC4 ? 4 : 0;
+                  : a.type == TINYGLTF_TYPE_VEC3 ? 3 : a.type == TINYGLTF_TYPE_VEC4 ? 4
+                  : a.type == TINYGLTF_TYPE_MAT4 ? 16 : 0;
     const size_t bytes = componentBytes(type_);
     if (!components_ || !bytes) fail(where, "accessor " + std::to_string(index) + " has a type we do not read");
     if (a.bufferView < 0) return;  // all zeros
@@ -79,8 +80,16 @@ class Accessor {
     glm::vec4 out(0.0f);
     if (!data_) return out;
     const unsigned char* p = data_ + k * stride_;
-    for (int c = 0; c < components_; ++c) out[c] = component(p, c);
+    for (int c = 0; c < std::min(components_, 4); ++c) out[c] = component(p, c);
     return out;
+  }
+  // A MAT4 accessor's element (column-major, as glTF's).
+  glm::mat4 matrix(size_t k) const {
+    if (components_ != 16 || type_ != TINYGLTF_COMPONENT_TYPE_FLOAT) fail(where_, "a matrix accessor must be float MAT4");
+    glm::mat4 m(1.0f);
+    if (data_)
+      for (int c = 0; c < 16; ++c) m[c / 4][c % 4] = component(data_ + k * stride_, c);
+    return m;
   }
   uint32_t index(size_t k) const {
     if (!data_) return 0;
@@ -238,12 +247,19 @@ class GltfReader {
     for (const std::string& e : model_.extensionsRequired)
       if (e != "KHR_texture_transform" && e != "KHR_lights_punctual" && e != "KHR_mesh_quantization")
         warn_("requires the extension " + e + ", which is not read: drawn without it");
-    if (!model_.skins.empty()) warn_("skins not applied yet: meshes in their bind pose");
-    if (!model_.animations.empty()) animation_ = std::make_shared<SceneAnimation>();
+    bool morphs = false;
+    for (const tinygltf::Mesh& m : model_.meshes)
+      for (const tinygltf::Primitive& p : m.primitives) morphs = morphs || !p.targets.empty();
+    if (!model_.animations.empty() || !model_.skins.empty() || morphs) animation_ = std::make_shared<SceneAnimation>();
     onPath_.assign(model_.nodes.size(), false);
     for (int r : roots) node(r, glm::mat4(1.0f), -1);
     if (scene_.triangles.empty()) fail(path_, "glTF scene has no triangles");
-    if (animation_) readClips();
+    if (animation_) {
+      readSkins();
+      // Skins and morph weights at rest give the shape the file shows.
+      if (!model_.skins.empty() || morphs) animation_->pose(scene_, 0.0, -2, glm::mat4(1.0f));
+      readClips();
+    }
     addLights();
     scene_.source = path_;
     return std::move(scene_);
@@ -326,6 +342,7 @@ class GltfReader {
     const tinygltf::Node& n = model_.nodes[size_t(index)];
     const glm::mat4 world = parent * localTransform(n);
     const int slot = animation_ ? animatedNode(index, parentSlot) : -1;
+    currentNode_ = index;
     if (n.mesh >= 0) {
       if (size_t(n.mesh) >= model_.meshes.size()) fail(path_, "mesh " + std::to_string(n.mesh) + " does not exist");
       for (const tinygltf::Primitive& p : model_.meshes[size_t(n.mesh)].primitives) {
@@ -333,6 +350,7 @@ class GltfReader {
           instance_ = &animation_->instances.emplace_back();
           instance_->node = slot;
           instance_->first = uint32_t(scene_.positions.size());
+          instance_->skin = n.skin;  // the file's; ours after readSkins
         }
         primitive(p, world);
         instance_ = nullptr;
@@ -360,13 +378,56 @@ class GltfReader {
         a.rotation = glm::normalize(glm::quat(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]), float(n.rotation[2])));
       if (n.scale.size() == 3) a.scale = glm::vec3(float(n.scale[0]), float(n.scale[1]), float(n.scale[2]));
     }
+    // Morph weights: the node's, else its mesh's.
+    const std::vector<double>* w = &n.weights;
+    if (w->empty() && n.mesh >= 0 && size_t(n.mesh) < model_.meshes.size()) w = &model_.meshes[size_t(n.mesh)].weights;
+    for (double x : *w) a.weights.push_back(std::isfinite(x) ? float(x) : 0.0f);
     const int slot = int(animation_->nodes.size());
     animation_->nodes.push_back(a);
     slots_[index].push_back(slot);
     return slot;
   }
 
-  // The file's animations as clips of node TRS channels.
+  // The skins the instances use, with their joints' places in the node
+  // list. A joint outside the scene drawn cannot move: its skin's meshes
+  // are drawn rigid, as their nodes place them.
+  void readSkins() {
+    std::map<int, int> ours;  // the file's skin, ours (-1: not usable)
+    for (AnimatedInstance& inst : animation_->instances) {
+      if (inst.skin < 0) continue;
+      if (size_t(inst.skin) >= model_.skins.size()) fail(path_, "skin " + std::to_string(inst.skin) + " does not exist");
+      if (inst.joints.empty()) {
+        inst.skin = -1;  // a primitive without JOINTS_0
+        continue;
+      }
+      auto [it, added] = ours.emplace(inst.skin, -1);
+      if (added) it->second = skin(size_t(inst.skin));
+      inst.skin = it->second;
+    }
+  }
+
+  int skin(size_t index) {
+    const tinygltf::Skin& g = model_.skins[index];
+    AnimatedSkin s;
+    std::unique_ptr<Accessor> inverse;
+    if (g.inverseBindMatrices >= 0) {
+      inverse = std::make_unique<Accessor>(model_, g.inverseBindMatrices, path_);
+      if (inverse->count() < g.joints.size()) fail(path_, "skin " + std::to_string(index) + " has fewer inverse bind matrices than joints");
+    }
+    for (size_t j = 0; j < g.joints.size(); ++j) {
+      const auto where = slots_.find(g.joints[j]);
+      if (where == slots_.end()) {
+        warn_("a skin's joint is not in the scene drawn: its meshes drawn unskinned");
+        return -1;
+      }
+      s.joints.push_back(where->second.front());
+      s.inverseBind.push_back(inverse ? inverse->matrix(j) : glm::mat4(1.0f));
+    }
+    animation_->skins.push_back(std::move(s));
+    return int(animation_->skins.size()) - 1;
+  }
+
+  // The file's animations as clips of node TRS and morph weight channels.
   void readClips() {
     for (size_t i = 0; i < model_.animations.size(); ++i) {
       const tinygltf::Animation& g = model_.animations[i];
@@ -380,13 +441,10 @@ class GltfReader {
   }
 
   void channel(const tinygltf::Animation& g, const tinygltf::AnimationChannel& c, AnimationClip& clip) {
-    if (c.target_path == "weights") {
-      warn_("morph target weights not played: meshes in their base shape");
-      return;
-    }
     const auto path = c.target_path == "translation" ? AnimationChannel::Path::Translation
                       : c.target_path == "rotation"  ? AnimationChannel::Path::Rotation
                       : c.target_path == "scale"     ? AnimationChannel::Path::Scale
+                      : c.target_path == "weights"   ? AnimationChannel::Path::Weights
                                                      : throw Error(path_ + ": animation channel of path '" +
                                                                    c.target_path.substr(0, 40) + "' is not glTF 2.0");
     if (c.sampler < 0 || size_t(c.sampler) >= g.samplers.size()) fail(path_, "animation sampler " + std::to_string(c.sampler) + " does not exist");
@@ -400,9 +458,18 @@ class GltfReader {
                                                           : AnimationChannel::Interpolation::Linear;
     const Accessor input(model_, s.input, path_), output(model_, s.output, path_);
     if (input.components() != 1) fail(path_, "animation input must be SCALAR times");
-    if (output.components() != ch.components()) fail(path_, "animation output of " + c.target_path + " has the wrong type");
     const size_t perKey = ch.interpolation == AnimationChannel::Interpolation::CubicSpline ? 3 : 1;
-    if (input.count() == 0 || output.count() != perKey * input.count())
+    if (path == AnimationChannel::Path::Weights) {
+      // SCALAR outputs, one per morph target and key part.
+      const size_t keys = perKey * input.count();
+      if (output.components() != 1 || keys == 0 || output.count() % keys || output.count() / keys > 4096)
+        fail(path_, "animation output of weights does not match its times");
+      ch.weights = int(output.count() / keys);
+    }
+    const size_t perValue = path == AnimationChannel::Path::Weights ? size_t(ch.weights) : 1;
+    if (output.components() != (path == AnimationChannel::Path::Weights ? 1 : ch.components()))
+      fail(path_, "animation output of " + c.target_path + " has the wrong type");
+    if (input.count() == 0 || output.count() != perKey * perValue * input.count())
       fail(path_, "animation sampler has " + std::to_string(output.count()) + " values for " + std::to_string(input.count()) + " times");
     for (size_t k = 0; k < input.count(); ++k) {
       const float t = input.at(k).x;
@@ -411,7 +478,7 @@ class GltfReader {
     }
     for (size_t k = 0; k < output.count(); ++k) {
       const glm::vec4 v = output.at(k);
-      for (int j = 0; j < ch.components(); ++j) {
+      for (int j = 0; j < output.components(); ++j) {
         if (!std::isfinite(v[j])) fail(path_, "animation values must be finite");
         ch.values.push_back(v[j]);
       }
@@ -537,6 +604,7 @@ class GltfReader {
     for (const Accessor* a : {normal, uv, color})
       if (a && a->count() != position->count()) fail(path_, "a primitive's attributes differ in count");
     if (normal && normal->components() != 3) fail(path_, "NORMAL must be VEC3");
+    const Deformation deform = deformation(p, position->count(), normal != nullptr);
     std::vector<glm::uvec3> tris = corners(p, position->count());
     if (scene_.triangles.size() + tris.size() > kMaxTriangles) fail(path_, "more than 2^28 triangles");
     reserve(normal ? position->count() : 3 * tris.size(), tris.size());
@@ -553,6 +621,7 @@ class GltfReader {
       if (instance_) {
         instance_->positions.push_back(glm::vec3(position->at(k)));
         instance_->normals.push_back(local);
+        deform.add(k, *instance_);
       }
       if (anyUv_) {
         const glm::vec2 t = uv ? glm::vec2(uvTransform * glm::vec3(glm::vec2(uv->at(k)), 1.0f)) : glm::vec2(0.0f, 1.0f);
@@ -572,6 +641,7 @@ class GltfReader {
       return;
     }
     // No normals: flat ones (the spec), so each triangle its own corners.
+    if (instance_) instance_->flat = true;
     for (glm::uvec3 t : tris) {
       if (mirrored) std::swap(t.y, t.z);
       const glm::vec3 a = glm::vec3(world * glm::vec4(glm::vec3(position->at(t.x)), 1.0f));
@@ -586,6 +656,62 @@ class GltfReader {
       for (uint32_t k : {t.x, t.y, t.z}) vertex(k, n, local);
       add(glm::uvec3(base, base + 1, base + 2), false, materialId);
     }
+  }
+
+  // What moves a primitive's vertices besides its node: morph targets'
+  // displacements and skin joints, read once and added per vertex.
+  struct Deformation {
+    std::string path;
+    std::vector<std::unique_ptr<Accessor>> positions, normals;  // per target; null: none
+    std::unique_ptr<Accessor> joints, weights;
+    size_t jointCount = 0;
+
+    void add(uint32_t k, AnimatedInstance& inst) const {
+      inst.morphPositions.resize(positions.size());
+      inst.morphNormals.resize(positions.size());
+      for (size_t i = 0; i < positions.size(); ++i) {
+        inst.morphPositions[i].push_back(positions[i] ? glm::vec3(positions[i]->at(k)) : glm::vec3(0.0f));
+        if (normals[i]) inst.morphNormals[i].push_back(glm::vec3(normals[i]->at(k)));
+      }
+      if (!joints) return;
+      const glm::uvec4 j(joints->at(k));
+      glm::vec4 w = glm::max(weights->at(k), glm::vec4(0.0f));
+      const float sum = w.x + w.y + w.z + w.w;
+      // Weights should sum to 1 (the spec); a vertex without any follows its first joint.
+      w = sum > 0.0f && std::isfinite(sum) ? w / sum : glm::vec4(1, 0, 0, 0);
+      for (int c = 0; c < 4; ++c)
+        if (w[c] > 0.0f && j[c] >= jointCount)
+          throw Error(path + ": JOINTS_0 names joint " + std::to_string(j[c]) + " of a skin of " + std::to_string(jointCount));
+      inst.joints.push_back(glm::u16vec4(glm::min(j, glm::uvec4(uint32_t(std::max<size_t>(jointCount, 1) - 1)))));
+      inst.jointWeights.push_back(w);
+    }
+  };
+
+  Deformation deformation(const tinygltf::Primitive& p, size_t count, bool hasNormals) {
+    Deformation d;
+    d.path = path_;
+    if (!instance_) return d;
+    for (const auto& target : p.targets) {
+      auto accessor = [&](const char* name) -> std::unique_ptr<Accessor> {
+        const auto it = target.find(name);
+        if (it == target.end()) return nullptr;
+        auto a = std::make_unique<Accessor>(model_, it->second, path_);
+        if (a->components() != 3 || a->count() != count) fail(path_, std::string("a morph target's ") + name + " must be VEC3, one per vertex");
+        return a;
+      };
+      d.positions.push_back(accessor("POSITION"));
+      d.normals.push_back(hasNormals ? accessor("NORMAL") : nullptr);
+    }
+    const int skin = model_.nodes[size_t(currentNode_)].skin;
+    if (skin < 0 || size_t(skin) >= model_.skins.size() || !p.attributes.count("JOINTS_0")) return d;
+    if (!p.attributes.count("WEIGHTS_0")) fail(path_, "JOINTS_0 without WEIGHTS_0");
+    d.joints = std::make_unique<Accessor>(model_, p.attributes.at("JOINTS_0"), path_);
+    d.weights = std::make_unique<Accessor>(model_, p.attributes.at("WEIGHTS_0"), path_);
+    if (d.joints->components() != 4 || d.weights->components() != 4 || d.joints->count() != count || d.weights->count() != count)
+      fail(path_, "JOINTS_0 and WEIGHTS_0 must be VEC4, one per vertex");
+    if (p.attributes.count("JOINTS_1")) warn_("more than four joints a vertex: the first four used");
+    d.jointCount = model_.skins[size_t(skin)].joints.size();
+    return d;
   }
 
   // Room for a primitive more, growing geometrically: a file of many
@@ -631,6 +757,7 @@ class GltfReader {
   std::vector<bool> hidden_;             // per material: masked out whole (alphaMode MASK, no texture)
   std::shared_ptr<SceneAnimation> animation_;  // when the file has animations
   AnimatedInstance* instance_ = nullptr;       // the primitive being read, when animated
+  int currentNode_ = -1;                       // the node whose mesh is being read
   std::map<int, std::vector<int>> slots_;      // a file node's places in animation_->nodes
   LoadWarnings warn_{scene_, path_};
   bool anyUv_ = false;

@@ -195,27 +195,41 @@ TEST(Sequence, ResumeKeepsTheCompleteFrames) {
 // An animated glTF without --frames: its animation's length at --fps 2
 // (t = 0, 0.5, 1, 1.5 of [0, 2)); frame 3 is a still render of the file
 // posed at 1.5 by hand, through a scene file with its own camera.
-TEST(Sequence, AnimationFramesAreStillRendersOfThePosedFile) {
-  const fs::path dir = test::freshDir("sequence_animation");
+using GltfWriter = std::string (*)(const fs::path&, bool, double);
+void expectFramesArePosedStills(const fs::path& dir, GltfWriter write, const std::string& clip) {
   fs::create_directories(dir);
-  test::writeAnimatedGltf(dir / "anim.gltf", true);
-  test::writeAnimatedGltf(dir / "posed.gltf", false, 1.5);
+  write(dir / "anim.gltf", true, 0.0);
+  write(dir / "posed.gltf", false, 1.5);
   const char* camera = R"("camera": {"distance": 8, "image_plane": 5, "track": [-1, 1], "near": 4, "far": 12})";
   std::ofstream(dir / "anim.json") << R"({"meshes": [{"file": "anim.gltf"}], )" << camera << "}";
   std::ofstream(dir / "posed.json") << R"({"meshes": [{"file": "posed.gltf"}], )" << camera << "}";
-  const test::CliResult r = test::runMvr("render " + (dir / "anim.json").string() + kShape + " --fps 2 --clip Walk --out " +
-                                         (dir / "seq").string());
+  const std::string clipFlag = clip.empty() ? "" : " --clip " + clip;
+  const test::CliResult r = test::runMvr("render " + (dir / "anim.json").string() + kShape + " --fps 2" + clipFlag +
+                                         " --out " + (dir / "seq").string());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir / "seq" / "frame_0003" / "manifest.json"));
   EXPECT_FALSE(fs::exists(dir / "seq" / "frame_0004"));
   ASSERT_EQ(test::runMvr("render " + (dir / "posed.json").string() + kShape + " --out " + (dir / "posed").string()).status, 0);
   // Frame 0 is the rest pose: the animation shows.
   expectViewsLike(dir / "seq" / "frame_0003", dir / "posed", dir / "posed", dir / "seq" / "frame_0000");
+}
+
+TEST(Sequence, AnimationFramesAreStillRendersOfThePosedFile) {
+  const fs::path dir = test::freshDir("sequence_trs");
+  expectFramesArePosedStills(dir, test::writeAnimatedGltf, "Walk");
   const test::CliResult missing =
       test::runMvr("render " + (dir / "anim.json").string() + kShape + " --clip Run --out " + (dir / "run").string());
   EXPECT_EQ(missing.status, 1);
   EXPECT_NE(missing.err.find("--clip: the scene has no animation clip named 'Run'"), std::string::npos) << missing.err;
   EXPECT_FALSE(fs::exists(dir / "run"));
+}
+
+TEST(Sequence, MorphFramesAreStillRendersOfThePosedFile) {
+  expectFramesArePosedStills(test::freshDir("sequence_morph"), test::writeMorphGltf, "");
+}
+
+TEST(Sequence, SkinFramesAreStillRendersOfThePosedFile) {
+  expectFramesArePosedStills(test::freshDir("sequence_skin"), test::writeSkinnedGltf, "Bend");
 }
 
 TEST(Sequence, BadValuesAreOneLineErrors) {
