@@ -22,9 +22,62 @@
 
 namespace {
 
+// One frame's EPIs from the reader into an image set in `out`.
+size_t consumeFrame(mvr::EpiStreamReader& reader, const std::string& out, const std::string& format,
+                    const mvr::ReorderMemory& reorder, const std::string& from, mvr::EpiStreamReader::Frame& f) {
+  mvr::Stopwatch watch;
+  const mvr::EpiStreamHeader& h = reader.header();
+  const mvr::PixelType type = h.pixelType();
+  mvr::ImageSetWriter writer(out, mvr::Manifest{.views = int(h.views), .rows = int(h.rows),
+                                                .width = int(h.width), .height = int(h.height),
+                                                .format = format, .bits = mvr::defaultBits(format),
+                                                .srgb = type != mvr::PixelType::U8});
+  // 8-bit PNG views take their rows as the EPIs come (no volume; the
+  // files' bytes within the budget, beyond it on their way to disk); the
+  // rest is reassembled.
+  const size_t rowBytes = h.epiBytes() * h.height;
+  const std::optional<mvr::PngRows> pngRows = mvr::planPngRows(writer.manifest(), type, reorder.budget, false);
+  if (!pngRows && reorder.spills(rowBytes)) mvr::app::checkScratchFits(rowBytes, reorder.scratchDir);
+  mvr::FrameChain chain({.sink = &writer, .set = &writer},
+                        {.rendered = mvr::FrameOrder::Epi, .delivered = mvr::FrameOrder::View, .width = int(h.width),
+                         .height = int(h.height), .views = int(h.views), .type = type, .reorder = reorder,
+                         .pngRows = pngRows});
+  mvr::FrameSink& views = chain.entry();
+  // In order, all of them (or it throws); the sink leaves a written EPI's
+  // buffer in the frame for the next to be read into.
+  size_t epis = 0;
+  for (; epis < h.episPerFrame(); ++epis) {
+    if (!reader.next(f)) mvr::fail("stream", "ended inside a frame");
+    views.putEpiInPlace(f.row, f.scanline, f.epi);
+  }
+  views.finish();
+  writer.manifest().info = {{"source", "stream " + from},
+                            {"reorder", chain.reorderInfo()},
+                            {"timings_s", {{"total", watch.seconds()}}}};
+  if (h.frames > 1)
+    writer.manifest().info["frame"] = {{"index", f.frame},
+                                       {"time_s", h.startTime + (h.frameRate > 0 ? f.frame / h.frameRate : 0.0)}};
+  // The producer's camera: the same per-view cameras as its own manifest.
+  if (h.camera) {
+    const mvr::ShearingCamera camera(h.camera->spec, int(h.width), int(h.height), int(h.views), int(h.rows));
+    writer.manifest().setCamera(camera, h.camera->imagePlaneZ);
+  }
+  writer.commit();
+  std::fprintf(stderr, "mvr-consume: %zu EPIs -> %u views in %s%s\n", epis, h.views * h.rows, out.c_str(),
+               chain.scratchNote().c_str());
+  return epis;
+}
+
+std::string frameFolder(const std::string& out, int k) {
+  char name[32];
+  std::snprintf(name, sizeof name, "/frame_%04d", k);
+  return out + name;
+}
+
 int consume(int argc, char** argv) {
   CLI::App app("Listens on a socket (or reads stdin or a file), reads one EPI-major stream and "
-               "writes its views as view_0000.png ... with a manifest.json.",
+               "writes its views as view_0000.png ... with a manifest.json; a sequence's frames each in "
+               "frame_0000/, frame_0001/, ...",
                "mvr-consume");
   std::string from, out, format;
   app.add_option("--from", from, "where the stream comes from")
@@ -36,14 +89,13 @@ int consume(int argc, char** argv) {
   mvr::app::MemoryFlags memory;
   memory.add(app, "the output folder");
   if (auto exit = mvr::app::parseCommandLine(app, argc, argv)) return *exit;
-  mvr::Stopwatch watch;
   mvr::FdStreamBuf buffer(mvr::openForReading(from));
   std::istream in(&buffer);
   mvr::EpiStreamReader reader(in);
   const mvr::EpiStreamHeader& h = reader.header();
   const mvr::PixelType type = h.pixelType();
-  std::optional<mvr::ShearingCamera> camera;  // checked before any output
-  if (h.camera) camera.emplace(h.camera->spec, int(h.width), int(h.height), int(h.views), int(h.rows));
+  // The camera is checked before any output.
+  if (h.camera) mvr::ShearingCamera(h.camera->spec, int(h.width), int(h.height), int(h.views), int(h.rows));
   if (format.empty()) format = mvr::isByteType(type) ? "png" : "exr";
   if (format != "png") mvr::preloadImageCodec();  // loads while the stream arrives
   const size_t viewBytes = h.epiBytes() / h.views * h.height, rowBytes = h.epiBytes() * h.height;
@@ -51,37 +103,10 @@ int consume(int argc, char** argv) {
       memory.reorder(viewBytes, mvr::BoundedTasks::defaultLimit(), out);
   mvr::app::checkHeldFramesFit({.reorderBytes = reorder.held(rowBytes)},
                                mvr::app::availableMemory(), "give a smaller --memory");
-  mvr::ImageSetWriter writer(out, mvr::Manifest{.views = int(h.views), .rows = int(h.rows),
-                                                .width = int(h.width), .height = int(h.height),
-                                                .format = format, .bits = mvr::defaultBits(format),
-                                                .srgb = type != mvr::PixelType::U8});
-  // 8-bit PNG views take their rows as the EPIs come (no volume; the
-  // files' bytes within the budget, beyond it on their way to disk); the
-  // rest is reassembled.
-  const std::optional<mvr::PngRows> pngRows = mvr::planPngRows(writer.manifest(), type, reorder.budget, false);
-  if (!pngRows && reorder.spills(rowBytes)) mvr::app::checkScratchFits(rowBytes, reorder.scratchDir);
-  mvr::FrameChain chain({.sink = &writer, .set = &writer},
-                        {.rendered = mvr::FrameOrder::Epi, .delivered = mvr::FrameOrder::View, .width = int(h.width),
-                         .height = int(h.height), .views = int(h.views), .type = type, .reorder = reorder,
-                         .pngRows = pngRows});
-  mvr::FrameSink& views = chain.entry();
-  size_t frames = 0;
-  // In order, all of them, nothing after (or it throws); the sink leaves a
-  // written EPI's buffer in the frame for the next to be read into.
-  mvr::EpiStreamReader::Frame f{0, 0, mvr::Image()};
-  while (reader.next(f)) {
-    views.putEpiInPlace(f.row, f.scanline, f.epi);
-    ++frames;
-  }
-  views.finish();
-  writer.manifest().info = {{"source", "stream " + from},
-                            {"reorder", chain.reorderInfo()},
-                            {"timings_s", {{"total", watch.seconds()}}}};
-  // The producer's camera: the same per-view cameras as its own manifest.
-  if (camera) writer.manifest().setCamera(*camera, h.camera->imagePlaneZ);
-  writer.commit();
-  std::fprintf(stderr, "mvr-consume: %zu EPIs -> %u views in %s%s\n", frames, h.views * h.rows,
-               out.c_str(), chain.scratchNote().c_str());
+  mvr::EpiStreamReader::Frame f{};
+  for (uint32_t k = 0; k < h.frames; ++k)
+    consumeFrame(reader, h.frames > 1 ? frameFolder(out, int(k)) : out, format, reorder, from, f);
+  if (reader.next(f)) mvr::fail("stream", "data after the last frame");  // throws itself first
   return 0;
 }
 

@@ -135,6 +135,7 @@ void RenderFlags::addStreamOwn(CLI::App& app) {
   app.add_option("--to", stream_, "where the stream goes")->type_name("-|FILE|unix:PATH|tcp:HOST:PORT")->required();
   app.add_option("--queue", queue_, "EPIs held at most")->check(CLI::Range(1, 4096))->capture_default_str();
   memory_.add(app, "the current folder");
+  sequence_.add(app, true);
 }
 
 RenderJob RenderFlags::describe(const CLI::App& app) const {
@@ -191,10 +192,10 @@ RenderJob RenderFlags::describe(const CLI::App& app) const {
   job.memory = memory_;
   job.splitBy = splitBy_;
   job.aa = aa_;
-  if (command_ == RenderCommand::Render) {
+  if (command_ != RenderCommand::Synthesize) {
     job.sequence = sequence_.resolve();
-    if (job.sequence.active() && job.streaming())
-      fail("--frames", "a sequence is written as image sets: not with --stream");
+    if (job.streaming() && job.sequence.resume) fail("--resume", "keeps complete frame folders: not with a stream");
+    if (job.streaming() && job.sequence.video) fail("--video", "encodes image sets' quilts: not with a stream");
     if (job.sequence.video && !job.quilt) fail("--video", "encodes the quilts: give --quilt");
   }
   return job;

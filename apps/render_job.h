@@ -103,7 +103,14 @@ JobSplit splitFor(const RenderJob& job, const PreparedJob& prepared);
 
 int runJob(RenderJob& job);
 int writeSet(const RenderJob& job, PreparedJob& prepared);
-int writeStream(const RenderJob& job, PreparedJob& prepared);
+// The frames of one stream: a still's one, or a sequence's, each posed
+// by beforeFrame(k) before it is rendered; afterFrame(k) once it is.
+struct StreamedFrames {
+  int count = 1;
+  double startTime = 0.0, frameRate = 0.0;
+  std::function<void(int)> beforeFrame, afterFrame;
+};
+int writeStream(const RenderJob& job, PreparedJob& prepared, const StreamedFrames& frames = {});
 // A sequence's frame count (an animation's length) and its frame 0, posed
 // before the camera is framed on it.
 void startSequence(RenderJob& job, PreparedJob& prepared);

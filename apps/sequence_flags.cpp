@@ -6,11 +6,14 @@
 
 namespace mvr::app {
 
-void SequenceFlags::add(CLI::App& app) {
+void SequenceFlags::add(CLI::App& app, bool streams) {
   app.add_option("--frames", frames_,
-                 "render a sequence of N frames, each a complete set in frame_0000/, frame_0001/, ... "
-                 "(views, quilt, depth maps as asked, its manifest with its time), listed in sequence.json; "
-                 "without it, a sequence flag renders the scene's animation to its end")
+                 streams ? "stream a sequence of N frames, one whole set of EPIs after another, the header "
+                           "saying how many and at what times (docs/EPI_STREAM.md); without it, a sequence "
+                           "flag streams the scene's animation to its end"
+                         : "render a sequence of N frames, each a complete set in frame_0000/, frame_0001/, ... "
+                           "(views, quilt, depth maps as asked, its manifest with its time), listed in "
+                           "sequence.json; without it, a sequence flag renders the scene's animation to its end")
       ->type_name("N");
   app.add_option("--fps", fps_, "frames per second of the sequence's time (default 30)")->type_name("F");
   app.add_option("--time", time_,
@@ -22,12 +25,13 @@ void SequenceFlags::add(CLI::App& app) {
                  "sequence (frame k: DEG k / N; 360 loops without a repeated frame); positive turns +x "
                  "toward -z; lights and camera stay")
       ->type_name("DEG");
+  app.add_option("--clip", clip_, "play only the scene's animation clip of this name (default: every clip together)")
+      ->type_name("NAME");
+  if (streams) return;  // what follows concerns frame folders
   app.add_flag("--resume", resume_, "keep the frames of an earlier run of this sequence that are complete");
   app.add_flag("--video", video_,
                "with --quilt: also write the quilts as one video, quilt_qs{C}x{R}a{aspect}.mp4 (H.264 in "
                "yuv420p, as Looking Glass players load), encoded while the frames render");
-  app.add_option("--clip", clip_, "play only the scene's animation clip of this name (default: every clip together)")
-      ->type_name("NAME");
   app.add_option("--crf", crf_, "the video's quality: 0 (lossless) to 51 (worst); default 18, visually lossless")
       ->type_name("Q");
 }

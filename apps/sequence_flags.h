@@ -32,7 +32,9 @@ struct Sequence {
 
 class SequenceFlags {
  public:
-  void add(CLI::App& app);
+  // streams: for mvr stream, whose frames go one after another into the
+  // stream (no --resume, --video or --crf).
+  void add(CLI::App& app, bool streams = false);
   // After parsing; throws mvr::Error naming the flag for a bad value.
   Sequence resolve() const;
 

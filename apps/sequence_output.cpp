@@ -107,6 +107,71 @@ void pose(const RenderJob& job, PreparedJob& p, const RenderJob::Frame& frame, c
   poseAnimations(p.scene, frame.time, job.sequence.clip, turn);
 }
 
+// The scene and the renderer at each frame in turn: posed from the still
+// when the frame differs from the one they show; a back end that cannot
+// follow the scene (Renderer::sceneMoved) is built again.
+class FrameMover {
+ public:
+  FrameMover(const RenderJob& job, PreparedJob& p) : job_(job), p_(p), pivot_(p.scene.bounds().center()) {}
+  void moveTo(const RenderJob::Frame& frame) {
+    const Sequence& s = job_.sequence;
+    const bool animated = !p_.scene.animations.empty();
+    if (frame.index == posed_ || (!animated && frame.degrees == s.degreesAt(posed_))) return;
+    pose(job_, p_, frame, pivot_);
+    if (!p_.renderer->sceneMoved()) p_.renderer = makeRenderer(job_.backend, p_.scene, job_.type);
+    posed_ = frame.index;
+  }
+
+ private:
+  const RenderJob& job_;
+  PreparedJob& p_;
+  glm::vec3 pivot_;  // frame 0's bounds' centre
+  int posed_ = 0;    // the renderer's scene is frame 0's
+};
+
+// Frames counted as they are done, with the time left.
+class FrameProgress {
+ public:
+  explicit FrameProgress(int frames) : frames_(frames) {}
+  void done(const RenderJob::Frame& frame) {
+    ++rendered_;
+    const double each = total_.seconds() / rendered_;
+    std::fprintf(stderr, "mvr: frame %d of %d (t %.3f s, %.1f deg) done, %.3f s a frame, about %.0f s left\n",
+                 frame.index + 1, frames_, frame.time, frame.degrees, each, each * (frames_ - frame.index - 1));
+  }
+  int rendered() const { return rendered_; }
+  double seconds() const { return total_.seconds(); }
+
+ private:
+  int frames_, rendered_ = 0;
+  Stopwatch total_;
+};
+
+RenderJob::Frame frameAt(const Sequence& s, int k) { return {k, s.timeOf(k), s.degreesAt(k)}; }
+
+// Every frame allocates the same large buffers (the quilt, the reorder
+// volume, the EPIs) and frees them: kept in the heap instead of given back
+// to the system, the next frame reuses their pages. Given back, each frame
+// faulted them in afresh (0.16 of 0.51 s a frame of a Portrait quilt on 2
+// cores, in the kernel).
+void keepLargeBuffers() {
+  mallopt(M_MMAP_THRESHOLD, 1 << 30);
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+}
+
+// The frames one after another into one stream, its header saying how
+// many (docs/EPI_STREAM.md).
+int streamSequence(const RenderJob& job, PreparedJob& p) {
+  const Sequence& s = job.sequence;
+  keepLargeBuffers();
+  FrameMover mover(job, p);
+  FrameProgress progress(s.frames);
+  StreamedFrames frames{.count = s.frames, .startTime = s.start, .frameRate = s.fps,
+                        .beforeFrame = [&](int k) { mover.moveTo(frameAt(s, k)); },
+                        .afterFrame = [&](int k) { progress.done(frameAt(s, k)); }};
+  return writeStream(job, p, frames);
+}
+
 }  // namespace
 
 void startSequence(RenderJob& job, PreparedJob& p) {
@@ -120,16 +185,11 @@ void startSequence(RenderJob& job, PreparedJob& p) {
 }
 
 int writeSequence(const RenderJob& job, PreparedJob& p) {
+  if (job.streaming()) return streamSequence(job, p);
   const Sequence& s = job.sequence;
-  // Every frame allocates the same large buffers (the quilt, the reorder
-  // volume, the EPIs) and frees them: kept in the heap instead of given back
-  // to the system, the next frame reuses their pages. Given back, each
-  // frame faulted them in afresh (0.16 of 0.51 s a frame of a Portrait
-  // quilt on 2 cores, in the kernel).
-  mallopt(M_MMAP_THRESHOLD, 1 << 30);
-  mallopt(M_TRIM_THRESHOLD, 1 << 30);
-  const glm::vec3 pivot = p.scene.bounds().center();  // frame 0's
-  const Stopwatch total;
+  keepLargeBuffers();
+  FrameMover mover(job, p);
+  FrameProgress progress(s.frames);
   const StageTimes startup = p.startup;  // the process's, in every frame's manifest
   fs::create_directories(job.out);
   nlohmann::json frames = nlohmann::json::array();
@@ -138,22 +198,15 @@ int writeSequence(const RenderJob& job, PreparedJob& p) {
     video.emplace(job);
     p.quiltOut = [&](const Image& quilt, const std::string& name) { video->add(quilt, name); };
   }
-  const bool animated = !p.scene.animations.empty();
-  int posed = 0;  // the renderer's scene is frame 0's
-  int rendered = 0;
   for (int k = 0; k < s.frames; ++k) {
-    const RenderJob::Frame frame{k, s.timeOf(k), s.degreesAt(k)};
+    const RenderJob::Frame frame = frameAt(s, k);
     const fs::path final = fs::path(job.out) / frameName(k);
     if (s.resume && fs::exists(final / "manifest.json")) {
       if (video) video->addKept(final);
       frames.push_back(frameRecord(frame));
       continue;
     }
-    if (k != posed && (animated || frame.degrees != s.degreesAt(posed))) {
-      pose(job, p, frame, pivot);
-      if (!p.renderer->sceneMoved()) p.renderer = makeRenderer(job.backend, p.scene, job.type);
-      posed = k;
-    }
+    mover.moveTo(frame);
     RenderJob one = job;
     one.frame = frame;
     p.startup = startup;
@@ -164,16 +217,13 @@ int writeSequence(const RenderJob& job, PreparedJob& p) {
     if (const int status = writeSet(one, p); status != 0) return status;
     replaceFolder(partial, final);
     frames.push_back(frameRecord(frame));
-    ++rendered;
-    const double each = total.seconds() / rendered;
-    std::fprintf(stderr, "mvr: frame %d of %d (t %.3f s, %.1f deg) done, %.3f s a frame, about %.0f s left\n", k + 1,
-                 s.frames, frame.time, frame.degrees, each, each * (s.frames - k - 1));
+    progress.done(frame);
   }
   if (video) video->finish();
   p.quiltOut = nullptr;
   writeSequenceManifest(job, p, frames);
-  std::fprintf(stderr, "mvr: rendered %d of %d frames (%d views each) to %s in %.3f s\n", rendered, s.frames,
-               job.views * job.rows, job.out.c_str(), total.seconds());
+  std::fprintf(stderr, "mvr: rendered %d of %d frames (%d views each) to %s in %.3f s\n", progress.rendered(),
+               s.frames, job.views * job.rows, job.out.c_str(), progress.seconds());
   return 0;
 }
 

@@ -33,26 +33,40 @@ bool isPlainFile(const std::string& endpoint) {
   return !std::filesystem::exists(status) || std::filesystem::is_regular_file(status);
 }
 
-EpiStreamHeader streamHeader(const ShearingCamera& cam, PixelType type, double imagePlaneZ) {
+EpiStreamHeader streamHeader(const ShearingCamera& cam, PixelType type, double imagePlaneZ,
+                             const StreamedFrames& frames = {}) {
   EpiStreamHeader header{uint32_t(cam.width()), uint32_t(cam.height()), uint32_t(cam.views()),
                          uint32_t(cam.rows()), 4, uint32_t(Image::channelBytes(type)),
                          type == PixelType::Srgb8};
+  header.frames = uint32_t(frames.count);
+  header.startTime = frames.startTime, header.frameRate = frames.frameRate;
   header.camera = StreamCamera{cam.spec(), imagePlaneZ};
   header.camera->spec.planeHeight = cam.planeHeight();
   return header;
 }
 
+// One frame's EPIs on to the stream, which stays open when the frame ends.
+class FrameOfStream final : public FrameSink {
+ public:
+  explicit FrameOfStream(FrameSink& stream) : stream_(stream) {}
+  void putEpi(int row, int scanline, const Image& epi) override { stream_.putEpi(row, scanline, epi); }
+  void putEpiInPlace(int row, int scanline, Image& epi) override { stream_.putEpiInPlace(row, scanline, epi); }
+
+ private:
+  FrameSink& stream_;
+};
+
 // EPIs to a file, stdout or socket as they complete, through a bounded
-// queue. A regular file is written under a temporary name and renamed when
-// done; a device or named pipe in place (isPlainFile).
-int streamTo(const RenderJob& job, PreparedJob& p) {
+// queue, frame after frame. A regular file is written under a temporary
+// name and renamed when done; a device or named pipe in place (isPlainFile).
+int streamTo(const RenderJob& job, PreparedJob& p, const StreamedFrames& frames) {
   std::signal(SIGPIPE, SIG_IGN);  // a vanished consumer is an error, not a kill
   std::signal(SIGXFSZ, SIG_IGN);  // so is a file-size limit
   const std::string& endpoint = job.stream;
   const ShearingCamera& cam = *p.camera;
   const bool file = isPlainFile(endpoint);
   const std::string target = file ? partName(endpoint) : endpoint;
-  const EpiStreamHeader header = streamHeader(cam, job.type, p.imagePlaneZ);
+  const EpiStreamHeader header = streamHeader(cam, job.type, p.imagePlaneZ, frames);
   Stopwatch watch;
   size_t highWater = 0;
   std::string note;
@@ -61,15 +75,21 @@ int streamTo(const RenderJob& job, PreparedJob& p) {
     buffer.emplace(openForWriting(target));
     std::ostream out(&*buffer);
     QueuedEpiStream stream(out, header, size_t(job.queue));
+    FrameOfStream frame(stream);
     FrameChainSpec spec = p.chainSpec(job);
     spec.delivered = FrameOrder::Epi;
-    FrameChain chain({.sink = &stream}, spec);
-    ProgressSink progress(chain.entry(), *p.renderCamera, long(cam.views()) * cam.rows(), p.renderer->name());
-    RenderStats stats;
-    p.renderer->render(*p.renderCamera, progress, stats);
-    progress.finish();
+    for (int k = 0; k < frames.count; ++k) {
+      if (frames.beforeFrame) frames.beforeFrame(k);
+      FrameChain chain({.sink = &frame}, spec);
+      ProgressSink progress(chain.entry(), *p.renderCamera, long(cam.views()) * cam.rows(), p.renderer->name());
+      RenderStats stats;
+      p.renderer->render(*p.renderCamera, progress, stats);
+      progress.finish();
+      note = chain.scratchNote();
+      if (frames.afterFrame) frames.afterFrame(k);
+    }
+    stream.finish();
     highWater = stream.highWater();
-    note = chain.scratchNote();
     buffer.reset();  // closed before the rename
   } catch (...) {
     if (file) removePart(endpoint);
@@ -78,9 +98,10 @@ int streamTo(const RenderJob& job, PreparedJob& p) {
     throw;
   }
   if (file) commitPart(endpoint);
-  std::fprintf(stderr, "mvr: streamed %d EPIs of %dx%d to %s in %.3f s (queue high water %zu of %d%s)\n",
-               cam.height() * cam.rows(), cam.width(), cam.views(), endpoint.c_str(), watch.seconds(), highWater,
-               job.queue, note.c_str());
+  const std::string ofFrames = frames.count > 1 ? " in each of " + std::to_string(frames.count) + " frames" : "";
+  std::fprintf(stderr, "mvr: streamed %d EPIs of %dx%d%s to %s in %.3f s (queue high water %zu of %d%s)\n",
+               cam.height() * cam.rows(), cam.width(), cam.views(), ofFrames.c_str(), endpoint.c_str(),
+               watch.seconds(), highWater, job.queue, note.c_str());
   return 0;
 }
 
@@ -160,8 +181,8 @@ int streamSplit(const RenderJob& job, PreparedJob& p, const JobSplit& split, con
 
 }  // namespace
 
-int writeStream(const RenderJob& job, PreparedJob& p) {
-  if (!p.mpi) return streamTo(job, p);
+int writeStream(const RenderJob& job, PreparedJob& p, const StreamedFrames& frames) {
+  if (!p.mpi) return streamTo(job, p, frames);
   const JobSplit split = splitFor(job, p);
   const EpiStreamHeader header = streamHeader(*p.camera, job.type, p.imagePlaneZ);
   // The grid's views meet in a scratch file; a pipe's records in another.

@@ -13,6 +13,7 @@ namespace {
 
 constexpr char kMagic[8] = {'M', 'V', 'R', 'E', 'P', 'I', '0', '1'};
 constexpr uint32_t kHeaderBytes = 64;
+constexpr int kMaxFrames = 1 << 20;
 // The camera block after the fixed header: distance, plane width and
 // height, track left and right, row top and bottom, near, far, image plane z.
 constexpr uint32_t kCameraValues = 10;
@@ -59,8 +60,10 @@ size_t EpiStreamHeader::headerBytes() const { return camera ? kHeaderWithCameraB
 std::vector<uint8_t> EpiStreamHeader::encode() const {
   std::vector<uint8_t> bytes(headerBytes(), 0);
   std::memcpy(bytes.data(), kMagic, 8);
-  const uint32_t fields[] = {uint32_t(bytes.size()), width, height, views, rows, channels, bytesPerChannel, srgb};
+  const uint32_t fields[] = {uint32_t(bytes.size()), width, height, views, rows, channels, bytesPerChannel, srgb, frames};
   for (size_t i = 0; i < std::size(fields); ++i) putU32(bytes.data() + 8 + 4 * i, fields[i]);
+  putF64(bytes.data() + 48, startTime);
+  putF64(bytes.data() + 56, frameRate);
   if (camera) {
     const auto values = cameraValues(*camera);
     for (uint32_t i = 0; i < kCameraValues; ++i) putF64(bytes.data() + kHeaderBytes + 8 * i, values[i]);
@@ -138,6 +141,12 @@ EpiStreamReader::EpiStreamReader(std::istream& in) : in_(in) {
   within("height", header_.height, Limits::kMaxSide);
   within("views", header_.views, Limits::kMaxViews);
   within("rows", header_.rows, Limits::kMaxRows);
+  header_.frames = std::max<uint32_t>(getU32(bytes.data() + 40), 1);
+  within("frames", header_.frames, kMaxFrames);
+  header_.startTime = getF64(bytes.data() + 48);
+  header_.frameRate = getF64(bytes.data() + 56);
+  if (!std::isfinite(header_.startTime) || !std::isfinite(header_.frameRate) || header_.frameRate < 0.0)
+    fail("stream", "header start time or frame rate is not a finite time (a rate at least 0)");
   if (size == kHeaderWithCameraBytes) {
     std::array<uint8_t, 8 * kCameraValues> block{};
     in_.read(reinterpret_cast<char*>(block.data()), block.size());
@@ -149,13 +158,13 @@ EpiStreamReader::EpiStreamReader(std::istream& in) : in_(in) {
 }
 
 std::optional<EpiStreamReader::Frame> EpiStreamReader::next() {
-  Frame f{0, 0, Image()};
-  if (!next(f)) return std::nullopt;
+  std::optional<Frame> f(Frame{});
+  if (!next(*f)) return std::nullopt;
   return f;
 }
 
 bool EpiStreamReader::next(Frame& f) {
-  const size_t total = size_t(header_.height) * header_.rows;
+  const size_t perFrame = header_.episPerFrame(), total = perFrame * header_.frames;
   uint8_t tag[8];
   in_.read(reinterpret_cast<char*>(tag), 8);
   if (read_ == total) {  // complete: anything more is not this stream
@@ -165,8 +174,10 @@ bool EpiStreamReader::next(Frame& f) {
   if (in_.gcount() == 0 && in_.eof())
     fail("stream", "ended after " + std::to_string(read_) + " of " + std::to_string(total) + " EPIs");
   if (in_.gcount() != 8) fail("stream", "truncated EPI tag");
-  // EPI-major order: row by row, scanline by scanline.
-  const uint32_t row = uint32_t(read_ / header_.height), scanline = uint32_t(read_ % header_.height);
+  // EPI-major order: frame by frame, row by row, scanline by scanline.
+  const size_t inFrame = read_ % perFrame;
+  const uint32_t row = uint32_t(inFrame / header_.height), scanline = uint32_t(inFrame % header_.height);
+  f.frame = int(read_ / perFrame);
   if (getU32(tag) != row || getU32(tag + 4) != scanline)
     fail("stream", "EPI " + std::to_string(read_) + " is tagged row " + std::to_string(getU32(tag)) +
                        " scanline " + std::to_string(getU32(tag + 4)) + ", expected row " +

@@ -6,9 +6,11 @@
 //   header, 64 bytes: "MVREPI01", header_bytes (64 or 144), width, height
 //                     (scanlines), views, rows, channels (4: RGBA),
 //                     bytes_per_channel (1: uint8, 4: float32),
-//                     color_encoding, zero padding; with 144, the camera
-//                     follows as ten little-endian float64 values
-//   then per row of views, per scanline in order:
+//                     color_encoding, frames (0 in older streams: 1),
+//                     4 zero bytes, start time and frame rate (float64;
+//                     a still's 0, 0); with 144, the camera follows as
+//                     ten little-endian float64 values
+//   then per frame, per row of views, per scanline in order:
 //                     row, scanline, then views x width x channels values:
 //                     EPI row i is view i's scanline, left to right.
 #include <cstdint>
@@ -35,18 +37,25 @@ struct EpiStreamHeader {
   uint32_t width = 0, height = 0, views = 0, rows = 1, channels = 4, bytesPerChannel = 1;
   // 1: 8-bit colour is sRGB-encoded (Srgb8); 0: linear. Floats are linear.
   uint32_t srgb = 0;
+  // A sequence's frames (mvr render --frames), each a whole set of EPIs,
+  // frame k at startTime + k / frameRate seconds; a still is 1 frame.
+  uint32_t frames = 1;
+  double startTime = 0.0, frameRate = 0.0;
   std::optional<StreamCamera> camera;  // absent in 64-byte headers
   PixelType pixelType() const {
     return bytesPerChannel == 4 ? PixelType::F32 : srgb ? PixelType::Srgb8 : PixelType::U8;
   }
   size_t epiBytes() const { return size_t(width) * views * channels * bytesPerChannel; }
   // The layout: the header, then one record (an 8-byte tag and the EPI)
-  // per row and scanline in order, so a record's place is known before it
-  // is rendered (a stream split over ranks writes records at their offsets).
+  // per frame, row and scanline in order, so a record's place is known
+  // before it is rendered (a stream split over ranks writes records at
+  // their offsets).
   size_t headerBytes() const;
   size_t recordBytes() const { return 8 + epiBytes(); }
-  uint64_t recordOffset(int row, int scanline) const {
-    return headerBytes() + (uint64_t(row) * height + uint64_t(scanline)) * recordBytes();
+  uint64_t episPerFrame() const { return uint64_t(height) * rows; }
+  uint64_t recordOffset(int row, int scanline, int frame = 0) const {
+    return headerBytes() +
+           (uint64_t(frame) * episPerFrame() + uint64_t(row) * height + uint64_t(scanline)) * recordBytes();
   }
   // The header's bytes as written.
   std::vector<uint8_t> encode() const;
@@ -89,6 +98,7 @@ class EpiStreamReader {
   struct Frame {
     int row, scanline;
     Image epi;
+    int frame = 0;  // of a sequence
   };
   // The next EPI in stream order; nullopt after the header's last one.
   // Throws on a stream cut short, an EPI tagged out of order, or data

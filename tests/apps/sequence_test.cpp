@@ -245,7 +245,8 @@ TEST(Sequence, BadValuesAreOneLineErrors) {
                         Case{"--time 3:1", "--time: the end B must come after the start A"},
                         Case{"--time x", "--time: 'x' is not a number"},
                         Case{"--turntable 90", "--turntable: needs a sequence: --frames N or --time A:B"},
-                        Case{"--frames 2 --stream -", "--frames: a sequence is written as image sets"},
+                        Case{"--frames 2 --resume --stream -", "--resume: keeps complete frame folders: not with a stream"},
+                        Case{"--frames 2 --quilt 2x2 --video --stream -", "--video: encodes image sets' quilts: not with a stream"},
                         Case{"--frames 2 --video", "--video: encodes the quilts: give --quilt"},
                         Case{"--quilt 2x2 --video", "--video: needs a sequence"},
                         Case{"--frames 2 --quilt 2x2 --video --crf 60", "--crf: must be 0 to 51"}}) {

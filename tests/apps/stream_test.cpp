@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mvr/io/compare.h"
+#include "mvr/io/image_file.h"
 #include "tests/support/cli.h"
 
 namespace mvr {
@@ -45,6 +46,32 @@ TEST(Stream, ConsumerManifestHasTheRenderCameras) {
   EXPECT_EQ(a["camera"], b["camera"]);
   EXPECT_FALSE(b["camera"].contains("rows_track"));  // one row: its y, not a track
   EXPECT_TRUE(b["camera"].contains("row_y"));
+}
+
+// A sequence streamed (issue 47): the consumer writes each frame's set in
+// frame_0000/, ... equal to those `mvr render --frames` writes, byte for
+// byte, and its manifest says the frame's time. Flags for frame folders
+// are refused with a stream.
+TEST(Stream, SequenceFramesEqualTheRenderedSequence) {
+  auto ref = test::freshDir("stream_seq_ref"), got = test::freshDir("stream_seq_got");
+  const std::string args = kArgs + " --frames 3 --fps 4 --turntable 60";
+  ASSERT_EQ(test::runMvr("render" + args + " --out " + ref.string()).status, 0);
+  auto r = test::shell(test::mvrBinary() + " stream" + args + " --to - | " + test::consumeBinary() +
+                       " --from - --out " + got.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* frame : {"frame_0000", "frame_0001", "frame_0002"}) expectSameSet(ref / frame, got / frame);
+  EXPECT_FALSE(std::filesystem::exists(got / "frame_0003"));
+  const auto m = nlohmann::json::parse(std::ifstream(got / "frame_0002" / "manifest.json"));
+  EXPECT_DOUBLE_EQ(m["frame"]["time_s"].get<double>(), 0.5) << m.dump();
+  // Frames differ: the turn shows.
+  EXPECT_LT(compareImages(readImage((got / "frame_0000" / "view_0000.png").string()),
+                          readImage((got / "frame_0002" / "view_0000.png").string()))
+                .identicalFraction,
+            0.9);
+  const auto resume = test::runMvr("render" + args + " --resume --stream " + (got / "x.epi").string());
+  EXPECT_EQ(resume.status, 1);
+  EXPECT_NE(resume.err.find("--resume: keeps complete frame folders: not with a stream"), std::string::npos) << resume.err;
+  EXPECT_FALSE(std::filesystem::exists(got / "x.epi"));
 }
 
 TEST(Stream, UnixSocketProducerToListeningConsumer) {

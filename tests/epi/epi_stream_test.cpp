@@ -174,6 +174,49 @@ TEST(EpiStream, HostileStreamsAreOneLineErrors) {
     EXPECT_EQ(e.find('\n'), std::string::npos) << e;
 }
 
+// A sequence's frames follow one another, the header saying how many and
+// when; each frame's tags start again at row 0, scanline 0. A stream that
+// ends inside a frame is an error, and an older header (0 frames) reads
+// as a still.
+TEST(EpiStream, SequenceFramesFollowOneAnother) {
+  EpiStreamHeader h{4, 2, 3, 1, 4, 1};
+  h.frames = 3, h.startTime = 0.5, h.frameRate = 24.0;
+  std::stringstream s;
+  {
+    EpiStreamWriter w(s, h);
+    for (int k = 0; k < 3; ++k)
+      for (int scanline = 0; scanline < 2; ++scanline) {
+        Image epi(4, 3, PixelType::U8);
+        epi.bytes[0] = uint8_t(10 * k + scanline);
+        w.putEpi(0, scanline, epi);
+      }
+  }
+  const std::string bytes = s.str();
+  EXPECT_EQ(bytes.size(), 64u + 6u * (8u + 4u * 3u * 4u));
+  EXPECT_EQ(h.recordOffset(0, 1, 2), 64u + 5u * (8u + 4u * 3u * 4u));
+  std::stringstream in(bytes);
+  EpiStreamReader r(in);
+  EXPECT_EQ(r.header().frames, 3u);
+  EXPECT_EQ(r.header().startTime, 0.5);
+  EXPECT_EQ(r.header().frameRate, 24.0);
+  int read = 0;
+  while (auto f = r.next()) {
+    EXPECT_EQ(f->frame, read / 2);
+    EXPECT_EQ(f->scanline, read % 2);
+    EXPECT_EQ(f->epi.bytes[0], 10 * (read / 2) + read % 2);
+    ++read;
+  }
+  EXPECT_EQ(read, 6);
+  EXPECT_NE(errorOf(bytes.substr(0, bytes.size() - (8 + 48))).find("ended after 5 of 6 EPIs"), std::string::npos);
+  std::string older = streamOf({{0, 0}, {0, 1}});
+  ASSERT_EQ(older[40], 1);  // a still says 1 frame
+  older[40] = 0;
+  EXPECT_EQ(errorOf(older), "");
+  std::string negativeRate = bytes;
+  negativeRate[63] = char(0xBF);  // the rate's sign bit: -24
+  EXPECT_NE(errorOf(negativeRate).find("frame rate"), std::string::npos) << errorOf(negativeRate);
+}
+
 // The camera travels in a 144-byte header; a 64-byte header has none.
 TEST(EpiStream, CameraTravelsInTheHeader) {
   EpiStreamHeader h{4, 2, 3, 1, 4, 1};
