@@ -15,6 +15,7 @@
 #include "apps/bench_command.h"
 #include "apps/job_split.h"
 #include "apps/mpi_session.h"
+#include "apps/native_command.h"
 #include "apps/render_command.h"
 #include "apps/viewer.h"
 #include "mvr/error.h"
@@ -32,6 +33,8 @@ const char* const kUsage =
     "  stream [SCENE] --to DEST   EPIs to a pipe, file or socket as they complete\n"
     "  synthesize --from DIR      views from RGB-D references (mvr synthesize --help)\n"
     "  view DIR|SCENE             look at views and EPIs (mvr view --help)\n"
+    "  native QUILT --calibration FILE --out FILE\n"
+    "                             a quilt to a lenticular display's native image\n"
     "  bench [SCENE] [options]    MVR against SVR, svr-layered, deferred (mvr bench --help)\n";
 
 int runInfo(int argc, char** argv) {
@@ -114,6 +117,7 @@ int dispatch(int argc, char** argv) {
       {"stream", [](int c, char** v) { return runRender(c, v, RenderCommand::Stream); }},
       {"synthesize", [](int c, char** v) { return runRender(c, v, RenderCommand::Synthesize); }},
       {"view", runView},
+      {"native", runNative},
       {"compare", runCompare},
       {"bench", runBench}};
   if (argc < 2) {
@@ -126,11 +130,11 @@ int dispatch(int argc, char** argv) {
   app.set_version_flag("--version", std::string("mvr ") + MVR_VERSION);
   app.footer(kUsage);
   std::string command;
-  app.add_option("COMMAND", command, "info, render, stream, synthesize, view, compare or bench")->required();
+  app.add_option("COMMAND", command, "info, render, stream, synthesize, view, native, compare or bench")->required();
   app.allow_extras();
   if (auto exit = parseCommandLine(app, argc, argv)) return *exit;
   // main prefixes "mvr: ": the error names the command, not the program again.
-  throw Error("unknown command '" + command + "' (expected info, render, stream, synthesize, view, compare or bench)");
+  throw Error("unknown command '" + command + "' (expected info, render, stream, synthesize, view, native, compare or bench)");
 }
 
 }  // namespace

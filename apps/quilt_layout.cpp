@@ -38,21 +38,29 @@ QuiltLayout parseQuilt(const std::string& text) {
 
 QuiltFile readQuiltLayout(const std::string& path, int imageWidth, int imageHeight) {
   static const std::regex name(".*_qs([1-9][0-9]{0,4})x([1-9][0-9]{0,4})a([0-9]+(\\.[0-9]+)?)\\.[A-Za-z0-9]+");
+  const std::string comment = readImageAttribute(path, "Exif:UserComment");
+  const auto exif = nlohmann::json::parse(comment.empty() ? "null" : comment, nullptr, /*allow_exceptions=*/false);
+  auto exifInt = [&](const char* key) {
+    return exif.is_object() && exif.contains(key) && exif[key].is_number_integer() ? exif[key].get<int>() : 0;
+  };
   std::smatch m;
-  if (!std::regex_match(path, m, name)) fail(path, "not a quilt: the name has no _qs{COLS}x{ROWS}a{ASPECT} layout");
-  QuiltFile q{std::stoi(m[1]), std::stoi(m[2]), 0, std::stod(m[3])};
-  if (imageWidth % q.columns || imageHeight % q.rows)
+  QuiltFile q;
+  if (std::regex_match(path, m, name)) {
+    q = {std::stoi(m[1]), std::stoi(m[2]), 0, std::stod(m[3])};
+  } else if (exifInt("LKGColumns") > 0 && exifInt("LKGRows") > 0) {  // the name lost, the metadata kept
+    q = {exifInt("LKGColumns"), exifInt("LKGRows"), 0, 0.0};
+    if (exif.contains("LKGAspect") && exif["LKGAspect"].is_number()) q.aspect = exif["LKGAspect"].get<double>();
+  } else {
+    fail(path, "not a quilt: neither a _qs{COLS}x{ROWS}a{ASPECT} name nor LKGColumns and LKGRows in its EXIF");
+  }
+  if (q.columns > 1024 || q.rows > 1024 || imageWidth % q.columns || imageHeight % q.rows)
     fail(path, std::to_string(imageWidth) + "x" + std::to_string(imageHeight) + " pixels do not divide into " +
                    std::to_string(q.columns) + "x" + std::to_string(q.rows) + " tiles");
   q.views = q.columns * q.rows;
   // The metadata may say fewer views (the last tiles empty).
-  if (const std::string comment = readImageAttribute(path, "Exif:UserComment"); !comment.empty()) {
-    const auto j = nlohmann::json::parse(comment, nullptr, /*allow_exceptions=*/false);
-    if (j.is_object() && j.contains("LKGNumViews") && j["LKGNumViews"].is_number_integer()) {
-      const int views = j["LKGNumViews"].get<int>();
-      if (views < 1 || views > q.views) fail(path, "LKGNumViews " + std::to_string(views) + " does not fit the tiles");
-      q.views = views;
-    }
+  if (const int views = exifInt("LKGNumViews"); exif.is_object() && exif.contains("LKGNumViews")) {
+    if (views < 1 || views > q.views) fail(path, "LKGNumViews " + std::to_string(views) + " does not fit the tiles");
+    q.views = views;
   }
   return q;
 }

@@ -27,10 +27,11 @@ struct QuiltLayout {
 QuiltLayout parseQuilt(const std::string& text);
 const std::vector<QuiltLayout>& quiltPresets();
 
-// The layout a quilt's file name states (..._qs{C}x{R}a{aspect}.ext), and
-// its view count: LKGNumViews of its EXIF UserComment where present, else
-// C x R. Throws mvr::Error naming the file when the name has no layout or
-// the image does not divide into C x R tiles.
+// The layout a quilt's file name states (..._qs{C}x{R}a{aspect}.ext), or
+// else its EXIF UserComment (LKGColumns, LKGRows, LKGAspect), and its view
+// count: LKGNumViews where present, else C x R. Throws mvr::Error naming
+// the file when neither gives a layout or the image does not divide into
+// C x R tiles.
 struct QuiltFile {
   int columns = 0, rows = 0, views = 0;
   double aspect = 0.0;

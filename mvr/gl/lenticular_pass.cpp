@@ -1,0 +1,71 @@
+#include "mvr/gl/lenticular_pass.h"
+
+#include <cstring>
+#include <vector>
+
+#include "mvr/error.h"
+#include "mvr/gl/gl_program.h"
+
+namespace mvr {
+
+namespace {
+
+const char* const kMain = R"(
+uniform int screenH;
+layout(location = 0) out vec4 color;
+void main() {
+  ivec2 pixel = ivec2(int(gl_FragCoord.x), screenH - 1 - int(gl_FragCoord.y));
+  color = vec4(lenticular(pixel), 1.0);
+}
+)";
+
+}  // namespace
+
+LenticularPass::LenticularPass(const LenticularMap& map) : map_(map), vao_(gl::VertexArray::create()) {
+  program_ = gl::linkProgram("lenticular", {{GL_VERTEX_SHADER, gl::glslHeader() + gl::kFullScreenTriangleVertex},
+                                            {GL_FRAGMENT_SHADER, gl::glslHeader() + lenticularGlsl() + kMain}});
+  const LenticularMap& m = map_;
+  for (const auto& [name, v] : {std::pair{"invW", m.invW}, {"invH", m.invH}, {"subp", m.subp}, {"tilt", m.tilt},
+                                {"pitch", m.pitch}, {"center", m.center}})
+    gl::setUniform(program_, name, v);
+  for (const auto& [name, v] : {std::pair{"views", m.views}, {"columns", m.columns}, {"tileW", m.tileW},
+                                {"tileH", m.tileH}, {"quiltHeight", m.quiltHeight}, {"ri", m.ri}, {"bi", m.bi},
+                                {"invView", int(m.invView)}, {"flipX", int(m.flipX)}, {"flipY", int(m.flipY)},
+                                {"screenH", m.screenH}, {"quilt", 0}})
+    gl::setUniform(program_, name, v);
+}
+
+void LenticularPass::draw(GLuint quiltTexture) const {
+  gl::Viewport(0, 0, map_.screenW, map_.screenH);
+  gl::Disable(GL_DEPTH_TEST);
+  gl::Disable(GL_BLEND);
+  gl::Disable(GL_FRAMEBUFFER_SRGB);  // the quilt holds display values already
+  gl::UseProgram(program_.id());
+  gl::BindTextureUnit(0, quiltTexture);
+  gl::BindVertexArray(vao_.id());
+  gl::DrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+Image LenticularPass::render(const Image& quilt) const {
+  if (!isByteType(quilt.type) || quilt.height != map_.quiltHeight) fail("quilt", "does not match the mapping's layout");
+  gl::Texture source(GL_TEXTURE_2D), target(GL_TEXTURE_2D);
+  gl::TextureStorage2D(source.id(), 1, GL_RGBA8, quilt.width, quilt.height);
+  gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  gl::TextureSubImage2D(source.id(), 0, 0, 0, quilt.width, quilt.height, GL_RGBA, GL_UNSIGNED_BYTE,
+                        quilt.bytes.data());
+  gl::TextureStorage2D(target.id(), 1, GL_RGBA8, map_.screenW, map_.screenH);
+  gl::Framebuffer fbo = gl::Framebuffer::create();
+  gl::NamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, target.id(), 0);
+  gl::BindFramebuffer(GL_FRAMEBUFFER, fbo.id());
+  draw(source.id());
+  Image out(map_.screenW, map_.screenH, quilt.type);
+  std::vector<uint8_t> raw(out.bytes.size());
+  gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
+  gl::ReadPixels(0, 0, out.width, out.height, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
+  gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
+  for (int y = 0; y < out.height; ++y)  // GL's rows run up
+    std::memcpy(out.row(y), raw.data() + size_t(out.height - 1 - y) * out.rowBytes(), out.rowBytes());
+  return out;
+}
+
+}  // namespace mvr
