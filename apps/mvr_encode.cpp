@@ -1,8 +1,10 @@
-// mvr-encode OUT WIDTH HEIGHT FPS CRF FRAMES: a quilt video's encoder, in a
-// process of its own (mvr/io/quilt_video.h starts it). Reads FRAMES frames
-// of WIDTH x HEIGHT sRGB-encoded RGBA8 (rows top first) from stdin and
-// writes OUT, an MP4 of H.264 in yuv420p (BT.709 limited range, as players
-// expect), through FFmpeg's libraries. OUT appears only once every frame is
+// mvr-encode OUT WIDTH HEIGHT FPS CRF FRAMES [yuv420p|yuv444p]: a quilt
+// video's encoder, in a process of its own (mvr/io/quilt_video.h starts
+// it). Reads FRAMES frames of WIDTH x HEIGHT sRGB-encoded RGBA8 (rows top
+// first) from stdin and writes OUT, an MP4 of H.264 in yuv420p (BT.709
+// limited range, as players expect; yuv444p for a panel's native image,
+// whose neighbouring subpixels belong to different views), through
+// FFmpeg's libraries. OUT appears only once every frame is
 // in it. Errors: one line on stderr, exit 1.
 //
 // Why a process: FFmpeg's libraries (and their codecs' own, some hundred)
@@ -53,7 +55,7 @@ bool readFully(int fd, uint8_t* to, size_t n) {
 
 class Encoder {
  public:
-  Encoder(const std::string& path, int w, int h, double fps, int crf) : path_(path), w_(w), h_(h) {
+  Encoder(const std::string& path, int w, int h, double fps, int crf, AVPixelFormat yuv) : path_(path), w_(w), h_(h) {
     if (avformat_alloc_output_context2(&format_, nullptr, "mp4", path.c_str()) < 0 || !format_)
       die(path + ": cannot set up an MP4 file");
     const AVCodec* codec = avcodec_find_encoder_by_name("libx264");
@@ -63,7 +65,7 @@ class Encoder {
     codec_ = avcodec_alloc_context3(codec);
     if (!stream_ || !codec_) die("out of memory");
     codec_->width = w, codec_->height = h;
-    codec_->pix_fmt = AV_PIX_FMT_YUV420P;
+    codec_->pix_fmt = yuv;
     codec_->framerate = av_d2q(fps, 100000);
     codec_->time_base = av_inv_q(codec_->framerate);
     codec_->color_range = AVCOL_RANGE_MPEG;
@@ -87,12 +89,11 @@ class Encoder {
     frame_ = av_frame_alloc();
     packet_ = av_packet_alloc();
     if (!frame_ || !packet_) die("out of memory");
-    frame_->format = AV_PIX_FMT_YUV420P, frame_->width = w, frame_->height = h;
+    frame_->format = yuv, frame_->width = w, frame_->height = h;
     frame_->color_range = AVCOL_RANGE_MPEG, frame_->colorspace = AVCOL_SPC_BT709;
     if (av_frame_get_buffer(frame_, 0) < 0) die("out of memory");
-    scale_ = sws_getContext(w, h, AV_PIX_FMT_RGBA, w, h, AV_PIX_FMT_YUV420P, SWS_BICUBIC | SWS_ACCURATE_RND, nullptr,
-                            nullptr, nullptr);
-    if (!scale_) die("cannot convert RGBA to yuv420p");
+    scale_ = sws_getContext(w, h, AV_PIX_FMT_RGBA, w, h, yuv, SWS_BICUBIC | SWS_ACCURATE_RND, nullptr, nullptr, nullptr);
+    if (!scale_) die("cannot convert RGBA to YUV");
     // Full-range RGB in, BT.709 limited-range YUV out.
     sws_setColorspaceDetails(scale_, sws_getCoefficients(SWS_CS_ITU709), 1, sws_getCoefficients(SWS_CS_ITU709), 0, 0,
                              1 << 16, 1 << 16);
@@ -159,7 +160,11 @@ long number(const char* text, const char* what, long lo, long hi) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 7) die("usage: mvr-encode OUT WIDTH HEIGHT FPS CRF FRAMES (frames of RGBA8 on stdin)");
+  if (argc != 7 && argc != 8)
+    die("usage: mvr-encode OUT WIDTH HEIGHT FPS CRF FRAMES [yuv420p|yuv444p] (frames of RGBA8 on stdin)");
+  const std::string chroma = argc == 8 ? argv[7] : "yuv420p";
+  if (chroma != "yuv420p" && chroma != "yuv444p") die("chroma '" + chroma + "' is not yuv420p or yuv444p");
+  const AVPixelFormat yuv = chroma == "yuv444p" ? AV_PIX_FMT_YUV444P : AV_PIX_FMT_YUV420P;
   const std::string out = argv[1];
   const int w = int(number(argv[2], "width", 2, 16384)), h = int(number(argv[3], "height", 2, 16384));
   char* end = nullptr;
@@ -167,11 +172,11 @@ int main(int argc, char** argv) {
   if (*end || !(fps > 0.0 && fps <= 1000.0)) die(std::string("fps '") + argv[4] + "' is not in (0, 1000]");
   const int crf = int(number(argv[5], "crf", 0, 51));
   const long frames = number(argv[6], "frames", 1, 1000000);
-  if (w % 2 || h % 2) die("yuv420p needs an even width and height, not " + std::to_string(w) + "x" + std::to_string(h));
+  if (yuv == AV_PIX_FMT_YUV420P && (w % 2 || h % 2)) die("yuv420p needs an even width and height, not " + std::to_string(w) + "x" + std::to_string(h));
   av_log_set_level(AV_LOG_ERROR);
   const std::string part = out + ".part";
   {
-    Encoder encoder(part, w, h, fps, crf);
+    Encoder encoder(part, w, h, fps, crf, yuv);
     std::vector<uint8_t> rgba(size_t(w) * h * 4);
     for (long k = 0; k < frames; ++k) {
       if (!readFully(STDIN_FILENO, rgba.data(), rgba.size())) {

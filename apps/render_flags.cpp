@@ -2,6 +2,7 @@
 
 #include "apps/cli.h"
 #include "mvr/error.h"
+#include "mvr/io/panel_calibration.h"
 #include "mvr/io/scene_io.h"
 
 namespace mvr::app {
@@ -94,6 +95,11 @@ void RenderFlags::addRenderOwn(CLI::App& app) {
                  "32-portrait, 65)")
       ->type_name("auto|CxR|DISPLAY");
   app.add_flag("--quilt-only", quiltOnly_, "write the quilt (and manifest) without the view images");
+  app.add_option("--native", native_,
+                 "with --quilt: also write the lenticular display's native image of the quilt, "
+                 "native_{W}x{H}.png, by the display's calibration (Looking Glass's visual.json; "
+                 "docs/DISPLAY.md); with --video, its video too")
+      ->type_name("CALIBRATION");
   app.add_flag("--depth", depth_,
                "also write each view's depth map, depth_0000.exr (one float channel Z): the "
                "distance along the view axis in world units, 0 where nothing is seen; the same "
@@ -187,6 +193,13 @@ RenderJob RenderFlags::describe(const CLI::App& app) const {
   if (depth_ && (job.streaming() || order_ != "view" || !predistort_.empty()))
     fail("--depth", "writes a view set: not with --stream, --order epi or --predistort");
   job.depth = depth_, job.quiltOnly = quiltOnly_;
+  if (!native_.empty()) {
+    if (!job.quilt) fail("--native", "maps the quilt: give --quilt");
+    if (job.rows > 1) fail("--native", "a lenticular panel shows one row of views: not with --rows");
+    if (!isByteType(job.type)) fail("--native", "maps an 8-bit quilt: --format png with 8 bits");
+    job.native = readCalibration(native_);
+    job.nativeCalibration = native_;
+  }
   job.predistort = predistort_;
   job.queue = queue_;
   job.memory = memory_;

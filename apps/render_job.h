@@ -19,6 +19,7 @@
 #include "mvr/backends/warp/warp_renderer.h"
 #include "mvr/frames/frame_chain.h"
 #include "mvr/gl/gl_context.h"
+#include "mvr/gl/lenticular_pass.h"
 #include "mvr/io/image_file.h"
 #include "mvr/io/manifest.h"
 #include "mvr/io/rgbd_set.h"
@@ -48,6 +49,8 @@ struct RenderJob {
   GlPlatform platform = GlPlatform::Egl;
   bool depth = false, quiltOnly = false;
   std::optional<QuiltLayout> quilt;
+  std::optional<PanelCalibration> native;  // --native: the panel the quilt is mapped to
+  std::string nativeCalibration;           // its file
   std::string predistort;
   std::string stream;  // the stream's endpoint; empty: an image set
   int queue = 8;
@@ -88,6 +91,9 @@ struct PreparedJob {
   std::shared_ptr<const Scene> still;
   // A sequence's video: each frame's finished quilt, with its file name.
   std::function<void(const Image& quilt, const std::string& name)> quiltOut;
+  // ... and its native image (--native), with the file name of its video.
+  std::function<void(const Image& native, const std::string& name)> nativeOut;
+  std::unique_ptr<LenticularPass> panel;  // --native's GL pass, built with the first quilt
   bool scratch = false;            // the colour's reorder spills to a scratch file
   size_t rowBytes = 0, depthRowBytes = 0;
 

@@ -45,25 +45,33 @@ void replaceFolder(const fs::path& from, const fs::path& to) {
   if (ec) fail(to.string(), "cannot move the finished frame into place: " + ec.message());
 }
 
-// The video of the sequence's quilts, started with the first (which names
-// it): the frames rendered here, and those an earlier run left (--resume)
-// read back from their sets.
+// A video of the sequence's quilts (or of their native images, --native),
+// started with the first (which names it): the frames rendered here, and
+// those an earlier run left (--resume) read back from their sets.
 class VideoOut {
  public:
-  VideoOut(const RenderJob& job) : job_(job) {}
-  void add(const Image& quilt, const std::string& name) {
+  enum class Of { Quilt, Native };
+  VideoOut(const RenderJob& job, Of of) : job_(job), of_(of) {}
+  void add(const Image& image, const std::string& name) {
     if (!video_) {
       path_ = (fs::path(job_.out) / name).string();
-      video_.emplace(path_, quilt.width, quilt.height, job_.sequence.fps, job_.sequence.crf, job_.sequence.frames);
+      video_.emplace(path_, image.width, image.height, job_.sequence.fps, job_.sequence.crf, job_.sequence.frames,
+                     of_ == Of::Native ? QuiltVideo::Chroma::Full : QuiltVideo::Chroma::Half);
     }
-    video_->add(quilt);
+    video_->add(image);
   }
   void addKept(const fs::path& frame) {
     const auto m = nlohmann::json::parse(std::ifstream(frame / "manifest.json"), nullptr, false);
-    if (!m.is_object() || !m.contains("quilt") || !m["quilt"].is_string())
-      fail(frame.string(), "has no quilt to put in the video: render it again without --resume");
-    const std::string file = m["quilt"].get<std::string>();
-    add(readImage((frame / file).string()), fs::path(file).replace_extension(".mp4").string());
+    const nlohmann::json* file = nullptr;
+    if (m.is_object() && of_ == Of::Quilt && m.contains("quilt")) file = &m["quilt"];
+    if (m.is_object() && of_ == Of::Native && m.contains("native") && m["native"].is_object() &&
+        m["native"].contains("image"))
+      file = &m["native"]["image"];
+    if (!file || !file->is_string())
+      fail(frame.string(), std::string("has no ") + (of_ == Of::Quilt ? "quilt" : "native image") +
+                               " to put in the video: render it again without --resume");
+    const std::string name = file->get<std::string>();
+    add(readImage((frame / name).string()), fs::path(name).replace_extension(".mp4").string());
   }
   void finish() {
     if (!video_) return;
@@ -73,6 +81,7 @@ class VideoOut {
 
  private:
   const RenderJob& job_;
+  Of of_;
   std::optional<QuiltVideo> video_;
   std::string path_;
 };
@@ -193,16 +202,21 @@ int writeSequence(const RenderJob& job, PreparedJob& p) {
   const StageTimes startup = p.startup;  // the process's, in every frame's manifest
   fs::create_directories(job.out);
   nlohmann::json frames = nlohmann::json::array();
-  std::optional<VideoOut> video;
+  std::optional<VideoOut> video, nativeVideo;
   if (s.video) {
-    video.emplace(job);
+    video.emplace(job, VideoOut::Of::Quilt);
     p.quiltOut = [&](const Image& quilt, const std::string& name) { video->add(quilt, name); };
+  }
+  if (s.video && job.native) {
+    nativeVideo.emplace(job, VideoOut::Of::Native);
+    p.nativeOut = [&](const Image& native, const std::string& name) { nativeVideo->add(native, name); };
   }
   for (int k = 0; k < s.frames; ++k) {
     const RenderJob::Frame frame = frameAt(s, k);
     const fs::path final = fs::path(job.out) / frameName(k);
     if (s.resume && fs::exists(final / "manifest.json")) {
       if (video) video->addKept(final);
+      if (nativeVideo) nativeVideo->addKept(final);
       frames.push_back(frameRecord(frame));
       continue;
     }
@@ -220,7 +234,8 @@ int writeSequence(const RenderJob& job, PreparedJob& p) {
     progress.done(frame);
   }
   if (video) video->finish();
-  p.quiltOut = nullptr;
+  if (nativeVideo) nativeVideo->finish();
+  p.quiltOut = nullptr, p.nativeOut = nullptr;
   writeSequenceManifest(job, p, frames);
   std::fprintf(stderr, "mvr: rendered %d of %d frames (%d views each) to %s in %.3f s\n", progress.rendered(),
                s.frames, job.views * job.rows, job.out.c_str(), progress.seconds());

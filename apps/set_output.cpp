@@ -41,6 +41,11 @@ std::unique_ptr<QuiltSink> makeQuilt(const RenderJob& job) {
 }
 
 // The manifest's record of the job beyond the set's layout.
+// native_{W}x{H}.png, .mp4: the panel's native image and its video.
+std::string nativeName(const RenderJob& job, const std::string& extension) {
+  return "native_" + std::to_string(job.native->screenW) + "x" + std::to_string(job.native->screenH) + "." + extension;
+}
+
 void describe(const RenderJob& job, const PreparedJob& p, const SetRun& run, Manifest& manifest) {
   nlohmann::json& m = manifest.info;
   if (job.synthesize()) {
@@ -81,6 +86,9 @@ void describe(const RenderJob& job, const PreparedJob& p, const SetRun& run, Man
                                                 : "view 0 at the bottom left, left to right, then upwards"}};
     if (!job.quilt->preset.empty()) m["quilt_layout"]["preset"] = job.quilt->preset;
   }
+  if (run.quilt && job.native)
+    m["native"] = {{"image", nativeName(job, "png")}, {"calibration", job.nativeCalibration},
+                   {"mapping", "docs/DISPLAY.md: each subpixel from the view its lens sends that way"}};
   if (!run.reorder.is_null()) m["reorder"] = run.reorder;
   if (!job.predistort.empty()) m["predistortion"] = job.predistort;
   if (job.depth) {
@@ -91,6 +99,16 @@ void describe(const RenderJob& job, const PreparedJob& p, const SetRun& run, Man
                   {"background", 0},
                   {"timings_s", run.depthStats.times.seconds}};
   }
+}
+
+// The panel's native image of the finished quilt, by the GL pass (built
+// once, with the first quilt).
+Image nativeOf(const RenderJob& job, PreparedJob& p, const QuiltSink& quilt) {
+  const Image& q = quilt.quilt();
+  const LenticularMap map =
+      LenticularMap::of(*job.native, {quilt.columns(), quilt.tileRows(), job.views, job.width, job.height}, q.height);
+  if (!p.panel) p.panel = std::make_unique<LenticularPass>(map);
+  return p.panel->render(q);
 }
 
 // The colour pass: the chain from the renderer to the writer (and quilt),
@@ -134,6 +152,11 @@ void renderColor(const RenderJob& job, PreparedJob& p, ImageSetWriter& writer, S
                       {{"Exif:UserComment", quiltMetadata(job.views * job.rows, run.quilt->columns(),
                                                           run.quilt->tileRows(), run.quiltAspect)}});
       if (p.quiltOut) p.quiltOut(run.quilt->quilt(), run.quilt->fileName("mp4", run.quiltAspect));
+      if (job.native) {
+        const Image native = nativeOf(job, p, *run.quilt);
+        writer.putExtra(nativeName(job, "png"), native, {});
+        if (p.nativeOut) p.nativeOut(native, nativeName(job, "mp4"));
+      }
     }
     if (mpi) writer.flush();
   });

@@ -1,6 +1,7 @@
 #include "mvr/gl/lenticular_pass.h"
 
 #include <cstring>
+#include <iterator>
 #include <vector>
 
 #include "mvr/error.h"
@@ -46,8 +47,45 @@ void LenticularPass::draw(GLuint quiltTexture) const {
   gl::DrawArrays(GL_TRIANGLES, 0, 3);
 }
 
+namespace {
+
+// The GL state the pass changes, put back when it is done: a renderer
+// drawing next in the same context (a sequence's next frame) finds its own.
+class SavedState {
+ public:
+  SavedState() {
+    gl::GetIntegerv(GL_VIEWPORT, viewport_);
+    gl::GetIntegerv(GL_CURRENT_PROGRAM, &program_);
+    gl::GetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao_);
+    gl::GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_);
+    gl::GetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_);
+    for (size_t i = 0; i < std::size(kCaps); ++i) enabled_[i] = gl::IsEnabled(kCaps[i]);
+  }
+  ~SavedState() {
+    gl::Viewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
+    gl::UseProgram(GLuint(program_));
+    gl::BindVertexArray(GLuint(vao_));
+    gl::BindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw_));
+    gl::BindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(read_));
+    for (size_t i = 0; i < std::size(kCaps); ++i) {
+      if (enabled_[i])
+        gl::Enable(kCaps[i]);
+      else
+        gl::Disable(kCaps[i]);
+    }
+  }
+
+ private:
+  static constexpr GLenum kCaps[] = {GL_DEPTH_TEST, GL_BLEND, GL_FRAMEBUFFER_SRGB};
+  GLint viewport_[4] = {}, program_ = 0, vao_ = 0, draw_ = 0, read_ = 0;
+  bool enabled_[std::size(kCaps)] = {};
+};
+
+}  // namespace
+
 Image LenticularPass::render(const Image& quilt) const {
   if (!isByteType(quilt.type) || quilt.height != map_.quiltHeight) fail("quilt", "does not match the mapping's layout");
+  const SavedState saved;
   gl::Texture source(GL_TEXTURE_2D), target(GL_TEXTURE_2D);
   gl::TextureStorage2D(source.id(), 1, GL_RGBA8, quilt.width, quilt.height);
   gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -62,7 +100,6 @@ Image LenticularPass::render(const Image& quilt) const {
   std::vector<uint8_t> raw(out.bytes.size());
   gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
   gl::ReadPixels(0, 0, out.width, out.height, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
-  gl::BindFramebuffer(GL_FRAMEBUFFER, 0);
   for (int y = 0; y < out.height; ++y)  // GL's rows run up
     std::memcpy(out.row(y), raw.data() + size_t(out.height - 1 - y) * out.rowBytes(), out.rowBytes());
   return out;

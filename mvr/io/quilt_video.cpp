@@ -39,7 +39,7 @@ std::string readAll(int fd) {
 
 }  // namespace
 
-QuiltVideo::QuiltVideo(std::string path, int width, int height, double fps, int crf, int frames)
+QuiltVideo::QuiltVideo(std::string path, int width, int height, double fps, int crf, int frames, Chroma chroma)
     : path_(std::move(path)), width_(width), height_(height), rgba_(size_t(width) * height * 4) {
   const std::string helper = helperProgram("mvr-encode", "MVR_ENCODE", path_, "videos are encoded");
   int in[2], err[2];
@@ -53,9 +53,10 @@ QuiltVideo::QuiltVideo(std::string path, int width, int height, double fps, int 
   posix_spawn_file_actions_adddup2(&actions, in[0], STDIN_FILENO);
   posix_spawn_file_actions_adddup2(&actions, err[1], STDERR_FILENO);
   const std::string args[] = {helper, path_, std::to_string(width), std::to_string(height), std::to_string(fps),
-                              std::to_string(crf), std::to_string(frames)};
-  std::array<char*, 8> argv{};
-  for (size_t i = 0; i < 7; ++i) argv[i] = const_cast<char*>(args[i].c_str());
+                              std::to_string(crf), std::to_string(frames),
+                              chroma == Chroma::Full ? "yuv444p" : "yuv420p"};
+  std::array<char*, 9> argv{};
+  for (size_t i = 0; i < 8; ++i) argv[i] = const_cast<char*>(args[i].c_str());
   const int spawned = posix_spawn(&pid_, helper.c_str(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   close(in[0]), close(err[1]);

@@ -16,8 +16,12 @@ namespace mvr {
 
 class QuiltVideo {
  public:
+  // Half: yuv420p, what players expect of a quilt. Full: yuv444p, for a
+  // panel's native image, whose neighbouring subpixels show different
+  // views (halved chroma would mix them).
+  enum class Chroma { Half, Full };
   // Starts the encoder; throws mvr::Error naming the file.
-  QuiltVideo(std::string path, int width, int height, double fps, int crf, int frames);
+  QuiltVideo(std::string path, int width, int height, double fps, int crf, int frames, Chroma chroma = Chroma::Half);
   ~QuiltVideo();  // unfinished: the encoder stopped, no file left
   QuiltVideo(const QuiltVideo&) = delete;
   QuiltVideo& operator=(const QuiltVideo&) = delete;

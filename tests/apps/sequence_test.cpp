@@ -8,12 +8,6 @@
 // quilt video, read back with libavformat and libavcodec, holds every
 // frame's quilt at its size, the last one within 30 dB of its PNG (H.264
 // at crf 18 and yuv420p's halved chroma on small, hard-edged tiles).
-extern "C" {
-#include <libavcodec/avcodec.h>
-#include <libavformat/avformat.h>
-#include <libswscale/swscale.h>
-}
-
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -27,6 +21,7 @@ extern "C" {
 #include "mvr/io/image_file.h"
 #include "tests/support/animated_gltf.h"
 #include "tests/support/cli.h"
+#include "tests/support/video_read.h"
 
 namespace mvr {
 namespace {
@@ -97,56 +92,6 @@ TEST(Sequence, TurntableFramesAreStillRendersOfTheTurnedScene) {
   EXPECT_FALSE(fs::exists(dir / "seq" / ".frame_0002.partial"));
 }
 
-// What a player reads: the frame count, the size, the pixel format, and the
-// last frame in RGBA.
-struct VideoRead {
-  int frames = 0, width = 0, height = 0;
-  AVPixelFormat format = AV_PIX_FMT_NONE;
-  AVCodecID codec = AV_CODEC_ID_NONE;
-  Image last;
-};
-
-VideoRead readVideo(const fs::path& path) {
-  VideoRead v;
-  AVFormatContext* format = nullptr;
-  if (avformat_open_input(&format, path.c_str(), nullptr, nullptr) < 0) return v;
-  avformat_find_stream_info(format, nullptr);
-  const AVCodecParameters* par = format->streams[0]->codecpar;
-  v.width = par->width, v.height = par->height, v.format = AVPixelFormat(par->format), v.codec = par->codec_id;
-  const AVCodec* codec = avcodec_find_decoder(par->codec_id);
-  AVCodecContext* decoder = avcodec_alloc_context3(codec);
-  avcodec_parameters_to_context(decoder, par);
-  avcodec_open2(decoder, codec, nullptr);
-  AVPacket* packet = av_packet_alloc();
-  AVFrame* frame = av_frame_alloc();
-  auto drain = [&] {
-    while (avcodec_receive_frame(decoder, frame) == 0) {
-      ++v.frames;
-      v.last = Image(frame->width, frame->height, PixelType::U8);
-      SwsContext* rgb = sws_getContext(frame->width, frame->height, AVPixelFormat(frame->format), frame->width,
-                                       frame->height, AV_PIX_FMT_RGBA, SWS_BICUBIC, nullptr, nullptr, nullptr);
-      sws_setColorspaceDetails(rgb, sws_getCoefficients(SWS_CS_ITU709), 0, sws_getCoefficients(SWS_CS_ITU709), 1, 0,
-                               1 << 16, 1 << 16);
-      uint8_t* dst[1] = {v.last.bytes.data()};
-      const int stride[1] = {4 * frame->width};
-      sws_scale(rgb, frame->data, frame->linesize, 0, frame->height, dst, stride);
-      sws_freeContext(rgb);
-    }
-  };
-  while (av_read_frame(format, packet) >= 0) {
-    avcodec_send_packet(decoder, packet);
-    av_packet_unref(packet);
-    drain();
-  }
-  avcodec_send_packet(decoder, nullptr);
-  drain();
-  av_frame_free(&frame);
-  av_packet_free(&packet);
-  avcodec_free_context(&decoder);
-  avformat_close_input(&format);
-  return v;
-}
-
 TEST(Sequence, VideoHoldsEveryQuilt) {
   const fs::path dir = test::freshDir("sequence_video");
   const fs::path scene = writeScene(dir, 0);
@@ -156,7 +101,7 @@ TEST(Sequence, VideoHoldsEveryQuilt) {
   const fs::path mp4 = dir / "seq" / "quilt_qs2x2a1.33.mp4";
   ASSERT_TRUE(fs::exists(mp4));
   EXPECT_FALSE(fs::exists(dir / "seq" / "quilt_qs2x2a1.33.mp4.part"));
-  const VideoRead v = readVideo(mp4);
+  const test::VideoRead v = test::readVideo(mp4);
   EXPECT_EQ(v.codec, AV_CODEC_ID_H264);
   EXPECT_EQ(v.format, AV_PIX_FMT_YUV420P);
   EXPECT_EQ(v.frames, 5);
@@ -189,7 +134,7 @@ TEST(Sequence, ResumeKeepsTheCompleteFrames) {
   EXPECT_EQ(bytesOf(dir / "seq" / "frame_0001" / "view_0002.png"), frame1);
   EXPECT_TRUE(fs::exists(dir / "seq" / "frame_0002" / "manifest.json"));
   EXPECT_FALSE(fs::exists(dir / "seq" / ".frame_0002.partial"));
-  EXPECT_EQ(readVideo(dir / "seq" / "quilt_qs2x2a1.33.mp4").frames, 3);  // the kept frame's quilt read back
+  EXPECT_EQ(test::readVideo(dir / "seq" / "quilt_qs2x2a1.33.mp4").frames, 3);  // the kept frame's quilt read back
 }
 
 // An animated glTF without --frames: its animation's length at --fps 2
