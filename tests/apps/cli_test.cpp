@@ -660,10 +660,10 @@ TEST(Cli, RepeatedOptionsAndTheSummaryLine) {
 // Errors read as ours: one "mvr: " prefix, and arguments nobody takes
 // named in the order given (CLI11 lists them as it parsed them, backwards).
 TEST(Cli, UnknownCommandsAndUnexpectedArgumentsInTheOrderGiven) {
-  Result c = run("native");
+  Result c = run("lenticular");
   EXPECT_EQ(c.status, 1);
-  EXPECT_EQ(c.err, "mvr: unknown command 'native' (expected info, render, stream, synthesize, view, compare or "
-                   "bench)\n");
+  EXPECT_EQ(c.err, "mvr: unknown command 'lenticular' (expected info, render, stream, synthesize, view, native, "
+                   "compare or bench)\n");
   const fs::path d = outDir("extras");
   Result e = run("render " + test::assetsDir() + "/cube.obj extra --bogus --out " + d.string());
   EXPECT_EQ(e.status, 1);
