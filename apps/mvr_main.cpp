@@ -15,6 +15,7 @@
 #include "apps/bench_command.h"
 #include "apps/job_split.h"
 #include "apps/mpi_session.h"
+#include "apps/live_command.h"
 #include "apps/native_command.h"
 #include "apps/render_command.h"
 #include "apps/viewer.h"
@@ -35,6 +36,7 @@ const char* const kUsage =
     "  view DIR|SCENE             look at views and EPIs (mvr view --help)\n"
     "  native QUILT --calibration FILE --out FILE\n"
     "                             a quilt to a lenticular display's native image\n"
+    "  live [SCENE|QUILT]         render into a quilt every frame, shown on the display (mvr live --help)\n"
     "  bench [SCENE] [options]    MVR against SVR, svr-layered, deferred (mvr bench --help)\n";
 
 int runInfo(int argc, char** argv) {
@@ -118,6 +120,7 @@ int dispatch(int argc, char** argv) {
       {"synthesize", [](int c, char** v) { return runRender(c, v, RenderCommand::Synthesize); }},
       {"view", runView},
       {"native", runNative},
+      {"live", runLive},
       {"compare", runCompare},
       {"bench", runBench}};
   if (argc < 2) {
@@ -130,11 +133,11 @@ int dispatch(int argc, char** argv) {
   app.set_version_flag("--version", std::string("mvr ") + MVR_VERSION);
   app.footer(kUsage);
   std::string command;
-  app.add_option("COMMAND", command, "info, render, stream, synthesize, view, native, compare or bench")->required();
+  app.add_option("COMMAND", command, "info, render, stream, synthesize, view, native, live, compare or bench")->required();
   app.allow_extras();
   if (auto exit = parseCommandLine(app, argc, argv)) return *exit;
   // main prefixes "mvr: ": the error names the command, not the program again.
-  throw Error("unknown command '" + command + "' (expected info, render, stream, synthesize, view, native, compare or bench)");
+  throw Error("unknown command '" + command + "' (expected info, render, stream, synthesize, view, native, live, compare or bench)");
 }
 
 }  // namespace

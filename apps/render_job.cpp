@@ -140,6 +140,12 @@ FrameChainSpec PreparedJob::chainSpec(const RenderJob& job) const {
                         .aa = job.aa, .background = job.camera.backgroundColor()};
 }
 
+void prepareJob(RenderJob& job, PreparedJob& prepared) {
+  start(job, prepared);
+  setUp(job, prepared);
+  planMemory(job, prepared);
+}
+
 int runJob(RenderJob& job) {
   PreparedJob prepared;
   start(job, prepared);

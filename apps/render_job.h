@@ -108,6 +108,9 @@ struct PreparedJob {
 JobSplit splitFor(const RenderJob& job, const PreparedJob& prepared);
 
 int runJob(RenderJob& job);
+// What runJob does before it renders: GL started on this thread, the
+// scene read, the camera framed, the renderer built, the memory planned.
+void prepareJob(RenderJob& job, PreparedJob& prepared);
 int writeSet(const RenderJob& job, PreparedJob& prepared);
 // The frames of one stream: a still's one, or a sequence's, each posed
 // by beforeFrame(k) before it is rendered; afterFrame(k) once it is.

@@ -1,0 +1,40 @@
+#pragma once
+// What mvr live shows (issue 48): a quilt texture, uploaded once a frame,
+// drawn through a lenticular display's mapping (mvr/gl/lenticular_pass.h)
+// at the panel's size, or, without a calibration, the quilt itself scaled
+// to the screen. Into the window's framebuffer, or offscreen where there
+// is no window (headless EGL); read() gives what was drawn.
+#include <memory>
+#include <optional>
+
+#include "mvr/gl/gl_handles.h"
+#include "mvr/gl/lenticular_pass.h"
+#include "mvr/image.h"
+
+namespace mvr {
+
+class QuiltScreen {
+ public:
+  // A screen of width x height showing quilts of quiltWidth x quiltHeight
+  // (8-bit RGBA) through `panel` (its size the screen's), or scaled.
+  // offscreen: draws into a framebuffer of its own instead of the window's.
+  QuiltScreen(int width, int height, int quiltWidth, int quiltHeight, std::optional<LenticularMap> panel,
+              bool offscreen);
+  int width() const { return width_; }
+  int height() const { return height_; }
+  void upload(const Image& quilt);
+  void draw() const;
+  void finish() const;  // waits for the GL to finish drawing
+  Image read() const;   // the screen as drawn, rows top first
+
+ private:
+  int width_, height_, quiltWidth_, quiltHeight_;
+  gl::Texture quilt_;
+  std::unique_ptr<LenticularPass> panel_;
+  gl::Program scaled_;
+  gl::VertexArray vao_;
+  gl::Texture target_;  // offscreen only
+  gl::Framebuffer fbo_;
+};
+
+}  // namespace mvr
