@@ -131,6 +131,7 @@ class FrameClock {
 struct LiveFlags {
   std::string source, display = "portrait", calibration, screenshot, clip;
   std::optional<int> frames;
+  std::pair<int, int> size{0, 0};  // 0 x 0: the preset's tile
   double turntable = 0.0;  // degrees a second
   BackendFlags backend;
   CameraFlags camera;
@@ -142,6 +143,7 @@ struct LiveFlags {
                    "the display whose quilt is rendered: a preset (go, portrait, 16-landscape, 16-portrait, "
                    "32-landscape, 32-portrait, 65) or COLSxROWS")
         ->capture_default_str();
+    addSizeOption(app, "size", size, "each view's size in pixels (default: the display preset's tile)");
     app.add_option("--calibration", calibration,
                    "the display's visual.json: show the panel's native image (full screen on the monitor of its "
                    "size); without it, the quilt")
@@ -166,7 +168,12 @@ bool isQuiltFile(const std::string& path) {
                                        ext == ".tif" || ext == ".tiff");
 }
 
-RenderJob liveJob(const LiveFlags& f, const QuiltLayout& display) {
+RenderJob liveJob(const LiveFlags& f, QuiltLayout display) {
+  if (f.size.first > 0) {
+    display.quiltWidth = f.size.first * display.columns;
+    display.quiltHeight = f.size.second * display.rows;
+  }
+  if (display.quiltWidth == 0) fail("--display", "a COLSxROWS grid needs --size (a preset gives its tile size)");
   RenderJob job;
   job.backendFlags = f.backend;
   job.backend = f.backend.resolve();
@@ -233,8 +240,7 @@ int runLive(int argc, char** argv) {
     grid = {layout.columns, layout.rows, layout.views, still->width / layout.columns, still->height / layout.rows};
   } else {
     const QuiltLayout display = parseQuilt(f.display);
-    if (display.preset.empty() && (display.columns == 0 || display.quiltWidth == 0))
-      fail("--display", "give a display preset (a COLSxROWS grid needs --size, which live takes from a preset)");
+    if (display.columns == 0) fail("--display", "give a display preset or COLSxROWS, not auto");
     quilts = std::make_unique<LiveQuilts>(liveJob(f, display));
     grid = {quilts->columns(), quilts->tileRows(), quilts->job().views, quilts->job().width, quilts->job().height};
     label = quilts->label();
@@ -248,7 +254,8 @@ int runLive(int argc, char** argv) {
   if (surface.window) glfwSwapInterval(headless ? 0 : 1);
   std::optional<LenticularMap> map;
   if (panel) map = LenticularMap::of(*panel, grid, quiltHeight);
-  QuiltScreen screen(width, height, quiltWidth, quiltHeight, map, surface.offscreen());
+  QuiltScreen screen(width, height, grid, quilts ? ViewLayout::EpiVolume : ViewLayout::Quilt, map,
+                     surface.offscreen());
 
   Controls controls;
   GLFWwindow* w = surface.window ? surface.window->handle() : nullptr;
@@ -282,7 +289,7 @@ int runLive(int argc, char** argv) {
   if (quilts) quilts->request(poseOf(0));
   if (still) screen.upload(*still);
   FrameClock clock;
-  double lastTitle = 0.0;
+  double lastTitle = 0.0, showSeconds = 0.0;
   for (int k = 0; frames == 0 || k < frames; ++k) {
     if (w) {
       glfwPollEvents();
@@ -297,14 +304,14 @@ int runLive(int argc, char** argv) {
         controls.onCursor(w, x, y);
       }
     }
-    if (quilts) {
-      const Image& quilt = quilts->take();  // frame k
-      if (frames == 0 || k + 1 < frames) quilts->request(poseOf(k + 1));
-      screen.upload(quilt);
-    }
+    const Image* quilt = quilts ? &quilts->take() : nullptr;  // frame k
+    const Stopwatch show;
+    if (quilts && (frames == 0 || k + 1 < frames)) quilts->request(poseOf(k + 1));
+    if (quilt) screen.upload(*quilt);
     screen.draw();
     if (w && !surface.offscreen()) glfwSwapBuffers(w);
     screen.finish();
+    showSeconds += show.seconds();
     clock.tick();
     if (controls.screenshot) {
       char name[64];
@@ -323,6 +330,11 @@ int runLive(int argc, char** argv) {
   if (!f.screenshot.empty()) writeImage(screen.read(), f.screenshot);
   std::printf("mvr: live: %d frames, %.1f fps (median %.1f ms, p99 %.1f ms)\n", clock.frames(), clock.fps(),
               clock.quantileMs(0.5), clock.quantileMs(0.99));
+  // Where a frame's time goes: the two threads overlap.
+  const int n = std::max(clock.frames(), 1);
+  std::fprintf(stderr, "mvr: live: %s; a frame: rendering %.1f ms (its own thread), showing %.1f ms (upload, %s, swap)\n",
+               label.c_str(), quilts ? 1e3 * quilts->renderSeconds() / n : 0.0, 1e3 * showSeconds / n,
+               panel ? "panel mapping" : "quilt scaled");
   return 0;
 }
 

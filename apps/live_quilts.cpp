@@ -42,7 +42,7 @@ const Image& LiveQuilts::take() {
   std::unique_lock lock(mutex_);
   changed_.wait(lock, [&] { return done_ == requested_ || error_; });
   if (error_) std::rethrow_exception(error_);
-  return quilts_[(done_ - 1) % 2]->quilt();
+  return volumes_[(done_ - 1) % 2]->volume();
 }
 
 // The render thread: the job prepared here (its GL context is this
@@ -57,9 +57,9 @@ void LiveQuilts::run() {
     radius_ = std::max(0.5f * glm::length(bounds.max - bounds.min), 1e-6f);
     length_ = mvr::animationLength(p.scene, job_.sequence.clip);
     label_ = p.label(job_.backend);
-    for (auto& q : quilts_)
-      q.emplace(job_.width, job_.height, job_.views, job_.rows, job_.type, job_.quilt->columns, job_.quilt->rows);
-    columns_ = quilts_[0]->columns(), tileRows_ = quilts_[0]->tileRows();
+    for (auto& v : volumes_) v.emplace(job_.width, job_.height, job_.views, job_.type);
+    const QuiltSink layout(1, 1, job_.views, job_.rows, job_.type, job_.quilt->columns, job_.quilt->rows);
+    columns_ = layout.columns(), tileRows_ = layout.tileRows();
   } catch (...) {
     std::lock_guard lock(mutex_);
     error_ = std::current_exception();
@@ -74,10 +74,11 @@ void LiveQuilts::run() {
     if (stopping_) return;
     const LivePose pose = *pending_;
     pending_.reset();
-    QuiltSink& quilt = *quilts_[done_ % 2];
+    EpiVolumeSink& views = *volumes_[done_ % 2];
     lock.unlock();
+    const Stopwatch watch;
     try {
-      renderOne(pose, quilt);
+      renderOne(pose, views);
     } catch (...) {
       lock.lock();
       error_ = std::current_exception();
@@ -85,20 +86,23 @@ void LiveQuilts::run() {
       return;
     }
     lock.lock();
+    renderSeconds_ += watch.seconds();
     ++done_;
     changed_.notify_all();
   }
 }
 
-void LiveQuilts::renderOne(const LivePose& pose, QuiltSink& quilt) {
+void LiveQuilts::renderOne(const LivePose& pose, EpiVolumeSink& views) {
   PreparedJob& p = prepared_;
-  poseGeometry(p.scene, *p.still, pose.move);
-  poseAnimations(p.scene, pose.time, job_.sequence.clip, pose.move);
-  if (!p.renderer->sceneMoved()) p.renderer = makeRenderer(job_.backend, p.scene, job_.type);
-  NullSink none;
-  FrameChainSpec spec = p.chainSpec(job_);
-  spec.delivered = FrameOrder::View;
-  FrameChain chain({.sink = &none, .quilt = &quilt, .frames = false}, spec);
+  // A scene that stands still keeps its pose, and MVR its lighting.
+  const bool animated = !p.scene.animations.empty();
+  if (!shown_ || shown_->move != pose.move || (animated && shown_->time != pose.time)) {
+    poseGeometry(p.scene, *p.still, pose.move);
+    poseAnimations(p.scene, pose.time, job_.sequence.clip, pose.move);
+    if (!p.renderer->sceneMoved()) p.renderer = makeRenderer(job_.backend, p.scene, job_.type);
+    shown_ = pose;
+  }
+  FrameChain chain({.sink = &views}, p.chainSpec(job_));  // in the renderer's order: the sink takes both
   RenderStats stats;
   p.renderer->render(*p.renderCamera, chain.entry(), stats);
   chain.entry().finish();

@@ -1,8 +1,10 @@
 #pragma once
-// mvr live's renderer (issue 48): quilts of the scene, one after another,
-// rendered on a thread of its own with its own GL context (EGL), so that
-// rendering frame k + 1 overlaps showing frame k. Two quilts alternate:
-// the one shown stays whole while the next is drawn.
+// mvr live's renderer (issue 48): the scene's views, one set after
+// another, rendered on a thread of its own with its own GL context (EGL),
+// so that rendering frame k + 1 overlaps showing frame k. Each set is an
+// EPI volume (mvr/lenticular.h), where an EPI renderer writes in place and
+// the panel mapping finds a panel row's views close together. Two
+// alternate: the one shown stays whole while the next is drawn.
 #include <condition_variable>
 #include <exception>
 #include <memory>
@@ -42,19 +44,21 @@ class LiveQuilts {
   int columns() const { return columns_; }
   int tileRows() const { return tileRows_; }
 
-  // Starts the next quilt; the one before must have been taken.
+  // Starts the next set of views; the one before must have been taken.
   void request(const LivePose& pose);
-  // Waits for the requested quilt. It stays valid until the request after
-  // next (two alternate); throws the render thread's error.
+  // Waits for the requested views (an EPI volume). They stay valid until
+  // the request after next (two alternate); throws the render thread's error.
   const Image& take();
+  // Seconds the render thread spent on quilts so far, and how many.
+  double renderSeconds() const { return renderSeconds_; }
 
  private:
   void run();
-  void renderOne(const LivePose& pose, QuiltSink& quilt);
+  void renderOne(const LivePose& pose, EpiVolumeSink& views);
 
   RenderJob job_;
   PreparedJob prepared_;
-  std::optional<QuiltSink> quilts_[2];
+  std::optional<EpiVolumeSink> volumes_[2];
   glm::vec3 pivot_{0.0f};
   float radius_ = 1.0f;
   double length_ = 0.0;
@@ -65,6 +69,8 @@ class LiveQuilts {
   std::condition_variable changed_;
   std::optional<LivePose> pending_;
   long requested_ = 0, done_ = 0;  // quilts asked for, and finished
+  std::optional<LivePose> shown_;   // the pose the scene has now
+  double renderSeconds_ = 0.0;
   bool ready_ = false, stopping_ = false;
   std::exception_ptr error_;
   std::thread thread_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "mvr/error.h"
 #include "mvr/parallel.h"
@@ -51,13 +52,17 @@ int LenticularMap::view(int x, int y, int i) const {
   return std::clamp(int(std::floor(z * float(views))), 0, views - 1);
 }
 
-glm::ivec2 LenticularMap::texel(int x, int y, int i) const {
+glm::ivec3 LenticularMap::viewTexel(int x, int y, int i) const {
   const glm::vec2 uv = panelUv(*this, x, y);
-  const int v = view(x, y, i);
   const float su = flipX ? 1.0f - uv.x : uv.x, sv = flipY ? 1.0f - uv.y : uv.y;
   const int col = std::clamp(int(std::floor(su * float(tileW))), 0, tileW - 1);
   const int rowUp = std::clamp(int(std::floor(sv * float(tileH))), 0, tileH - 1);
-  return {(v % columns) * tileW + col, quiltHeight - 1 - ((v / columns) * tileH + rowUp)};
+  return {col, tileH - 1 - rowUp, view(x, y, i)};
+}
+
+glm::ivec2 LenticularMap::texel(int x, int y, int i) const {
+  const glm::ivec3 t = viewTexel(x, y, i);
+  return {(t.z % columns) * tileW + t.x, quiltHeight - tileH * (t.z / columns + 1) + t.y};
 }
 
 Image nativeImage(const Image& quilt, const LenticularMap& m) {
@@ -78,11 +83,23 @@ Image nativeImage(const Image& quilt, const LenticularMap& m) {
   return out;
 }
 
-std::string lenticularGlsl() {
+Image epiVolumeOf(const Image& quilt, const QuiltGrid& g) {
+  Image volume(g.tileWidth, g.tileHeight * g.views, quilt.type);
+  const size_t pixel = 4 * Image::channelBytes(quilt.type);
+  for (int v = 0; v < g.views; ++v) {
+    const int top = quilt.height - g.tileHeight * (v / g.columns + 1), left = (v % g.columns) * g.tileWidth;
+    for (int s = 0; s < g.tileHeight; ++s)
+      std::memcpy(volume.row(s * g.views + v), quilt.row(top + s) + size_t(left) * pixel, volume.rowBytes());
+  }
+  return volume;
+}
+
+std::string lenticularGlsl(ViewLayout layout) {
   // The CPU's steps above, one for one; `precise` keeps the compiler from
   // fusing or reordering them.
-  return R"(
-uniform sampler2D quilt;
+  return std::string(layout == ViewLayout::EpiVolume ? "#define EPI_VOLUME\nuniform sampler2DArray quilt;\n"
+                                                     : "uniform sampler2D quilt;\n") +
+         R"(
 uniform float invW, invH, subp, tilt, pitch, center;
 uniform int views, columns, tileW, tileH, quiltHeight, ri, bi;
 uniform bool invView, flipX, flipY;
@@ -104,26 +121,32 @@ int lenticularView(vec2 uv, int i) {
   return clamp(int(floor(scaled)), 0, views - 1);
 }
 
-ivec2 lenticularTexel(vec2 uv, int view) {
+// The texel's column and row from the bottom within its tile.
+ivec2 inTile(vec2 uv) {
   precise float su = flipX ? 1.0 - uv.x : uv.x;
   precise float sv = flipY ? 1.0 - uv.y : uv.y;
   precise float cu = su * float(tileW);
   precise float cv = sv * float(tileH);
-  int col = clamp(int(floor(cu)), 0, tileW - 1);
-  int rowUp = clamp(int(floor(cv)), 0, tileH - 1);
-  return ivec2((view % columns) * tileW + col, quiltHeight - 1 - ((view / columns) * tileH + rowUp));
+  return ivec2(clamp(int(floor(cu)), 0, tileW - 1), clamp(int(floor(cv)), 0, tileH - 1));
 }
 
-// pixel: x right, y down from the panel's top.
+#ifdef EPI_VOLUME
+// Layer s: the EPI of scanline s (from the top), row v: view v.
+vec4 lenticularTexel(ivec2 t, int view) { return texelFetch(quilt, ivec3(t.x, view, tileH - 1 - t.y), 0); }
+#else
+// Row 0: the quilt image's top row, as uploaded.
+vec4 lenticularTexel(ivec2 t, int view) {
+  return texelFetch(quilt, ivec2((view % columns) * tileW + t.x, quiltHeight - 1 - ((view / columns) * tileH + t.y)), 0);
+}
+#endif
+
+// pixel: x right, y down from the panel's top. The texel's place in its
+// tile is the same for the three subpixels; their views differ.
 vec3 lenticular(ivec2 pixel) {
   vec2 uv = panelUv(pixel);
-  vec3 rgb;
-  int channelOf[3] = int[3](ri, 1, bi);
-  for (int c = 0; c < 3; ++c) {
-    ivec2 t = lenticularTexel(uv, lenticularView(uv, channelOf[c]));
-    rgb[c] = texelFetch(quilt, t, 0)[c];  // row 0: the quilt image's top row, as uploaded
-  }
-  return rgb;
+  ivec2 t = inTile(uv);
+  return vec3(lenticularTexel(t, lenticularView(uv, ri)).r, lenticularTexel(t, lenticularView(uv, 1)).g,
+              lenticularTexel(t, lenticularView(uv, bi)).b);
 }
 )";
 }

@@ -66,6 +66,7 @@ FrameChain::~FrameChain() {
 void FrameChain::addReorder(const FrameDestination& destination) {
   const FrameChainSpec& s = spec_;
   if (s.rendered == s.delivered) return;
+  if (s.rendered == FrameOrder::Epi && destination.quilt && entry_ == destination.quilt) return;  // takes EPIs
   if (s.rendered == FrameOrder::View) {
     transpose_ = &push<ViewsToEpis>(*entry_, s.width, s.height, s.views, s.type, s.reorder).transpose();
   } else if (s.pngRows && destination.set && !destination.quilt) {

@@ -44,15 +44,25 @@ QuiltSink::QuiltSink(int width, int height, int views, int rows, PixelType type,
   quilt_ = Image(columns * width, tileRows * height, type);
 }
 
-void QuiltSink::putView(int row, int view, const Image& image) {
+glm::ivec2 QuiltSink::tileOrigin(int row, int view) const {
   const int index = row * views_ + view;
-  const int col = index % columns_;
   // Single row: view 0 bottom-left, filling upwards. Grids: row 0 on top.
   const int tileRow = rows_ > 1 ? row : tileRows_ - 1 - index / columns_;
-  const int tileCol = rows_ > 1 ? view : col;
-  for (int y = 0; y < height_; ++y)
-    std::memcpy(quilt_.row(tileRow * height_ + y) + tileCol * image.rowBytes(), image.row(y),
-                image.rowBytes());
+  const int tileCol = rows_ > 1 ? view : index % columns_;
+  return {tileCol * width_, tileRow * height_};
+}
+
+void QuiltSink::putView(int row, int view, const Image& image) {
+  const glm::ivec2 at = tileOrigin(row, view);
+  const size_t left = size_t(at.x) * (4 * Image::channelBytes(quilt_.type));
+  for (int y = 0; y < height_; ++y) std::memcpy(quilt_.row(at.y + y) + left, image.row(y), image.rowBytes());
+}
+
+void QuiltSink::putEpi(int row, int scanline, const Image& epi) {
+  for (int view = 0; view < views_; ++view) {
+    const glm::ivec2 at = tileOrigin(row, view);
+    std::memcpy(quilt_.row(at.y + scanline) + size_t(at.x) * (4 * Image::channelBytes(quilt_.type)), epi.row(view), epi.rowBytes());
+  }
 }
 
 std::string QuiltSink::fileName(const std::string& ext, double aspect) const {
@@ -60,6 +70,28 @@ std::string QuiltSink::fileName(const std::string& ext, double aspect) const {
   std::snprintf(buf, sizeof buf, "quilt_qs%dx%da%.2f.%s", columns_, tileRows_,
                 aspect > 0.0 ? aspect : double(width_) / height_, ext.c_str());
   return buf;
+}
+
+EpiVolumeSink::EpiVolumeSink(int width, int height, int views, PixelType type)
+    : views_(views), volume_(width, height * views, type) {}
+
+void EpiVolumeSink::putView(int row, int view, const Image& image) {
+  if (row != 0 || image.width != volume_.width || image.height * views_ != volume_.height)
+    fail("epi volume", "a view of another size, or of a second row");
+  for (int s = 0; s < image.height; ++s) std::memcpy(volume_.row(s * views_ + view), image.row(s), image.rowBytes());
+}
+
+void EpiVolumeSink::putEpi(int row, int scanline, const Image& epi) {
+  uint8_t* to = epiMemory(row, scanline, epi.width, epi.height, epi.type);
+  if (!to) fail("epi volume", "an EPI of another size, or of a second row");
+  if (to != epi.bytes.data()) std::memcpy(to, epi.bytes.data(), epi.bytes.size());
+}
+
+uint8_t* EpiVolumeSink::epiMemory(int row, int scanline, int width, int views, PixelType type) {
+  if (row != 0 || width != volume_.width || views != views_ || type != volume_.type ||
+      scanline * views_ >= volume_.height)
+    return nullptr;
+  return volume_.row(scanline * views_);
 }
 
 PredistortSink::PredistortSink(FrameSink& inner, std::vector<float> lut)

@@ -30,6 +30,9 @@ class QuiltSink final : public FrameSink {
   QuiltSink(int width, int height, int views, int rows, PixelType type, int columns = 0,
             int tileRows = 0);
   void putView(int row, int view, const Image& image) override;
+  // An EPI's rows straight into their tiles: a quilt alone needs no
+  // reordering of an EPI renderer's frames.
+  void putEpi(int row, int scanline, const Image& epi) override;
   const Image& quilt() const { return quilt_; }
   // e.g. "quilt_qs8x6a1.33.png" (the _qs{cols}x{rows}a{aspect} convention);
   // aspect: the display's width / height, 0 for the tiles'.
@@ -38,8 +41,27 @@ class QuiltSink final : public FrameSink {
   int tileRows() const { return tileRows_; }
 
  private:
+  // Where view `view` of row `row` starts: its tile's top row and left column.
+  glm::ivec2 tileOrigin(int row, int view) const;
   int width_, height_, views_, rows_, columns_, tileRows_;
   Image quilt_;
+};
+
+// One row of views as an EPI volume (mvr/lenticular.h's
+// ViewLayout::EpiVolume: width x (height x views), scanline s's EPI
+// after s - 1's), what mvr live uploads: an EPI renderer writes into it in
+// place (epiMemory), a view renderer's rows are scattered to their EPIs.
+class EpiVolumeSink final : public FrameSink {
+ public:
+  EpiVolumeSink(int width, int height, int views, PixelType type);
+  void putView(int row, int view, const Image& image) override;
+  void putEpi(int row, int scanline, const Image& epi) override;
+  uint8_t* epiMemory(int row, int scanline, int width, int views, PixelType type) override;
+  const Image& volume() const { return volume_; }
+
+ private:
+  int views_;
+  Image volume_;
 };
 
 // Resamples every row of every view or EPI through a lookup table: output

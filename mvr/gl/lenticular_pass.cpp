@@ -22,9 +22,10 @@ void main() {
 
 }  // namespace
 
-LenticularPass::LenticularPass(const LenticularMap& map) : map_(map), vao_(gl::VertexArray::create()) {
+LenticularPass::LenticularPass(const LenticularMap& map, ViewLayout layout)
+    : map_(map), layout_(layout), vao_(gl::VertexArray::create()) {
   program_ = gl::linkProgram("lenticular", {{GL_VERTEX_SHADER, gl::glslHeader() + gl::kFullScreenTriangleVertex},
-                                            {GL_FRAGMENT_SHADER, gl::glslHeader() + lenticularGlsl() + kMain}});
+                                            {GL_FRAGMENT_SHADER, gl::glslHeader() + lenticularGlsl(layout) + kMain}});
   const LenticularMap& m = map_;
   for (const auto& [name, v] : {std::pair{"invW", m.invW}, {"invH", m.invH}, {"subp", m.subp}, {"tilt", m.tilt},
                                 {"pitch", m.pitch}, {"center", m.center}})
@@ -83,20 +84,39 @@ class SavedState {
 
 }  // namespace
 
-Image LenticularPass::render(const Image& quilt) const {
-  if (!isByteType(quilt.type) || quilt.height != map_.quiltHeight) fail("quilt", "does not match the mapping's layout");
-  const SavedState saved;
-  gl::Texture source(GL_TEXTURE_2D), target(GL_TEXTURE_2D);
-  gl::TextureStorage2D(source.id(), 1, GL_RGBA8, quilt.width, quilt.height);
+namespace {
+
+gl::Texture uploadViews(const Image& views, ViewLayout layout, int layers) {
   gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  gl::TextureSubImage2D(source.id(), 0, 0, 0, quilt.width, quilt.height, GL_RGBA, GL_UNSIGNED_BYTE,
-                        quilt.bytes.data());
+  if (layout == ViewLayout::Quilt) {
+    gl::Texture t(GL_TEXTURE_2D);
+    gl::TextureStorage2D(t.id(), 1, GL_RGBA8, views.width, views.height);
+    gl::TextureSubImage2D(t.id(), 0, 0, 0, views.width, views.height, GL_RGBA, GL_UNSIGNED_BYTE, views.bytes.data());
+    return t;
+  }
+  gl::Texture t(GL_TEXTURE_2D_ARRAY);
+  const int rows = views.height / layers;
+  gl::TextureStorage3D(t.id(), 1, GL_RGBA8, views.width, rows, layers);
+  gl::TextureSubImage3D(t.id(), 0, 0, 0, 0, views.width, rows, layers, GL_RGBA, GL_UNSIGNED_BYTE, views.bytes.data());
+  return t;
+}
+
+}  // namespace
+
+Image LenticularPass::render(const Image& views) const {
+  const bool volume = layout_ == ViewLayout::EpiVolume;
+  if (!isByteType(views.type) || (volume ? views.width != map_.tileW || views.height != map_.tileH * map_.views
+                                         : views.height != map_.quiltHeight))
+    fail("quilt", "does not match the mapping's layout");
+  const SavedState saved;
+  gl::Texture source = uploadViews(views, layout_, map_.tileH);
+  gl::Texture target(GL_TEXTURE_2D);
   gl::TextureStorage2D(target.id(), 1, GL_RGBA8, map_.screenW, map_.screenH);
   gl::Framebuffer fbo = gl::Framebuffer::create();
   gl::NamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, target.id(), 0);
   gl::BindFramebuffer(GL_FRAMEBUFFER, fbo.id());
   draw(source.id());
-  Image out(map_.screenW, map_.screenH, quilt.type);
+  Image out(map_.screenW, map_.screenH, views.type);
   std::vector<uint8_t> raw(out.bytes.size());
   gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
   gl::ReadPixels(0, 0, out.width, out.height, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());

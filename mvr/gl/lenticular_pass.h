@@ -11,18 +11,20 @@ namespace mvr {
 class LenticularPass {
  public:
   // Needs a current GL 4.5 context.
-  explicit LenticularPass(const LenticularMap& map);
+  explicit LenticularPass(const LenticularMap& map, ViewLayout layout = ViewLayout::Quilt);
   const LenticularMap& map() const { return map_; }
-  // The quilt, 8-bit RGBA with rows top first as Image holds them (a
-  // texture of that layout: row 0 the quilt's top row), into the bound
-  // draw framebuffer at (0, 0), screenW x screenH.
-  void draw(GLuint quiltTexture) const;
-  // An 8-bit quilt to the native image, offscreen: the GPU twin of
-  // nativeImage().
-  Image render(const Image& quilt) const;
+  // The views, 8-bit RGBA with rows top first as Image holds them: a quilt
+  // (a 2D texture, row 0 the quilt's top row) or an EPI volume (a 2D array
+  // texture, layer s scanline s's EPI), into the bound draw framebuffer at
+  // (0, 0), screenW x screenH.
+  void draw(GLuint viewsTexture) const;
+  // The views (a quilt, or epiVolumeOf's layout) to the native image,
+  // offscreen: the GPU twin of nativeImage().
+  Image render(const Image& views) const;
 
  private:
   LenticularMap map_;
+  ViewLayout layout_;
   gl::Program program_;
   gl::VertexArray vao_;
 };

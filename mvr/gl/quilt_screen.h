@@ -1,9 +1,10 @@
 #pragma once
-// What mvr live shows (issue 48): a quilt texture, uploaded once a frame,
-// drawn through a lenticular display's mapping (mvr/gl/lenticular_pass.h)
-// at the panel's size, or, without a calibration, the quilt itself scaled
-// to the screen. Into the window's framebuffer, or offscreen where there
-// is no window (headless EGL); read() gives what was drawn.
+// What mvr live shows (issue 48): the views as a texture, uploaded once a
+// frame (a quilt, or an EPI volume: mvr/lenticular.h), drawn through a
+// lenticular display's mapping (mvr/gl/lenticular_pass.h) at the panel's
+// size, or, without a calibration, as the quilt scaled to the screen.
+// Into the window's framebuffer, or offscreen where there is no window
+// (headless EGL); read() gives what was drawn.
 #include <memory>
 #include <optional>
 
@@ -15,10 +16,11 @@ namespace mvr {
 
 class QuiltScreen {
  public:
-  // A screen of width x height showing quilts of quiltWidth x quiltHeight
-  // (8-bit RGBA) through `panel` (its size the screen's), or scaled.
-  // offscreen: draws into a framebuffer of its own instead of the window's.
-  QuiltScreen(int width, int height, int quiltWidth, int quiltHeight, std::optional<LenticularMap> panel,
+  // A screen of width x height showing the views of `grid` (8-bit RGBA,
+  // in `layout`) through `panel` (its size the screen's), or as the quilt
+  // scaled. offscreen: draws into a framebuffer of its own instead of the
+  // window's.
+  QuiltScreen(int width, int height, const QuiltGrid& grid, ViewLayout layout, std::optional<LenticularMap> panel,
               bool offscreen);
   int width() const { return width_; }
   int height() const { return height_; }
@@ -28,7 +30,10 @@ class QuiltScreen {
   Image read() const;   // the screen as drawn, rows top first
 
  private:
-  int width_, height_, quiltWidth_, quiltHeight_;
+  int width_, height_;
+  QuiltGrid grid_;
+  ViewLayout layout_;
+  int uploadWidth_, uploadHeight_;  // the image upload() takes
   gl::Texture quilt_;
   std::unique_ptr<LenticularPass> panel_;
   gl::Program scaled_;

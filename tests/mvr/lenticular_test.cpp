@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include <nlohmann/json.hpp>
@@ -133,6 +134,26 @@ TEST_F(LenticularGl, PassEqualsTheCpuOnEverySubpixel) {
     for (size_t k = 0; k < cpu.bytes.size(); ++k) differ += cpu.bytes[k] != gpu.bytes[k];
     EXPECT_EQ(differ, 0u) << "variant " << variant;
   }
+}
+
+// The views as an EPI volume (what mvr live uploads): the same native
+// image as from the quilt, on every subpixel; and the volume is the
+// quilt's views, scanline by scanline.
+TEST_F(LenticularGl, EpiVolumeGivesTheQuiltsImage) {
+  PanelCalibration c;
+  c.pitch = 52.58737564086914, c.slope = -7.196136474609375, c.center = 0.4321881363063158;
+  c.dpi = 324.0 / 8, c.screenW = 1536 / 8, c.screenH = 2048 / 8, c.invView = true, c.flipImageY = true;
+  const QuiltGrid grid{4, 3, 10, 24, 32};  // two tiles empty
+  Image quilt(4 * 24, 3 * 32, PixelType::Srgb8);
+  std::mt19937 random(11);
+  for (uint8_t& b : quilt.bytes) b = uint8_t(random());
+  const Image volume = epiVolumeOf(quilt, grid);
+  // View 5 (second tile row from the bottom, second column), its scanline 7.
+  EXPECT_EQ(0, std::memcmp(volume.row(7 * 10 + 5), quilt.row(32 + 7) + 4 * 24, volume.rowBytes()));
+  const LenticularMap map = LenticularMap::of(c, grid, quilt.height);
+  const Image cpu = nativeImage(quilt, map);
+  EXPECT_EQ(LenticularPass(map, ViewLayout::EpiVolume).render(volume).bytes, cpu.bytes);
+  EXPECT_EQ(LenticularPass(map, ViewLayout::Quilt).render(quilt).bytes, cpu.bytes);
 }
 
 class Calibration : public test::FileTest {};
