@@ -662,7 +662,7 @@ TEST(Cli, RepeatedOptionsAndTheSummaryLine) {
 TEST(Cli, UnknownCommandsAndUnexpectedArgumentsInTheOrderGiven) {
   Result c = run("lenticular");
   EXPECT_EQ(c.status, 1);
-  EXPECT_EQ(c.err, "mvr: unknown command 'lenticular' (expected info, render, stream, synthesize, view, native, "
+  EXPECT_EQ(c.err, "mvr: unknown command 'lenticular' (expected info, render, stream, synthesize, view, native, live, "
                    "compare or bench)\n");
   const fs::path d = outDir("extras");
   Result e = run("render " + test::assetsDir() + "/cube.obj extra --bogus --out " + d.string());
