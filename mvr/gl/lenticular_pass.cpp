@@ -1,11 +1,10 @@
 #include "mvr/gl/lenticular_pass.h"
 
-#include <cstring>
 #include <iterator>
-#include <vector>
 
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
+#include "mvr/gl/render_target.h"
 
 namespace mvr {
 
@@ -116,12 +115,8 @@ Image LenticularPass::render(const Image& views) const {
   gl::NamedFramebufferTexture(fbo.id(), GL_COLOR_ATTACHMENT0, target.id(), 0);
   gl::BindFramebuffer(GL_FRAMEBUFFER, fbo.id());
   draw(source.id());
-  Image out(map_.screenW, map_.screenH, views.type);
-  std::vector<uint8_t> raw(out.bytes.size());
-  gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl::ReadPixels(0, 0, out.width, out.height, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
-  for (int y = 0; y < out.height; ++y)  // GL's rows run up
-    std::memcpy(out.row(y), raw.data() + size_t(out.height - 1 - y) * out.rowBytes(), out.rowBytes());
+  Image out = readFramebuffer(fbo.id(), map_.screenW, map_.screenH);
+  out.type = views.type;
   return out;
 }
 

@@ -1,10 +1,8 @@
 #include "mvr/gl/quilt_screen.h"
 
-#include <cstring>
-#include <vector>
-
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
+#include "mvr/gl/render_target.h"
 
 namespace mvr {
 
@@ -101,15 +99,6 @@ void QuiltScreen::draw() const {
 
 void QuiltScreen::finish() const { gl::Finish(); }
 
-Image QuiltScreen::read() const {
-  Image out(width_, height_, PixelType::Srgb8);
-  std::vector<uint8_t> raw(out.bytes.size());
-  gl::BindFramebuffer(GL_READ_FRAMEBUFFER, fbo_ ? fbo_.id() : 0);
-  gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
-  gl::ReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
-  for (int y = 0; y < height_; ++y)  // GL's rows run up
-    std::memcpy(out.row(y), raw.data() + size_t(height_ - 1 - y) * out.rowBytes(), out.rowBytes());
-  return out;
-}
+Image QuiltScreen::read() const { return readFramebuffer(fbo_ ? fbo_.id() : 0, width_, height_); }
 
 }  // namespace mvr

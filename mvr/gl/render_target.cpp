@@ -1,5 +1,8 @@
 #include "mvr/gl/render_target.h"
 
+#include <cstring>
+#include <vector>
+
 #include "mvr/error.h"
 
 namespace mvr {
@@ -92,6 +95,17 @@ void readStoredPixels(int y, int width, int h, PixelType type, void* dst) {
   gl::Disable(GL_FRAMEBUFFER_SRGB);
   gl::ReadPixels(0, y, width, h, GL_RGBA, glChannelType(type), dst);
   gl::Enable(GL_FRAMEBUFFER_SRGB);
+}
+
+Image readFramebuffer(GLuint framebuffer, int width, int height) {
+  Image out(width, height, PixelType::Srgb8);
+  std::vector<uint8_t> raw(out.bytes.size());
+  gl::BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+  gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
+  gl::ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
+  for (int y = 0; y < height; ++y)
+    std::memcpy(out.row(y), raw.data() + size_t(height - 1 - y) * out.rowBytes(), out.rowBytes());
+  return out;
 }
 
 void setDepthConvention() {

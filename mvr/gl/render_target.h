@@ -50,6 +50,10 @@ inline GLenum glChannelType(PixelType t) { return isByteType(t) ? GL_UNSIGNED_BY
 // differ on whether a read with it on decodes.
 void readStoredPixels(int y, int width, int h, PixelType type, void* dst);
 
+// A framebuffer's 8-bit pixels (0, 0, width, height) as they are stored,
+// rows top first (GL's run up): what a window or a pass drew.
+Image readFramebuffer(GLuint framebuffer, int width, int height);
+
 // Reversed Z: depth test GREATER, clear to 0, zero-to-one clip depth.
 void setDepthConvention();
 

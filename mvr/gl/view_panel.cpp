@@ -1,9 +1,7 @@
 #include "mvr/gl/view_panel.h"
 
-#include <cstring>
-#include <vector>
-
 #include "mvr/gl/gl_program.h"
+#include "mvr/gl/render_target.h"
 
 namespace mvr::gl {
 
@@ -71,15 +69,6 @@ void ViewPanel::draw(glm::ivec2 marker) {
   Finish();
 }
 
-Image ViewPanel::read() const {
-  Image img(width_, windowRows(), PixelType::Srgb8);
-  BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-  PixelStorei(GL_PACK_ALIGNMENT, 1);
-  std::vector<uint8_t> raw(img.bytes.size());
-  ReadPixels(0, 0, img.width, img.height, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
-  for (int y = 0; y < img.height; ++y)
-    std::memcpy(img.row(y), raw.data() + size_t(img.height - 1 - y) * img.rowBytes(), img.rowBytes());
-  return img;
-}
+Image ViewPanel::read() const { return readFramebuffer(0, width_, windowRows()); }
 
 }  // namespace mvr::gl
