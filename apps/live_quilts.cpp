@@ -1,10 +1,8 @@
 #include "apps/live_quilts.h"
 
-#include "mvr/backends/backend.h"
 #include "mvr/error.h"
 #include "mvr/frames/frame_chain.h"
 #include "mvr/scene_animation.h"
-#include "mvr/scene_pose.h"
 
 namespace mvr::app {
 
@@ -97,9 +95,7 @@ void LiveQuilts::renderOne(const LivePose& pose, EpiVolumeSink& views) {
   // A scene that stands still keeps its pose, and MVR its lighting.
   const bool animated = !p.scene.animations.empty();
   if (!shown_ || shown_->move != pose.move || (animated && shown_->time != pose.time)) {
-    poseGeometry(p.scene, *p.still, pose.move);
-    poseAnimations(p.scene, pose.time, job_.sequence.clip, pose.move);
-    if (!p.renderer->sceneMoved()) p.renderer = makeRenderer(job_.backend, p.scene, job_.type);
+    poseJob(job_, p, pose.time, pose.move);
     shown_ = pose;
   }
   FrameChain chain({.sink = &views}, p.chainSpec(job_));  // in the renderer's order: the sink takes both

@@ -10,6 +10,7 @@
 
 #include "apps/cli.h"
 #include "apps/memory_check.h"
+#include "apps/sequence_flags.h"
 #include "mvr/frames/epi_stream.h"
 #include "mvr/frames/frame_chain.h"
 #include "mvr/error.h"
@@ -23,8 +24,10 @@
 namespace {
 
 // One frame's EPIs from the reader into an image set in `out`.
+// camera: the producer's, from the header, for the manifest.
 size_t consumeFrame(mvr::EpiStreamReader& reader, const std::string& out, const std::string& format,
-                    const mvr::ReorderMemory& reorder, const std::string& from, mvr::EpiStreamReader::Frame& f) {
+                    const mvr::ReorderMemory& reorder, const std::string& from,
+                    const std::optional<mvr::ShearingCamera>& camera, mvr::EpiStreamReader::Frame& f) {
   mvr::Stopwatch watch;
   const mvr::EpiStreamHeader& h = reader.header();
   const mvr::PixelType type = h.pixelType();
@@ -58,20 +61,11 @@ size_t consumeFrame(mvr::EpiStreamReader& reader, const std::string& out, const 
     writer.manifest().info["frame"] = {{"index", f.frame},
                                        {"time_s", h.startTime + (h.frameRate > 0 ? f.frame / h.frameRate : 0.0)}};
   // The producer's camera: the same per-view cameras as its own manifest.
-  if (h.camera) {
-    const mvr::ShearingCamera camera(h.camera->spec, int(h.width), int(h.height), int(h.views), int(h.rows));
-    writer.manifest().setCamera(camera, h.camera->imagePlaneZ);
-  }
+  if (camera) writer.manifest().setCamera(*camera, h.camera->imagePlaneZ);
   writer.commit();
   std::fprintf(stderr, "mvr-consume: %zu EPIs -> %u views in %s%s\n", epis, h.views * h.rows, out.c_str(),
                chain.scratchNote().c_str());
   return epis;
-}
-
-std::string frameFolder(const std::string& out, int k) {
-  char name[32];
-  std::snprintf(name, sizeof name, "/frame_%04d", k);
-  return out + name;
 }
 
 int consume(int argc, char** argv) {
@@ -94,8 +88,8 @@ int consume(int argc, char** argv) {
   mvr::EpiStreamReader reader(in);
   const mvr::EpiStreamHeader& h = reader.header();
   const mvr::PixelType type = h.pixelType();
-  // The camera is checked before any output.
-  if (h.camera) mvr::ShearingCamera(h.camera->spec, int(h.width), int(h.height), int(h.views), int(h.rows));
+  std::optional<mvr::ShearingCamera> camera;  // checked before any output
+  if (h.camera) camera.emplace(h.camera->spec, int(h.width), int(h.height), int(h.views), int(h.rows));
   if (format.empty()) format = mvr::isByteType(type) ? "png" : "exr";
   if (format != "png") mvr::preloadImageCodec();  // loads while the stream arrives
   const size_t viewBytes = h.epiBytes() / h.views * h.height, rowBytes = h.epiBytes() * h.height;
@@ -105,7 +99,8 @@ int consume(int argc, char** argv) {
                                mvr::app::availableMemory(), "give a smaller --memory");
   mvr::EpiStreamReader::Frame f{};
   for (uint32_t k = 0; k < h.frames; ++k)
-    consumeFrame(reader, h.frames > 1 ? frameFolder(out, int(k)) : out, format, reorder, from, f);
+    consumeFrame(reader, h.frames > 1 ? out + "/" + mvr::app::frameFolderName(int(k)) : out, format, reorder, from,
+                 camera, f);
   if (reader.next(f)) mvr::fail("stream", "data after the last frame");  // throws itself first
   return 0;
 }

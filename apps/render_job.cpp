@@ -10,6 +10,7 @@
 #include "mvr/io/image_codec.h"
 #include "mvr/io/scene_io.h"
 #include "mvr/parallel.h"
+#include "mvr/scene_pose.h"
 #include "shading/shading_plan.h"
 
 namespace mvr::app {
@@ -144,6 +145,12 @@ void prepareJob(RenderJob& job, PreparedJob& prepared) {
   start(job, prepared);
   setUp(job, prepared);
   planMemory(job, prepared);
+}
+
+void poseJob(const RenderJob& job, PreparedJob& p, double time, const glm::mat4& move) {
+  poseGeometry(p.scene, *p.still, move);
+  poseAnimations(p.scene, time, job.sequence.clip, move);
+  if (p.renderer && !p.renderer->sceneMoved()) p.renderer = makeRenderer(job.backend, p.scene, job.type);
 }
 
 int runJob(RenderJob& job) {

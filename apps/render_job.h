@@ -111,6 +111,11 @@ int runJob(RenderJob& job);
 // What runJob does before it renders: GL started on this thread, the
 // scene read, the camera framed, the renderer built, the memory planned.
 void prepareJob(RenderJob& job, PreparedJob& prepared);
+// The scene posed from prepared.still: its animations at `time` (the
+// job's clip), then moved by `move` in world space; the renderer follows
+// it (Renderer::sceneMoved) or, a back end that cannot, is built again
+// (none yet: a sequence's frame 0 is posed before the renderer is built).
+void poseJob(const RenderJob& job, PreparedJob& prepared, double time, const glm::mat4& move);
 int writeSet(const RenderJob& job, PreparedJob& prepared);
 // The frames of one stream: a still's one, or a sequence's, each posed
 // by beforeFrame(k) before it is rendered; afterFrame(k) once it is.

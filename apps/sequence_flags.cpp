@@ -1,10 +1,17 @@
 #include "apps/sequence_flags.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "mvr/error.h"
 
 namespace mvr::app {
+
+std::string frameFolderName(int k) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04d", k);
+  return name;
+}
 
 void SequenceFlags::add(CLI::App& app, bool streams) {
   app.add_option("--frames", frames_,

@@ -30,6 +30,10 @@ struct Sequence {
   double degreesAt(int k) const { return turntable * k / frames; }
 };
 
+// Frame k's folder in a sequence's output: frame_0000, frame_0001, ...
+// (mvr render --frames writes them, mvr-consume of a sequence's stream too).
+std::string frameFolderName(int k);
+
 class SequenceFlags {
  public:
   // streams: for mvr stream, whose frames go one after another into the

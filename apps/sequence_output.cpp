@@ -18,7 +18,6 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/render_job.h"
-#include "mvr/backends/backend.h"
 #include "mvr/error.h"
 #include "mvr/io/atomic_file.h"
 #include "mvr/io/image_file.h"
@@ -30,12 +29,6 @@ namespace mvr::app {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string frameName(int k) {
-  char name[32];
-  std::snprintf(name, sizeof name, "frame_%04d", k);
-  return name;
-}
 
 void replaceFolder(const fs::path& from, const fs::path& to) {
   std::error_code ec;
@@ -87,7 +80,7 @@ class VideoOut {
 };
 
 nlohmann::json frameRecord(const RenderJob::Frame& f) {
-  return {{"dir", frameName(f.index)}, {"time_s", f.time}, {"turntable_deg", f.degrees}};
+  return {{"dir", frameFolderName(f.index)}, {"time_s", f.time}, {"turntable_deg", f.degrees}};
 }
 
 // sequence.json, written last: the frames and how they were made.
@@ -111,9 +104,7 @@ void writeSequenceManifest(const RenderJob& job, const PreparedJob& p, const nlo
 // The scene at frame k: from the still, animated to t_k, turned by the
 // frame's angle about the pivot.
 void pose(const RenderJob& job, PreparedJob& p, const RenderJob::Frame& frame, const glm::vec3& pivot) {
-  const glm::mat4 turn = turntable(pivot, frame.degrees);
-  poseGeometry(p.scene, *p.still, turn);
-  poseAnimations(p.scene, frame.time, job.sequence.clip, turn);
+  poseJob(job, p, frame.time, turntable(pivot, frame.degrees));
 }
 
 // The scene and the renderer at each frame in turn: posed from the still
@@ -127,7 +118,6 @@ class FrameMover {
     const bool animated = !p_.scene.animations.empty();
     if (frame.index == posed_ || (!animated && frame.degrees == s.degreesAt(posed_))) return;
     pose(job_, p_, frame, pivot_);
-    if (!p_.renderer->sceneMoved()) p_.renderer = makeRenderer(job_.backend, p_.scene, job_.type);
     posed_ = frame.index;
   }
 
@@ -213,7 +203,7 @@ int writeSequence(const RenderJob& job, PreparedJob& p) {
   }
   for (int k = 0; k < s.frames; ++k) {
     const RenderJob::Frame frame = frameAt(s, k);
-    const fs::path final = fs::path(job.out) / frameName(k);
+    const fs::path final = fs::path(job.out) / frameFolderName(k);
     if (s.resume && fs::exists(final / "manifest.json")) {
       if (video) video->addKept(final);
       if (nativeVideo) nativeVideo->addKept(final);
@@ -224,7 +214,7 @@ int writeSequence(const RenderJob& job, PreparedJob& p) {
     RenderJob one = job;
     one.frame = frame;
     p.startup = startup;
-    const fs::path partial = fs::path(job.out) / ("." + frameName(k) + ".partial");
+    const fs::path partial = fs::path(job.out) / ("." + frameFolderName(k) + ".partial");
     std::error_code ec;
     fs::remove_all(partial, ec);
     one.out = partial.string();

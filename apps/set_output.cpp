@@ -40,12 +40,12 @@ std::unique_ptr<QuiltSink> makeQuilt(const RenderJob& job) {
   return quilt;
 }
 
-// The manifest's record of the job beyond the set's layout.
 // native_{W}x{H}.png, .mp4: the panel's native image and its video.
 std::string nativeName(const RenderJob& job, const std::string& extension) {
   return "native_" + std::to_string(job.native->screenW) + "x" + std::to_string(job.native->screenH) + "." + extension;
 }
 
+// The manifest's record of the job beyond the set's layout.
 void describe(const RenderJob& job, const PreparedJob& p, const SetRun& run, Manifest& manifest) {
   nlohmann::json& m = manifest.info;
   if (job.synthesize()) {

@@ -171,14 +171,14 @@ void poseInstance(const AnimatedInstance& inst, const NodePose& pose, const std:
       glm::vec3 p, n;
       morphed(inst, weights, v, p, n);
       glm::mat4 m = rigid;
-      glm::mat3 normalMatrix = rigidNormals;
       if (skinned) {
         const glm::u16vec4 j = inst.joints[v];
         const glm::vec4 w = inst.jointWeights[v];
         m = after * (w.x * joints[j.x] + w.y * joints[j.y] + w.z * joints[j.z] + w.w * joints[j.w]);
-        normalMatrix = glm::transpose(glm::inverse(glm::mat3(m)));
       }
       scene.positions[inst.first + v] = glm::vec3(m * glm::vec4(p, 1.0f));
+      if (inst.flat) continue;  // its normals come from the posed triangles, below
+      const glm::mat3 normalMatrix = skinned ? glm::transpose(glm::inverse(glm::mat3(m))) : rigidNormals;
       scene.normals[inst.first + v] = unitOr(normalMatrix * n, glm::vec3(0, 0, 1));
     }
   };

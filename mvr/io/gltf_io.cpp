@@ -667,8 +667,6 @@ class GltfReader {
     size_t jointCount = 0;
 
     void add(uint32_t k, AnimatedInstance& inst) const {
-      inst.morphPositions.resize(positions.size());
-      inst.morphNormals.resize(positions.size());
       for (size_t i = 0; i < positions.size(); ++i) {
         inst.morphPositions[i].push_back(positions[i] ? glm::vec3(positions[i]->at(k)) : glm::vec3(0.0f));
         if (normals[i]) inst.morphNormals[i].push_back(glm::vec3(normals[i]->at(k)));
@@ -702,6 +700,8 @@ class GltfReader {
       d.positions.push_back(accessor("POSITION"));
       d.normals.push_back(hasNormals ? accessor("NORMAL") : nullptr);
     }
+    instance_->morphPositions.resize(d.positions.size());
+    instance_->morphNormals.resize(d.positions.size());
     const int skin = model_.nodes[size_t(currentNode_)].skin;
     if (skin < 0 || size_t(skin) >= model_.skins.size() || !p.attributes.count("JOINTS_0")) return d;
     if (!p.attributes.count("WEIGHTS_0")) fail(path_, "JOINTS_0 without WEIGHTS_0");

@@ -21,11 +21,16 @@ void expectSameSet(const std::filesystem::path& a, const std::filesystem::path& 
   for (const auto& d : diffs) EXPECT_EQ(d.identicalFraction, 1.0) << d.name;
 }
 
+// `mvr stream ARGS --to -` piped into mvr-consume writing `got`.
+test::CliResult streamToConsumer(const std::string& args, const std::filesystem::path& got) {
+  return test::shell(test::mvrBinary() + " stream" + args + " --to - | " + test::consumeBinary() + " --from - --out " +
+                     got.string());
+}
+
 TEST(Stream, PipeProducerToConsumer) {
   auto ref = test::freshDir("stream_ref"), got = test::freshDir("stream_pipe");
   ASSERT_EQ(test::runMvr("render" + kArgs + " --out " + ref.string()).status, 0);
-  auto r = test::shell(test::mvrBinary() + " stream" + kArgs + " --queue 2 --to - | " +
-                       test::consumeBinary() + " --from - --out " + got.string());
+  auto r = streamToConsumer(kArgs + " --queue 2", got);
   ASSERT_EQ(r.status, 0) << r.err;
   expectSameSet(ref, got);
 }
@@ -36,8 +41,7 @@ TEST(Stream, ConsumerManifestHasTheRenderCameras) {
   auto ref = test::freshDir("stream_cam_ref"), got = test::freshDir("stream_cam_got");
   const std::string args = kArgs + " --cone 30 --focal center";
   ASSERT_EQ(test::runMvr("render" + args + " --out " + ref.string()).status, 0);
-  auto r = test::shell(test::mvrBinary() + " stream" + args + " --to - | " + test::consumeBinary() +
-                       " --from - --out " + got.string());
+  auto r = streamToConsumer(args, got);
   ASSERT_EQ(r.status, 0) << r.err;
   const auto a = nlohmann::json::parse(std::ifstream(ref / "manifest.json"));
   const auto b = nlohmann::json::parse(std::ifstream(got / "manifest.json"));
@@ -56,8 +60,7 @@ TEST(Stream, SequenceFramesEqualTheRenderedSequence) {
   auto ref = test::freshDir("stream_seq_ref"), got = test::freshDir("stream_seq_got");
   const std::string args = kArgs + " --frames 3 --fps 4 --turntable 60";
   ASSERT_EQ(test::runMvr("render" + args + " --out " + ref.string()).status, 0);
-  auto r = test::shell(test::mvrBinary() + " stream" + args + " --to - | " + test::consumeBinary() +
-                       " --from - --out " + got.string());
+  auto r = streamToConsumer(args, got);
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* frame : {"frame_0000", "frame_0001", "frame_0002"}) expectSameSet(ref / frame, got / frame);
   EXPECT_FALSE(std::filesystem::exists(got / "frame_0003"));
