@@ -1,7 +1,9 @@
-// mvr live (issue 48). The scene is rendered into a quilt every frame on
-// a render thread of its own (apps/live_quilts.h: the CPU back ends upload
-// the finished quilt once a frame, and rendering frame k + 1 overlaps
-// uploading and showing frame k), and shown through the display's panel
+// mvr live (issue 48). The scene is rendered into a quilt every frame
+// (apps/live_quilts.h): on the GPU, in the screen's context, straight
+// into the texture it shows; on the CPU (llvmpipe), on a render thread of
+// its own that hands over a finished quilt once a frame, so that
+// rendering frame k + 1 overlaps uploading and showing frame k. It is
+// shown through the display's panel
 // mapping (mvr/gl/quilt_screen.h): full screen on the monitor of the
 // calibration's size, else in a window; without a calibration, the quilt
 // itself. A quilt file is shown as it is. Headless (--frames N), the
@@ -29,6 +31,8 @@
 #include "apps/live_quilts.h"
 #include "apps/quilt_layout.h"
 #include "mvr/error.h"
+#include "mvr/gl/epi_layers.h"
+#include "mvr/gl/gl_api.h"
 #include "mvr/gl/gl_context.h"
 #include "mvr/gl/glfw_window.h"
 #include "mvr/gl/quilt_screen.h"
@@ -129,7 +133,7 @@ class FrameClock {
 };
 
 struct LiveFlags {
-  std::string source, display = "portrait", calibration, screenshot, clip;
+  std::string source, display = "portrait", calibration, screenshot, clip, path = "auto";
   std::optional<int> frames;
   std::pair<int, int> size{0, 0};  // 0 x 0: the preset's tile
   double turntable = 0.0;  // degrees a second
@@ -157,6 +161,12 @@ struct LiveFlags {
         ->type_name("N");
     app.add_option("--screenshot", screenshot, "save the last frame as shown (with --frames; alone, after one)")
         ->type_name("FILE");
+    app.add_option("--path", path,
+                   "where the views are rendered: gpu (in the screen's GL context, into the texture it shows; the "
+                   "GPU spans read nothing back), cpu (on a thread and GL context of their own, uploaded once a "
+                   "frame) or auto (default: cpu where GL renders on the CPU, llvmpipe; else gpu)")
+        ->check(CLI::IsMember({"auto", "gpu", "cpu"}))
+        ->type_name("auto|gpu|cpu");
     backend.add(app);
     camera.add(app);
   }
@@ -185,7 +195,7 @@ RenderJob liveJob(const LiveFlags& f, QuiltLayout display) {
   job.width = display.tileWidth(), job.height = display.tileHeight();
   job.type = PixelType::Srgb8;
   job.format = "png", job.order = "view";
-  job.platform = GlPlatform::Egl;  // the render thread's own context, beside the window's
+  job.platform = GlPlatform::Egl;  // the CPU path's render thread's own context, beside the window's
   job.sequence.clip = f.clip;
   return job;
 }
@@ -230,9 +240,8 @@ int runLive(int argc, char** argv) {
 
   // The quilt: a file's, or the renderer's.
   std::optional<Image> still;
-  std::unique_ptr<LiveQuilts> quilts;
+  std::optional<RenderJob> job;
   QuiltGrid grid;
-  std::string label = "quilt";
   if (isQuiltFile(f.source)) {
     still = readImage(f.source);
     if (!isByteType(still->type)) fail(f.source, "live shows 8-bit quilts");
@@ -241,9 +250,8 @@ int runLive(int argc, char** argv) {
   } else {
     const QuiltLayout display = parseQuilt(f.display);
     if (display.columns == 0) fail("--display", "give a display preset or COLSxROWS, not auto");
-    quilts = std::make_unique<LiveQuilts>(liveJob(f, display));
-    grid = {quilts->columns(), quilts->tileRows(), quilts->job().views, quilts->job().width, quilts->job().height};
-    label = quilts->label();
+    job = liveJob(f, display);
+    grid = liveGrid(*job);
   }
   const int quiltWidth = grid.columns * grid.tileWidth, quiltHeight = grid.rows * grid.tileHeight;
   // The screen: the panel's, or the quilt scaled to fit 1024 pixels.
@@ -254,8 +262,18 @@ int runLive(int argc, char** argv) {
   if (surface.window) glfwSwapInterval(headless ? 0 : 1);
   std::optional<LenticularMap> map;
   if (panel) map = LenticularMap::of(*panel, grid, quiltHeight);
-  QuiltScreen screen(width, height, grid, quilts ? ViewLayout::EpiVolume : ViewLayout::Quilt, map,
+  QuiltScreen screen(width, height, grid, job ? ViewLayout::EpiVolume : ViewLayout::Quilt, map,
                      surface.offscreen());
+  // The renderer: in the screen's context on a GPU, into its texture.
+  std::unique_ptr<LiveQuilts> quilts;
+  std::optional<EpiLayersSink> layers;
+  std::string label = "quilt";
+  if (job) {
+    if (f.path == "gpu" || (f.path == "auto" && !gl::rendersOnCpu()))
+      layers.emplace(screen.viewsTexture(), grid.tileWidth, grid.views, grid.tileHeight);
+    quilts = std::make_unique<LiveQuilts>(std::move(*job), layers ? &*layers : nullptr);
+    label = quilts->label();
+  }
 
   Controls controls;
   GLFWwindow* w = surface.window ? surface.window->handle() : nullptr;
@@ -304,7 +322,7 @@ int runLive(int argc, char** argv) {
         controls.onCursor(w, x, y);
       }
     }
-    const Image* quilt = quilts ? &quilts->take() : nullptr;  // frame k
+    const Image* quilt = quilts ? quilts->take() : nullptr;  // frame k (on the GPU path, drawn into the screen)
     const Stopwatch show;
     if (quilts && (frames == 0 || k + 1 < frames)) quilts->request(poseOf(k + 1));
     if (quilt) screen.upload(*quilt);
@@ -330,11 +348,24 @@ int runLive(int argc, char** argv) {
   if (!f.screenshot.empty()) writeImage(screen.read(), f.screenshot);
   std::printf("mvr: live: %d frames, %.1f fps (median %.1f ms, p99 %.1f ms)\n", clock.frames(), clock.fps(),
               clock.quantileMs(0.5), clock.quantileMs(0.99));
-  // Where a frame's time goes: the two threads overlap.
+  // Where a frame's time goes: on the CPU path the two threads overlap;
+  // on the GPU path, a frame's commands, and whether any EPI came back.
   const int n = std::max(clock.frames(), 1);
-  std::fprintf(stderr, "mvr: live: %s; a frame: rendering %.1f ms (its own thread), showing %.1f ms (upload, %s, swap)\n",
-               label.c_str(), quilts ? 1e3 * quilts->renderSeconds() / n : 0.0, 1e3 * showSeconds / n,
-               panel ? "panel mapping" : "quilt scaled");
+  const std::string where = !layers ? "its own thread"
+                            : layers->uploads() == 0 ? "the screen's context, EPIs written on the GPU, none read back"
+                                                     : "the screen's context, read back and uploaded";
+  std::fprintf(stderr, "mvr: live: %s; a frame: rendering %.1f ms (%s), showing %.1f ms (%s%s, swap)\n",
+               label.c_str(), quilts ? 1e3 * quilts->renderSeconds() / n : 0.0, where.c_str(), 1e3 * showSeconds / n,
+               layers ? "" : "upload, ", panel ? "panel mapping" : "quilt scaled");
+  if (quilts) {
+    std::string stages;
+    for (const auto& [stage, seconds] : quilts->stages().seconds) {
+      char ms[64];
+      std::snprintf(ms, sizeof ms, "%s%s %.2f ms", stages.empty() ? "" : ", ", stage.c_str(), 1e3 * seconds / n);
+      stages += ms;
+    }
+    std::fprintf(stderr, "mvr: live: rendering's stages a frame: %s\n", stages.c_str());
+  }
   return 0;
 }
 

@@ -51,7 +51,7 @@ void start(RenderJob& job, PreparedJob& p) {
     return std::pair{std::move(loaded), watch.seconds()};
   });
   try {
-    p.context = GlContext::create(job.platform);
+    if (!job.currentGl) p.context = GlContext::create(job.platform);
   } catch (...) {
     (void)loading.get();  // input problems first: the scene's error, if it has one
     throw;

@@ -47,6 +47,7 @@ struct RenderJob {
   bool linear = false;
   PixelType type = PixelType::Srgb8;
   GlPlatform platform = GlPlatform::Egl;
+  bool currentGl = false;  // render in the calling thread's current GL context (mvr live's screen); none is made
   bool depth = false, quiltOnly = false;
   std::optional<QuiltLayout> quilt;
   std::optional<PanelCalibration> native;  // --native: the panel the quilt is mapped to

@@ -36,6 +36,13 @@ class FrameSink {
   virtual uint8_t* epiMemory(int /*row*/, int /*scanline*/, int /*width*/, int /*views*/, PixelType) {
     return nullptr;
   }
+  // A GL texture of the current context where the producer may write
+  // every EPI of row `row` itself, on the GPU: a 2D array of width x views
+  // RGBA8 layers, layer s scanline s's EPI (row v view v's). Once the
+  // producer's render() returns, its GL commands have written every EPI
+  // there (nothing handed on) and made them visible to texture fetches.
+  // 0 (the default): none; and for a type that is not 8-bit.
+  virtual unsigned epiTexture(int /*row*/, int /*width*/, int /*views*/, PixelType) { return 0; }
   virtual void finish() {}
 };
 

@@ -13,7 +13,9 @@
 // slice in table order that reaches it (atomic min of the slice's index),
 // which is the CPU's "strictly nearer replaces" rule. Last, each pixel's
 // winner is shaded once. Tiles are written to a storage buffer in the
-// stacked-EPI layout and copied into the readback ring.
+// stacked-EPI layout and copied into the readback ring; or, where the sink
+// lends a texture (FrameSink::epiTexture: mvr live's screen), straight
+// into its layers, and nothing is read back.
 #include <algorithm>
 #include <array>
 #include <optional>
@@ -76,7 +78,10 @@ void main() {
 const char* const kSpans = R"(
 layout(local_size_x = 256) in;
 layout(std430, binding = 5) readonly buffer Offsets { uint uOffsets[]; };
-#ifdef FLOAT_OUT
+#if defined(IMAGE_OUT)
+// The sink's RGBA8 layers, bound as 32-bit words: the bytes as packed.
+layout(r32ui, binding = 0) writeonly uniform uimage2DArray uEpiLayers;
+#elif defined(FLOAT_OUT)
 layout(std430, binding = 6) writeonly buffer Epis { vec4 uEpis[]; };
 #else
 layout(std430, binding = 6) writeonly buffer Epis { uint uEpis[]; };
@@ -224,8 +229,12 @@ void main() {
 #ifdef FLOAT_OUT
     uEpis[dst] = c;
 #else
-    uEpis[dst] = winner == 0xFFFFFFFFu ? 0u
-                 : byteOf(c.r) | byteOf(c.g) << 8 | byteOf(c.b) << 16 | 255u << 24;
+    uint word = winner == 0xFFFFFFFFu ? 0u : byteOf(c.r) | byteOf(c.g) << 8 | byteOf(c.b) << 16 | 255u << 24;
+#ifdef IMAGE_OUT
+    imageStore(uEpiLayers, ivec3(x, i, int(j)), uvec4(word));
+#else
+    uEpis[dst] = word;
+#endif
 #endif
   }
 }
@@ -254,14 +263,23 @@ class GpuSpanRasterizer final : public EpiRasterizer {
     if (shading.sliceVectors) defines += std::string("#define VECTORS\n") + shading::glslTextureVector();
     const std::string library = PstGeometry::glslLibrary(recordStride_) + kTrack;
     tracks_ = gl::linkProgram("epi-span-tracks", {{GL_COMPUTE_SHADER, gl::glslHeader() + library + kTrackPass}});
-    program_ = gl::linkProgram("epi-spans", {{GL_COMPUTE_SHADER, gl::glslHeader() + defines + library + kSpans}});
-    if (type == PixelType::Srgb8) {
-      const auto& upper = detail::srgb8Table().upper;
-      gl::setUniform(program_, "uSrgbUpper", std::span<const float>(upper.data(), 255));
-    }
+    spansSource_ = defines + library + kSpans;
+    program_ = linkSpans(false);
   }
 
   bool readsDeviceTable() const override { return true; }
+
+  // The tile pass, writing to the storage buffer or (toLayers) a texture's layers.
+  gl::Program linkSpans(bool toLayers) const {
+    gl::Program p = gl::linkProgram(toLayers ? "epi-spans-to-layers" : "epi-spans",
+                                    {{GL_COMPUTE_SHADER, gl::glslHeader() + (toLayers ? "#define IMAGE_OUT\n" : "") +
+                                                             spansSource_}});
+    if (type_ == PixelType::Srgb8) {
+      const auto& upper = detail::srgb8Table().upper;
+      gl::setUniform(p, "uSrgbUpper", std::span<const float>(upper.data(), 255));
+    }
+    return p;
+  }
 
   void rasterize(const ExtremeVertices& v, const SliceTableView& slices, const ShearingCamera& cam, int row,
                  FrameSink& sink, RenderStats& stats) override {
@@ -299,9 +317,16 @@ class GpuSpanRasterizer final : public EpiRasterizer {
     const IndexRange lines = cam.share().scanlines;
     const int batch = int(std::clamp<size_t>(gBatchBytes / epiBytes, 1, size_t(std::min(lines.size(), 65535))));
     const Tile tile = tileFor(w);
+    stats.counters["epis_per_dispatch"] = batch;
+    stats.counters["tile_columns"] = tile.columns;
+    stats.counters["tile_rows"] = tile.rows;
+    if (const GLuint layers = isByteType(type_) ? sink.epiTexture(row, w, n, type_) : 0) {
+      fillLayers(v, table, layers, lines, batch, n, w, tile, stats);
+      return;
+    }
     ReadbackRing ring(size_t(batch) * epiBytes);
     ImagePool pool;
-    bind(v, table, size_t(batch) * epiBytes, n, w, tile);
+    bind(program_, v, table, size_t(batch) * epiBytes, n, w, tile);
     int k = 0;
     for (int first = lines.begin; first < lines.end; first += batch, ++k) {
       const int count = std::min(batch, lines.end - first);
@@ -309,7 +334,8 @@ class GpuSpanRasterizer final : public EpiRasterizer {
       {
         ScopedStage s(stats.times, "raster");
         gl::GpuClock::mark("raster");
-        dispatch(table, first, count, out, n, w, tile);
+        out.bindStorage(kEpis);
+        dispatch(program_, table, first, count, n, w, tile);
       }
       const EpiBatch epis(sink, pool, row, {first, first + count}, w, n, type_);
       {
@@ -322,14 +348,31 @@ class GpuSpanRasterizer final : public EpiRasterizer {
     ring.drain();
     stats.times.add("gpu_wait", ring.waitSeconds());
     gl::checkError("GPU spans");
-    stats.counters["epis_per_dispatch"] = batch;
-    stats.counters["tile_columns"] = tile.columns;
-    stats.counters["tile_rows"] = tile.rows;
+  }
+
+  // The sink's texture filled in place: the same dispatches, their tiles
+  // stored into its layers; nothing waits for the GPU.
+  void fillLayers(const GpuVertices& v, const GpuSliceTable& table, GLuint layers, IndexRange lines, int batch,
+                  int n, int w, const Tile& tile, RenderStats& stats) {
+    if (!layerProgram_) layerProgram_ = linkSpans(true);
+    bind(layerProgram_, v, table, 0, n, w, tile);
+    gl::BindImageTexture(kLayerUnit, layers, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
+    {
+      ScopedStage s(stats.times, "raster");
+      gl::GpuClock::mark("raster");
+      for (int first = lines.begin; first < lines.end; first += batch)
+        dispatch(layerProgram_, table, first, std::min(batch, lines.end - first), n, w, tile);
+    }
+    gl::MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    gl::BindImageTexture(kLayerUnit, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32UI);
+    gl::checkError("GPU spans into the sink's texture");
+    stats.notes["epis"] = "texture";
   }
 
   // Buffers sized for this set, and everything that is the same for each
   // of its batches bound.
-  void bind(const GpuVertices& v, const GpuSliceTable& table, size_t batchBytes, int n, int w, const Tile& tile) {
+  void bind(const gl::Program& spans, const GpuVertices& v, const GpuSliceTable& table, size_t batchBytes, int n,
+            int w, const Tile& tile) {
     for (gl::Buffer& b : outputs_)
       if (outputBytes_ < batchBytes) b = gl::makeBuffer<std::byte>(nullptr, batchBytes);
     outputBytes_ = std::max(outputBytes_, batchBytes);
@@ -340,18 +383,18 @@ class GpuSpanRasterizer final : public EpiRasterizer {
     trackBuffer_.bindStorage(kTracks);
     if (v.hasVectors()) bindVectors(v);
     gl::setUniform(tracks_, "uViews", float(n));
-    gl::setUniform(program_, "uViews", float(n));
-    gl::setUniform(program_, "uWidth", w);
-    gl::setUniform(program_, "uTileColumns", tile.columns);
-    gl::setUniform(program_, "uTileRows", tile.rows);
+    gl::setUniform(spans, "uViews", float(n));
+    gl::setUniform(spans, "uWidth", w);
+    gl::setUniform(spans, "uTileColumns", tile.columns);
+    gl::setUniform(spans, "uTileRows", tile.rows);
     v.records.bindStorage(PstGeometry::kRecords);
     v.triangles.bindStorage(PstGeometry::kTriangles);
     table.bind(PstGeometry::kSlices, PstGeometry::kOffsets);
   }
 
   // Scanlines [first, first + count): their slices' tracks, then their
-  // EPIs' tiles into `out`.
-  void dispatch(const GpuSliceTable& table, int first, int count, const gl::Buffer& out, int n, int w,
+  // EPIs' tiles, by `spans` (into the bound output).
+  void dispatch(const gl::Program& spans, const GpuSliceTable& table, int first, int count, int n, int w,
                 const Tile& tile) {
     const uint32_t firstSlice = table.offsets()[size_t(first)];
     const uint32_t slices = table.offsets()[size_t(first + count)] - firstSlice;
@@ -361,9 +404,8 @@ class GpuSpanRasterizer final : public EpiRasterizer {
       gl::setUniform(tracks_, "uCount", GLuint(slices));
       gl::dispatch((slices + 63) / 64, 1, 1);
     }
-    program_.use();
-    gl::setUniform(program_, "uFirstScanline", first);
-    out.bindStorage(kEpis);
+    spans.use();
+    gl::setUniform(spans, "uFirstScanline", first);
     gl::DispatchCompute(GLuint((w + tile.columns - 1) / tile.columns), GLuint((n + tile.rows - 1) / tile.rows),
                         GLuint(count));
   }
@@ -380,12 +422,13 @@ class GpuSpanRasterizer final : public EpiRasterizer {
     v.vectors.bindStorage(kVectors);
   }
 
-  static constexpr GLuint kEpis = 6, kTracks = 7, kVectors = 8, kTexelUnit = 3;
+  static constexpr GLuint kEpis = 6, kTracks = 7, kVectors = 8, kTexelUnit = 3, kLayerUnit = 0;
   static constexpr size_t kTrackBytes = 48;  // kTrack's struct, std430
   PixelType type_;
   int recordStride_ = GpuVertices::kRecordHead;
   int tile_ = 0;  // pixels per work group's tile
-  gl::Program tracks_, program_;
+  std::string spansSource_;  // the tile pass's GLSL, after the header
+  gl::Program tracks_, program_, layerProgram_;  // the tile pass into buffers, and into layers (made when asked)
   gl::Buffer trackBuffer_;
   gl::Texture texels_;  // over the vertices' texel buffer
   size_t trackCapacity_ = 0;

@@ -25,6 +25,9 @@ class QuiltScreen {
   int width() const { return width_; }
   int height() const { return height_; }
   void upload(const Image& quilt);
+  // The texture upload() fills: a renderer in this context may write it
+  // instead (an EPI volume's layers: mvr/gl/epi_layers.h).
+  GLuint viewsTexture() const { return quilt_.id(); }
   void draw() const;
   void finish() const;  // waits for the GL to finish drawing
   Image read() const;   // the screen as drawn, rows top first

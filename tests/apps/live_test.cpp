@@ -95,6 +95,33 @@ TEST(Live, WindowShowsTheTurningScene) {
   EXPECT_LT(still.psnr, turned.psnr - 5.0);
 }
 
+// The GPU path (the renderer in the screen's context, into its texture)
+// shows what the CPU path (a render thread, an EPI volume uploaded) does,
+// byte for byte, while the scene turns: the GPU spans write the texture's
+// layers and read nothing back; a back end that hands EPIs or views on has
+// them uploaded into the layers instead.
+TEST(Live, GpuPathShowsWhatTheCpuPathShows) {
+  const fs::path dir = test::freshDir("live_paths");
+  const fs::path calibration = writeCalibration(dir);
+  struct Case {
+    std::string backend, said;
+  };
+  for (const Case& c : {Case{"--pst spans", "EPIs written on the GPU, none read back"},
+                        Case{"--pst cpu", "read back and uploaded"}, Case{"--backend svr", "read back and uploaded"}}) {
+    std::string shots[2];
+    for (int gpu = 0; gpu < 2; ++gpu) {
+      shots[gpu] = (dir / ("shot" + std::to_string(gpu) + ".png")).string();
+      const test::CliResult r =
+          test::shell("env -u DISPLAY " + test::mvrBinary() + " live " + kScene + " " + c.backend +
+                      " --display 2x2 --size 48x32 --calibration " + calibration.string() + " --turntable 90 " +
+                      "--frames 3 --path " + (gpu ? "gpu" : "cpu") + " --screenshot " + shots[gpu]);
+      ASSERT_EQ(r.status, 0) << c.backend << ": " << r.err;
+      EXPECT_NE(r.err.find(gpu ? c.said : "its own thread"), std::string::npos) << c.backend << ": " << r.err;
+    }
+    EXPECT_EQ(readImage(shots[1]).bytes, readImage(shots[0]).bytes) << c.backend;
+  }
+}
+
 TEST(Live, BadInputsAreOneLineErrors) {
   const fs::path dir = test::freshDir("live_bad");
   fs::create_directories(dir);
@@ -105,6 +132,7 @@ TEST(Live, BadInputsAreOneLineErrors) {
   for (const Case& c : {Case{kScene + " --calibration " + (dir / "flat.json").string() + " --frames 1",
                              "flat.json: calibration slope must not be 0"},
                         Case{kScene + " --display 2x2 --frames 1", "--display: a COLSxROWS grid needs --size"},
+                        Case{kScene + " --path fast --frames 1", "--path: fast not in {auto,gpu,cpu}"},
                         Case{kScene + " --display 2x2 --size 48x32", "glfw: cannot initialise: no display"}}) {
     const test::CliResult r = test::shell("env -u DISPLAY " + test::mvrBinary() + " live " + c.args);
     EXPECT_EQ(r.status, 1) << c.args;
