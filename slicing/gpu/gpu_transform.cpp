@@ -43,13 +43,18 @@ void main() {
 
 }  // namespace
 
-GpuExtremeTransform::GpuExtremeTransform(const Scene& scene, const shading::VertexColors& colors,
-                                         std::span<const float> extras, int extraCount)
-    : extraCount_(extraCount) {
+namespace {
+
+void checkSizes(const Scene& scene, const shading::VertexColors& colors, std::span<const float> extras,
+                int extraCount) {
   const size_t n = scene.vertexCount();
   if (colors.front.size() != n || colors.back.size() != n || extras.size() != n * size_t(extraCount))
     fail("GpuExtremeTransform", "colours or extras do not match the scene's vertices");
-  program_ = gl::linkProgram("extreme-transform", {{GL_COMPUTE_SHADER, gl::glslHeader() + kTransform}});
+}
+
+// Per vertex: the lit front and back colours, then the extras.
+std::vector<float> packShading(const shading::VertexColors& colors, std::span<const float> extras, int extraCount) {
+  const size_t n = colors.front.size();
   std::vector<float> shading(n * size_t(6 + extraCount));
   for (size_t i = 0; i < n; ++i) {
     float* s = shading.data() + i * (6 + extraCount);
@@ -58,8 +63,21 @@ GpuExtremeTransform::GpuExtremeTransform(const Scene& scene, const shading::Vert
     std::copy_n(head, 6, s);
     std::copy_n(extras.data() + i * extraCount, extraCount, s + 6);
   }
-  positions_ = gl::makeBuffer(reinterpret_cast<const float*>(scene.positions.data()), 3 * n);
-  shading_ = gl::makeBuffer(shading.data(), shading.size());
+  return shading;
+}
+
+}  // namespace
+
+GpuExtremeTransform::GpuExtremeTransform(const Scene& scene, const shading::VertexColors& colors,
+                                         std::span<const float> extras, int extraCount)
+    : extraCount_(extraCount) {
+  checkSizes(scene, colors, extras, extraCount);
+  const size_t n = scene.vertexCount();
+  program_ = gl::linkProgram("extreme-transform", {{GL_COMPUTE_SHADER, gl::glslHeader() + kTransform}});
+  const std::vector<float> shading = packShading(colors, extras, extraCount);
+  // Written again when the scene moves (moved()).
+  positions_ = gl::makeBuffer(reinterpret_cast<const float*>(scene.positions.data()), 3 * n, GL_DYNAMIC_STORAGE_BIT);
+  shading_ = gl::makeBuffer(shading.data(), shading.size(), GL_DYNAMIC_STORAGE_BIT);
   y_ = gl::makeBuffer<float>(nullptr, n);
   std::vector<glm::uvec4> triangles(scene.triangleCount());
   for (size_t t = 0; t < triangles.size(); ++t) {
@@ -72,6 +90,17 @@ GpuExtremeTransform::GpuExtremeTransform(const Scene& scene, const shading::Vert
   vertices_.records = gl::makeBuffer<float>(nullptr, n * size_t(vertices_.recordStride));
   vertices_.triangles = gl::makeBuffer(triangles.data(), triangles.size());
   gl::checkError("uploading the scene for the GPU transform");
+}
+
+void GpuExtremeTransform::moved(const Scene& scene, const shading::VertexColors& colors,
+                                std::span<const float> extras) {
+  checkSizes(scene, colors, extras, extraCount_);
+  if (scene.vertexCount() != vertices_.vertexCount || scene.triangleCount() != vertices_.triangleCount)
+    fail("GpuExtremeTransform", "the moved scene has other vertices or triangles");
+  const std::vector<float> shading = packShading(colors, extras, extraCount_);
+  positions_.write(0, scene.positions.size() * sizeof(scene.positions[0]), scene.positions.data());
+  shading_.write(0, shading.size() * sizeof(float), shading.data());
+  gl::checkError("uploading the moved scene for the GPU transform");
 }
 
 bool GpuExtremeTransform::needsNoClipping(const Bounds& b, const ShearingCamera& cam) {

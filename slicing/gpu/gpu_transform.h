@@ -28,6 +28,11 @@ class GpuExtremeTransform {
   GpuExtremeTransform(const Scene& scene, const shading::VertexColors& colors, std::span<const float> extras,
                       int extraCount);
 
+  // The same scene moved in place (mvr/scene_pose.h: new positions and
+  // lit colours, the same vertices and triangles): those two uploaded
+  // again into the buffers they had; program and triangles stay.
+  void moved(const Scene& scene, const shading::VertexColors& colors, std::span<const float> extras);
+
   // Whether every vertex lies between cam's near and far planes.
   static bool needsNoClipping(const Bounds& sceneBounds, const ShearingCamera& cam);
 

@@ -36,14 +36,14 @@ TEST(Turntable, PosesGeometryAndLeavesLightsInTheWorld) {
   EXPECT_EQ(posed.normals, still.normals);
 }
 
-class SceneMovedTest : public ::testing::TestWithParam<const char*> {};
-
-TEST_P(SceneMovedTest, FollowingEqualsANewRenderer) {
+// Frame 0 rendered, the scene turned, then the follower against a new
+// renderer of the posed scene.
+void expectFollowingEqualsANewRenderer(const std::string& spec, const std::string& asset) {
   test::sharedContext();
-  const Scene still = loadScene(test::assetPath("textured.json"));
+  const Scene still = loadScene(test::assetPath(asset));
   Scene scene = still;
   const ShearingCamera cam(cameraFor(still, 64, 48), 64, 48, 5);
-  const BackendOptions backend = parseBackendSpec(GetParam());
+  const BackendOptions backend = parseBackendSpec(spec);
   auto follower = makeRenderer(backend, scene, PixelType::U8);
   (void)test::renderViews(*follower, cam);  // frame 0, so that whatever it derived is stale
   poseGeometry(scene, still, turntable(still.bounds().center(), 70.0));
@@ -55,7 +55,17 @@ TEST_P(SceneMovedTest, FollowingEqualsANewRenderer) {
   ASSERT_TRUE(follows);
   auto fresh = makeRenderer(backend, scene, PixelType::U8);
   const test::SetDifference d = test::compareViews(test::renderViews(*fresh, cam), test::renderViews(*follower, cam));
-  EXPECT_EQ(d.minIdentical, 1.0) << GetParam();
+  EXPECT_EQ(d.minIdentical, 1.0) << spec;
+}
+
+class SceneMovedTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(SceneMovedTest, FollowingEqualsANewRenderer) { expectFollowingEqualsANewRenderer(GetParam(), "textured.json"); }
+
+// The GPU spans take a diffuse scene; their GPU transform's buffers are
+// written again, not made anew.
+TEST(SceneMoved, GpuSpansFollowingEqualsANewRenderer) {
+  expectFollowingEqualsANewRenderer("mvr:spans", "default.json");
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryBackend, SceneMovedTest,

@@ -26,10 +26,11 @@ class MvrRenderer final : public Renderer {
   std::string name() const override { return "mvr"; }
 
   // Per frame of a sequence only the lighting, the extreme-vertex transform
-  // and the slicing are redone; textures, shaders and the rasterizer stay.
+  // and the slicing are redone; textures, shaders and the rasterizer stay,
+  // and the GPU transform's buffers, written again.
   bool sceneMoved() override {
     lit_.reset();
-    gpuTransform_.reset();
+    gpuMoved_ = true;
     bounds_ = scene_.bounds();
     return true;
   }
@@ -55,10 +56,15 @@ class MvrRenderer final : public Renderer {
   // Transform, slicing and PSTs on the GPU: the scene is uploaded (and lit,
   // view independently) once; per row of views, compute passes and draws.
   void renderOnGpu(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) {
-    if (!gpuTransform_) {
+    if (!gpuTransform_ || gpuMoved_) {
       ScopedStage s(stats.times, "lighting");
-      gpuTransform_.emplace(scene_, shading::litVertexColors(scene_), shading::vertexExtras(scene_, shading_.plan),
-                            shading_.plan.extraCount);
+      const shading::VertexColors colors = shading::litVertexColors(scene_);
+      const std::vector<float> extras = shading::vertexExtras(scene_, shading_.plan);
+      if (gpuTransform_)
+        gpuTransform_->moved(scene_, colors, extras);
+      else
+        gpuTransform_.emplace(scene_, colors, extras, shading_.plan.extraCount);
+      gpuMoved_ = false;
     }
     if (!gpuSlicer_) gpuSlicer_.emplace();
     stats.counters["clipped_triangles"] = double(scene_.triangleCount());
@@ -141,6 +147,7 @@ class MvrRenderer final : public Renderer {
   Bounds bounds_;
   std::optional<GpuSlicer> gpuSlicer_;  // when the rasterizer reads GPU tables
   std::optional<GpuExtremeTransform> gpuTransform_;  // when, besides, nothing needs clipping
+  bool gpuMoved_ = false;  // the scene moved since gpuTransform_ took it
   struct Lit {
     shading::VertexColors colors;
     std::vector<float> extras;
