@@ -21,6 +21,14 @@ void startPool();
 // body(i) for every i in [begin, end), one index per task, in any order
 // and on any worker; returns when all are done. Exceptions propagate.
 void parallelFor(int begin, int end, const std::function<void(int)>& body);
+// body(begin, end) over [0, n) in chunks of `chunk` items, each chunk a
+// task: per-item work too small to be a task of its own (vertices).
+template <class Body>
+void parallelChunks(size_t n, size_t chunk, Body&& body) {
+  parallelFor(0, int((n + chunk - 1) / chunk), [&](int c) {
+    body(size_t(c) * chunk, n < size_t(c + 1) * chunk ? n : size_t(c + 1) * chunk);
+  });
+}
 
 // An ordered pipeline without barriers: make(i) for every i in [begin,
 // end) on the pool, at most `window` indices ahead of the caller, which

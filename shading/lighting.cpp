@@ -4,6 +4,7 @@
 
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
+#include "mvr/parallel.h"
 
 namespace mvr::shading {
 
@@ -42,13 +43,16 @@ VertexColors litVertexColors(const Scene& scene) {
   c.front.resize(scene.vertexCount());
   c.back.resize(scene.vertexCount());
   const std::vector<uint32_t> material = scene.vertexMaterials();
-  for (size_t v = 0; v < scene.vertexCount(); ++v) {
-    // Unclamped sum: interpolated, it equals svr's lit colour plus the
-    // material's emission per pixel.
-    const glm::vec3 e = scene.materials[material[v]].emission;
-    c.front[v] = diffuse(scene, albedo[v], scene.positions[v], scene.normals[v]) + e;
-    c.back[v] = diffuse(scene, albedo[v], scene.positions[v], -scene.normals[v]) + e;
-  }
+  // On the pool: a moving scene (a sequence, mvr live) is lit every frame.
+  parallelChunks(scene.vertexCount(), 16384, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) {
+      // Unclamped sum: interpolated, it equals svr's lit colour plus the
+      // material's emission per pixel.
+      const glm::vec3 e = scene.materials[material[v]].emission;
+      c.front[v] = diffuse(scene, albedo[v], scene.positions[v], scene.normals[v]) + e;
+      c.back[v] = diffuse(scene, albedo[v], scene.positions[v], -scene.normals[v]) + e;
+    }
+  });
   return c;
 }
 

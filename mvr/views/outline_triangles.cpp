@@ -19,10 +19,7 @@ int within(double v, int lo, int hi) { return int(std::clamp(v, double(lo), doub
 // Runs body(begin, end) over [0, n) in chunks on the pool.
 template <class Body>
 void inChunks(size_t n, Body&& body) {
-  constexpr size_t kChunk = 4096;
-  parallelFor(0, int((n + kChunk - 1) / kChunk), [&](int c) {
-    body(size_t(c) * kChunk, std::min(n, size_t(c + 1) * kChunk));
-  });
+  parallelChunks(n, 4096, body);
 }
 
 // Per row, the count of pixels before each column whose samples an

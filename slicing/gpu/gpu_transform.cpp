@@ -6,6 +6,7 @@
 
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
+#include "mvr/parallel.h"
 
 namespace mvr {
 namespace {
@@ -56,13 +57,15 @@ void checkSizes(const Scene& scene, const shading::VertexColors& colors, std::sp
 std::vector<float> packShading(const shading::VertexColors& colors, std::span<const float> extras, int extraCount) {
   const size_t n = colors.front.size();
   std::vector<float> shading(n * size_t(6 + extraCount));
-  for (size_t i = 0; i < n; ++i) {
-    float* s = shading.data() + i * (6 + extraCount);
-    const float head[6] = {colors.front[i].r, colors.front[i].g, colors.front[i].b,
-                           colors.back[i].r,  colors.back[i].g,  colors.back[i].b};
-    std::copy_n(head, 6, s);
-    std::copy_n(extras.data() + i * extraCount, extraCount, s + 6);
-  }
+  parallelChunks(n, 16384, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      float* s = shading.data() + i * (6 + extraCount);
+      const float head[6] = {colors.front[i].r, colors.front[i].g, colors.front[i].b,
+                             colors.back[i].r,  colors.back[i].g,  colors.back[i].b};
+      std::copy_n(head, 6, s);
+      std::copy_n(extras.data() + i * extraCount, extraCount, s + 6);
+    }
+  });
   return shading;
 }
 
