@@ -31,11 +31,11 @@
 #include "apps/live_quilts.h"
 #include "apps/quilt_layout.h"
 #include "mvr/error.h"
-#include "mvr/gl/epi_layers.h"
 #include "mvr/gl/gl_api.h"
 #include "mvr/gl/gl_context.h"
 #include "mvr/gl/glfw_window.h"
 #include "mvr/gl/quilt_screen.h"
+#include "mvr/gl/view_layers.h"
 #include "mvr/io/image_file.h"
 #include "mvr/io/panel_calibration.h"
 #include "mvr/io/scene_io.h"
@@ -262,17 +262,22 @@ int runLive(int argc, char** argv) {
   if (surface.window) glfwSwapInterval(headless ? 0 : 1);
   std::optional<LenticularMap> map;
   if (panel) map = LenticularMap::of(*panel, grid, quiltHeight);
-  QuiltScreen screen(width, height, grid, job ? ViewLayout::EpiVolume : ViewLayout::Quilt, map,
-                     surface.offscreen());
-  // The renderer: in the screen's context on a GPU, into its texture.
+  // The renderer: in the screen's context on a GPU, into its texture,
+  // in the renderer's order; else on its thread, into EPI volumes.
   std::unique_ptr<LiveQuilts> quilts;
-  std::optional<EpiLayersSink> layers;
   std::string label = "quilt";
+  ViewLayout layout = ViewLayout::Quilt;
+  const bool onScreen = f.path == "gpu" || (f.path == "auto" && !gl::rendersOnCpu());
   if (job) {
-    if (f.path == "gpu" || (f.path == "auto" && !gl::rendersOnCpu()))
-      layers.emplace(screen.viewsTexture(), grid.tileWidth, grid.views, grid.tileHeight);
-    quilts = std::make_unique<LiveQuilts>(std::move(*job), layers ? &*layers : nullptr);
+    quilts = std::make_unique<LiveQuilts>(std::move(*job), onScreen);
     label = quilts->label();
+    layout = onScreen && quilts->order() == FrameOrder::View ? ViewLayout::ViewArray : ViewLayout::EpiVolume;
+  }
+  QuiltScreen screen(width, height, grid, layout, map, surface.offscreen());
+  std::optional<ViewLayersSink> layers;
+  if (quilts && onScreen) {
+    layers.emplace(screen.viewsTexture(), layout, grid.tileWidth, grid.views, grid.tileHeight);
+    quilts->attach(*layers);
   }
 
   Controls controls;
@@ -352,7 +357,7 @@ int runLive(int argc, char** argv) {
   // on the GPU path, a frame's commands, and whether any EPI came back.
   const int n = std::max(clock.frames(), 1);
   const std::string where = !layers ? "its own thread"
-                            : layers->uploads() == 0 ? "the screen's context, EPIs written on the GPU, none read back"
+                            : layers->uploads() == 0 ? "the screen's context, into its texture on the GPU, nothing read back"
                                                      : "the screen's context, read back and uploaded";
   std::fprintf(stderr, "mvr: live: %s; a frame: rendering %.1f ms (%s), showing %.1f ms (%s%s, swap)\n",
                label.c_str(), quilts ? 1e3 * quilts->renderSeconds() / n : 0.0, where.c_str(), 1e3 * showSeconds / n,

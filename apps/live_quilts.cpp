@@ -8,8 +8,8 @@
 
 namespace mvr::app {
 
-LiveQuilts::LiveQuilts(RenderJob job, FrameSink* screen) : job_(std::move(job)), screen_(screen) {
-  if (screen_) {
+LiveQuilts::LiveQuilts(RenderJob job, bool onScreen) : job_(std::move(job)), onScreen_(onScreen) {
+  if (onScreen_) {
     job_.currentGl = true;
     prepare();
     return;
@@ -44,8 +44,8 @@ void LiveQuilts::request(const LivePose& pose) {
 }
 
 const Image* LiveQuilts::take() {
-  if (screen_) {
-    if (done_ == requested_) fail("live", "no quilt was asked for");
+  if (onScreen_) {
+    if (done_ == requested_ || !screen_) fail("live", "no quilt was asked for, or no screen attached");
     const Stopwatch watch;
     const StageTimes stages = renderOne(*std::exchange(pending_, std::nullopt), *screen_);
     std::lock_guard lock(mutex_);
@@ -71,7 +71,8 @@ void LiveQuilts::prepare() {
   radius_ = std::max(0.5f * glm::length(bounds.max - bounds.min), 1e-6f);
   length_ = mvr::animationLength(p.scene, job_.sequence.clip);
   label_ = p.label(job_.backend);
-  if (!screen_)
+  order_ = p.renderer->order();
+  if (!onScreen_)
     for (auto& v : volumes_) v.emplace(job_.width, job_.height, job_.views, job_.type);
 }
 

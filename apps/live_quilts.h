@@ -9,9 +9,10 @@
 //   two alternate, the one shown stays whole while the next is drawn, and
 //   the screen uploads it.
 // - In the screen's own context, into its texture (a FrameSink over it:
-//   mvr/gl/epi_layers.h): the GPU path, where the GPU spans write each
-//   EPI into the texture's layers and nothing is read back. The GPU
-//   queues the frames; the CPU's part is a frame's commands.
+//   mvr/gl/view_layers.h): the GPU path, where the GPU spans write each
+//   EPI into the texture's layers, or a view renderer copies each view
+//   into its layer, and nothing is read back. The GPU queues the frames;
+//   the CPU's part is a frame's commands.
 #include <condition_variable>
 #include <exception>
 #include <memory>
@@ -41,14 +42,19 @@ QuiltGrid liveGrid(const RenderJob& job);
 class LiveQuilts {
  public:
   // Prepares the job (GL, scene, camera, renderer); its errors are thrown
-  // here. No screen: on the render thread, in a context of its own. A
-  // screen: on this thread, in its current context, rendering into it.
-  explicit LiveQuilts(RenderJob job, FrameSink* screen = nullptr);
+  // here. Not onScreen: on the render thread, in a context of its own.
+  // onScreen: on this thread, in its current context, rendering into the
+  // screen attach() gives.
+  LiveQuilts(RenderJob job, bool onScreen);
   ~LiveQuilts();
   LiveQuilts(const LiveQuilts&) = delete;
   LiveQuilts& operator=(const LiveQuilts&) = delete;
 
   const RenderJob& job() const { return job_; }
+  // The renderer's order: the layout a screen it renders into takes.
+  FrameOrder order() const { return order_; }
+  // onScreen: where take() renders, from the first take() on.
+  void attach(FrameSink& screen) { screen_ = &screen; }
   glm::vec3 pivot() const { return pivot_; }    // the scene's bounds' centre at rest
   float radius() const { return radius_; }      // half their diagonal
   double animationLength() const { return length_; }
@@ -58,7 +64,7 @@ class LiveQuilts {
   void request(const LivePose& pose);
   // Waits for the requested views: an EPI volume, valid until the
   // request after next (two alternate); throws the render thread's error.
-  // With a screen: renders them into it and gives null.
+  // onScreen: renders them into the attached screen and gives null.
   const Image* take();
   // Seconds spent rendering quilts so far (on the render thread, or the
   // screen's commands on this one).
@@ -79,7 +85,9 @@ class LiveQuilts {
   StageTimes renderOne(const LivePose& pose, FrameSink& views);
 
   RenderJob job_;
-  FrameSink* screen_;
+  bool onScreen_;
+  FrameSink* screen_ = nullptr;
+  FrameOrder order_ = FrameOrder::Epi;
   PreparedJob prepared_;
   std::optional<EpiVolumeSink> volumes_[2];
   glm::vec3 pivot_{0.0f};

@@ -97,8 +97,10 @@ Image epiVolumeOf(const Image& quilt, const QuiltGrid& g) {
 std::string lenticularGlsl(ViewLayout layout) {
   // The CPU's steps above, one for one; `precise` keeps the compiler from
   // fusing or reordering them.
-  return std::string(layout == ViewLayout::EpiVolume ? "#define EPI_VOLUME\nuniform sampler2DArray quilt;\n"
-                                                     : "uniform sampler2D quilt;\n") +
+  const char* const head = layout == ViewLayout::EpiVolume   ? "#define EPI_VOLUME\nuniform sampler2DArray quilt;\n"
+                           : layout == ViewLayout::ViewArray ? "#define VIEW_ARRAY\nuniform sampler2DArray quilt;\n"
+                                                             : "uniform sampler2D quilt;\n";
+  return std::string(head) +
          R"(
 uniform float invW, invH, subp, tilt, pitch, center;
 uniform int views, columns, tileW, tileH, quiltHeight, ri, bi;
@@ -130,9 +132,12 @@ ivec2 inTile(vec2 uv) {
   return ivec2(clamp(int(floor(cu)), 0, tileW - 1), clamp(int(floor(cv)), 0, tileH - 1));
 }
 
-#ifdef EPI_VOLUME
+#if defined(EPI_VOLUME)
 // Layer s: the EPI of scanline s (from the top), row v: view v.
 vec4 lenticularTexel(ivec2 t, int view) { return texelFetch(quilt, ivec3(t.x, view, tileH - 1 - t.y), 0); }
+#elif defined(VIEW_ARRAY)
+// Layer v: view v, row 0 its top row.
+vec4 lenticularTexel(ivec2 t, int view) { return texelFetch(quilt, ivec3(t.x, tileH - 1 - t.y, view), 0); }
 #else
 // Row 0: the quilt image's top row, as uploaded.
 vec4 lenticularTexel(ivec2 t, int view) {

@@ -71,18 +71,20 @@ struct LenticularMap {
 };
 
 // How the views reach the GL pass: a quilt (a 2D texture, view 0 the
-// bottom-left tile), or an EPI volume (a 2D array texture: layer s the EPI
+// bottom-left tile); an EPI volume (a 2D array texture: layer s the EPI
 // of scanline s, its row v view v's), where the views a panel row samples
 // lie close together: on llvmpipe the pass takes a quarter of the
-// quilt's time (13 against 48 ms for a Portrait).
-enum class ViewLayout { Quilt, EpiVolume };
+// quilt's time (13 against 48 ms for a Portrait); or a view array (a 2D
+// array texture: layer v view v, rows top first), where a view renderer
+// on the GPU copies each view it draws (mvr/gl/view_layers.h).
+enum class ViewLayout { Quilt, EpiVolume, ViewArray };
 
 // The panel's native image (screenW x screenH, opaque) of an 8-bit quilt,
 // on the CPU: the GLSL pass's oracle.
 Image nativeImage(const Image& quilt, const LenticularMap& map);
 
 // The same mapping in GLSL: `vec3 lenticular(ivec2 pixel)` over `uniform
-// sampler2D quilt` (sampler2DArray for an EPI volume) and the uniforms
+// sampler2D quilt` (sampler2DArray for the layered layouts) and the uniforms
 // LenticularPass sets (mvr/gl/lenticular_pass.h).
 std::string lenticularGlsl(ViewLayout layout);
 

@@ -43,6 +43,9 @@ class FrameSink {
   // there (nothing handed on) and made them visible to texture fetches.
   // 0 (the default): none; and for a type that is not 8-bit.
   virtual unsigned epiTexture(int /*row*/, int /*width*/, int /*views*/, PixelType) { return 0; }
+  // The same for a view renderer: a 2D array of `views` width x height
+  // RGBA8 layers, layer v view v with its rows top first (as read back).
+  virtual unsigned viewTexture(int /*row*/, int /*width*/, int /*height*/, int /*views*/, PixelType) { return 0; }
   virtual void finish() {}
 };
 

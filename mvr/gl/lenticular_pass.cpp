@@ -103,12 +103,12 @@ gl::Texture uploadViews(const Image& views, ViewLayout layout, int layers) {
 }  // namespace
 
 Image LenticularPass::render(const Image& views) const {
-  const bool volume = layout_ == ViewLayout::EpiVolume;
-  if (!isByteType(views.type) || (volume ? views.width != map_.tileW || views.height != map_.tileH * map_.views
-                                         : views.height != map_.quiltHeight))
+  const bool layered = layout_ != ViewLayout::Quilt;
+  if (!isByteType(views.type) || (layered ? views.width != map_.tileW || views.height != map_.tileH * map_.views
+                                          : views.height != map_.quiltHeight))
     fail("quilt", "does not match the mapping's layout");
   const SavedState saved;
-  gl::Texture source = uploadViews(views, layout_, map_.tileH);
+  gl::Texture source = uploadViews(views, layout_, layout_ == ViewLayout::EpiVolume ? map_.tileH : map_.views);
   gl::Texture target(GL_TEXTURE_2D);
   gl::TextureStorage2D(target.id(), 1, GL_RGBA8, map_.screenW, map_.screenH);
   gl::Framebuffer fbo = gl::Framebuffer::create();

@@ -14,12 +14,12 @@ class LenticularPass {
   explicit LenticularPass(const LenticularMap& map, ViewLayout layout = ViewLayout::Quilt);
   const LenticularMap& map() const { return map_; }
   // The views, 8-bit RGBA with rows top first as Image holds them: a quilt
-  // (a 2D texture, row 0 the quilt's top row) or an EPI volume (a 2D array
-  // texture, layer s scanline s's EPI), into the bound draw framebuffer at
-  // (0, 0), screenW x screenH.
+  // (a 2D texture, row 0 the quilt's top row), an EPI volume (a 2D array
+  // texture, layer s scanline s's EPI) or a view array (layer v view v),
+  // into the bound draw framebuffer at (0, 0), screenW x screenH.
   void draw(GLuint viewsTexture) const;
-  // The views (a quilt, or epiVolumeOf's layout) to the native image,
-  // offscreen: the GPU twin of nativeImage().
+  // The views (a quilt, epiVolumeOf's layout, or the views one under
+  // another) to the native image, offscreen: the GPU twin of nativeImage().
   Image render(const Image& views) const;
 
  private:

@@ -1,6 +1,6 @@
 #pragma once
 // What mvr live shows (issue 48): the views as a texture, uploaded once a
-// frame (a quilt, or an EPI volume: mvr/lenticular.h), drawn through a
+// frame (a quilt, an EPI volume or a view array: mvr/lenticular.h), drawn through a
 // lenticular display's mapping (mvr/gl/lenticular_pass.h) at the panel's
 // size, or, without a calibration, as the quilt scaled to the screen.
 // Into the window's framebuffer, or offscreen where there is no window
@@ -26,13 +26,15 @@ class QuiltScreen {
   int height() const { return height_; }
   void upload(const Image& quilt);
   // The texture upload() fills: a renderer in this context may write it
-  // instead (an EPI volume's layers: mvr/gl/epi_layers.h).
+  // instead (the layered layouts: mvr/gl/view_layers.h).
   GLuint viewsTexture() const { return quilt_.id(); }
+  ViewLayout layout() const { return layout_; }
   void draw() const;
   void finish() const;  // waits for the GL to finish drawing
   Image read() const;   // the screen as drawn, rows top first
 
  private:
+  glm::ivec3 layerBox() const;  // a layered texture's width, height and layers
   int width_, height_;
   QuiltGrid grid_;
   ViewLayout layout_;

@@ -29,7 +29,7 @@ RenderTarget::RenderTarget(int width, int height, PixelType type, int layers)
     : RenderTarget(width, height, type, layers, type) {}
 
 RenderTarget::RenderTarget(int width, int height, PixelType type, int layers, PixelType storage)
-    : width_(width), height_(height), layers_(layers), type_(type),
+    : width_(width), height_(height), layers_(layers), type_(type), storage_(storage),
       color_(layers ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D),
       depth_(layers ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D),
       fbo_(gl::Framebuffer::create()) {
@@ -67,6 +67,14 @@ GLuint RenderTarget::readableFramebuffer(int y, int h) const {
   gl::BlitNamedFramebuffer(fbo_.id(), resolveFbo_.id(), 0, y, width_, y + h, 0, y, width_, y + h,
                            GL_COLOR_BUFFER_BIT, GL_NEAREST);
   return resolveFbo_.id();
+}
+
+void RenderTarget::copyToLayer(GLuint texture, int layer) const {
+  if (!copiesBytes()) fail("GL", "the render target's pixels are not stored as bytes");
+  // A raw copy of the stored bytes: sRGB and RGBA8 texels are alike to it.
+  const GLuint source = readableFramebuffer(0, height_) == fbo_.id() ? color_.id() : resolved_.id();
+  gl::CopyImageSubData(source, GL_TEXTURE_2D, 0, 0, 0, 0, texture, GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, width_,
+                       height_, 1);
 }
 
 void RenderTarget::clear() const {

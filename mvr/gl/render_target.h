@@ -31,10 +31,16 @@ class RenderTarget {
   // this one, or (F32 storage read as Srgb8) a copy the rows were just
   // encoded into.
   GLuint readableFramebuffer(int y, int h) const;
+  // Whether the pixels as read back are 8-bit texels of a 2D target, which
+  // a copy on the GPU can take (not F32 storage read as U8).
+  bool copiesBytes() const { return !layers_ && (isByteType(storage_) || resolved_); }
+  // The pixels as read back into layer `layer` of an RGBA8 2D array
+  // texture of the target's size, on the GPU; needs copiesBytes().
+  void copyToLayer(GLuint texture, int layer) const;
 
  private:
   int width_, height_, layers_;
-  PixelType type_;
+  PixelType type_, storage_;
   gl::Texture color_, depth_;
   gl::Framebuffer fbo_;
   gl::Texture resolved_;  // only when F32 storage is read as Srgb8

@@ -98,16 +98,17 @@ TEST(Live, WindowShowsTheTurningScene) {
 // The GPU path (the renderer in the screen's context, into its texture)
 // shows what the CPU path (a render thread, an EPI volume uploaded) does,
 // byte for byte, while the scene turns: the GPU spans write the texture's
-// layers and read nothing back; a back end that hands EPIs or views on has
-// them uploaded into the layers instead.
+// layers and svr copies each view into its layer, reading nothing back; a
+// back end that hands EPIs on has them uploaded into the layers instead.
 TEST(Live, GpuPathShowsWhatTheCpuPathShows) {
   const fs::path dir = test::freshDir("live_paths");
   const fs::path calibration = writeCalibration(dir);
   struct Case {
     std::string backend, said;
   };
-  for (const Case& c : {Case{"--pst spans", "EPIs written on the GPU, none read back"},
-                        Case{"--pst cpu", "read back and uploaded"}, Case{"--backend svr", "read back and uploaded"}}) {
+  for (const Case& c : {Case{"--pst spans", "into its texture on the GPU, nothing read back"},
+                        Case{"--pst cpu", "read back and uploaded"},
+                        Case{"--backend svr", "into its texture on the GPU, nothing read back"}}) {
     std::string shots[2];
     for (int gpu = 0; gpu < 2; ++gpu) {
       shots[gpu] = (dir / ("shot" + std::to_string(gpu) + ".png")).string();

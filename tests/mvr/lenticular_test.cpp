@@ -137,9 +137,9 @@ TEST_F(LenticularGl, PassEqualsTheCpuOnEverySubpixel) {
 }
 
 // The views as an EPI volume (what mvr live uploads): the same native
-// image as from the quilt, on every subpixel; and the volume is the
-// quilt's views, scanline by scanline.
-TEST_F(LenticularGl, EpiVolumeGivesTheQuiltsImage) {
+// image as from the quilt, on every subpixel, and so does a view array;
+// and the volume is the quilt's views, scanline by scanline.
+TEST_F(LenticularGl, EpiVolumeAndViewArrayGiveTheQuiltsImage) {
   PanelCalibration c;
   c.pitch = 52.58737564086914, c.slope = -7.196136474609375, c.center = 0.4321881363063158;
   c.dpi = 324.0 / 8, c.screenW = 1536 / 8, c.screenH = 2048 / 8, c.invView = true, c.flipImageY = true;
@@ -154,6 +154,11 @@ TEST_F(LenticularGl, EpiVolumeGivesTheQuiltsImage) {
   const Image cpu = nativeImage(quilt, map);
   EXPECT_EQ(LenticularPass(map, ViewLayout::EpiVolume).render(volume).bytes, cpu.bytes);
   EXPECT_EQ(LenticularPass(map, ViewLayout::Quilt).render(quilt).bytes, cpu.bytes);
+  // The views one under another (a view array's layers), from the volume.
+  Image views(24, 32 * 10, PixelType::Srgb8);
+  for (int v = 0; v < 10; ++v)
+    for (int r = 0; r < 32; ++r) std::memcpy(views.row(v * 32 + r), volume.row(r * 10 + v), views.rowBytes());
+  EXPECT_EQ(LenticularPass(map, ViewLayout::ViewArray).render(views).bytes, cpu.bytes);
 }
 
 class Calibration : public test::FileTest {};
