@@ -163,8 +163,9 @@ struct LiveFlags {
         ->type_name("FILE");
     app.add_option("--path", path,
                    "where the views are rendered: gpu (in the screen's GL context, into the texture it shows; the "
-                   "GPU spans read nothing back), cpu (on a thread and GL context of their own, uploaded once a "
-                   "frame) or auto (default: cpu where GL renders on the CPU, llvmpipe; else gpu)")
+                   "GPU spans and the view renderers read nothing back), cpu (on a thread and GL context of their "
+                   "own, uploaded once a frame) or auto (default: cpu where GL renders on the CPU, llvmpipe; else "
+                   "gpu)")
         ->check(CLI::IsMember({"auto", "gpu", "cpu"}))
         ->type_name("auto|gpu|cpu");
     backend.add(app);
@@ -220,6 +221,27 @@ Surface openSurface(int width, int height, bool headless) {
     s.headless = GlContext::create(GlPlatform::Egl);
   }
   return s;
+}
+
+// Where a frame's time went, on stderr: on the CPU path the two threads
+// overlap; on the GPU path, a frame's commands, and whether anything came
+// back; then the renderer's stages.
+void reportFrameTime(const std::string& label, const LiveQuilts* quilts, const ViewLayersSink* layers, int frames,
+                     double showSeconds, const std::string& shown) {
+  const std::string where = !layers ? "its own thread"
+                            : layers->uploads() == 0 ? "the screen's context, into its texture on the GPU, nothing read back"
+                                                     : "the screen's context, read back and uploaded";
+  std::fprintf(stderr, "mvr: live: %s; a frame: rendering %.1f ms (%s), showing %.1f ms (%s, swap)\n", label.c_str(),
+               quilts ? 1e3 * quilts->renderSeconds() / frames : 0.0, where.c_str(), 1e3 * showSeconds / frames,
+               shown.c_str());
+  if (!quilts) return;
+  std::string stages;
+  for (const auto& [stage, seconds] : quilts->stages().seconds) {
+    char ms[64];
+    std::snprintf(ms, sizeof ms, "%s%s %.2f ms", stages.empty() ? "" : ", ", stage.c_str(), 1e3 * seconds / frames);
+    stages += ms;
+  }
+  std::fprintf(stderr, "mvr: live: rendering's stages a frame: %s\n", stages.c_str());
 }
 
 }  // namespace
@@ -353,24 +375,8 @@ int runLive(int argc, char** argv) {
   if (!f.screenshot.empty()) writeImage(screen.read(), f.screenshot);
   std::printf("mvr: live: %d frames, %.1f fps (median %.1f ms, p99 %.1f ms)\n", clock.frames(), clock.fps(),
               clock.quantileMs(0.5), clock.quantileMs(0.99));
-  // Where a frame's time goes: on the CPU path the two threads overlap;
-  // on the GPU path, a frame's commands, and whether any EPI came back.
-  const int n = std::max(clock.frames(), 1);
-  const std::string where = !layers ? "its own thread"
-                            : layers->uploads() == 0 ? "the screen's context, into its texture on the GPU, nothing read back"
-                                                     : "the screen's context, read back and uploaded";
-  std::fprintf(stderr, "mvr: live: %s; a frame: rendering %.1f ms (%s), showing %.1f ms (%s%s, swap)\n",
-               label.c_str(), quilts ? 1e3 * quilts->renderSeconds() / n : 0.0, where.c_str(), 1e3 * showSeconds / n,
-               layers ? "" : "upload, ", panel ? "panel mapping" : "quilt scaled");
-  if (quilts) {
-    std::string stages;
-    for (const auto& [stage, seconds] : quilts->stages().seconds) {
-      char ms[64];
-      std::snprintf(ms, sizeof ms, "%s%s %.2f ms", stages.empty() ? "" : ", ", stage.c_str(), 1e3 * seconds / n);
-      stages += ms;
-    }
-    std::fprintf(stderr, "mvr: live: rendering's stages a frame: %s\n", stages.c_str());
-  }
+  const std::string shown = std::string(layers ? "" : "upload, ") + (panel ? "panel mapping" : "quilt scaled");
+  reportFrameTime(label, quilts.get(), layers ? &*layers : nullptr, std::max(clock.frames(), 1), showSeconds, shown);
   return 0;
 }
 
