@@ -1,13 +1,9 @@
 #include "mvr/io/assimp_import.h"
 
-#include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
 #include <cctype>
 #include <cerrno>
 #include <chrono>
@@ -26,8 +22,6 @@
 #include "mvr/io/load_warnings.h"
 #include "mvr/io/mesh_check.h"
 
-extern char** environ;
-
 namespace mvr {
 namespace {
 
@@ -45,28 +39,11 @@ struct ChildOutput {
 // Runs helper FILE, reading its stdout and stderr to the end (or the
 // time limit, when it is killed).
 ChildOutput run(const std::string& helper, const std::string& path) {
-  int out[2], err[2];
-  if (pipe2(out, O_CLOEXEC) != 0) fail(path, "cannot start mvr-import (pipe)");
-  if (pipe2(err, O_CLOEXEC) != 0) {
-    close(out[0]), close(out[1]);
-    fail(path, "cannot start mvr-import (pipe)");
-  }
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, out[1], STDOUT_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, err[1], STDERR_FILENO);
-  std::array<char*, 3> argv{const_cast<char*>(helper.c_str()), const_cast<char*>(path.c_str()), nullptr};
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, helper.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  close(out[1]), close(err[1]);
-  if (spawned != 0) {
-    close(out[0]), close(err[0]);
-    fail(path, "cannot start " + helper + ": " + std::strerror(spawned));
-  }
+  const HelperProcess child = spawnHelper({helper, path}, HelperPipe::Stdout, path);
+  const pid_t pid = child.pid;
   ChildOutput result;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kTimeoutSeconds);
-  pollfd fds[2] = {{out[0], POLLIN, 0}, {err[0], POLLIN, 0}};
+  pollfd fds[2] = {{child.stream, POLLIN, 0}, {child.errors, POLLIN, 0}};
   std::string* sinks[2] = {&result.out, &result.err};
   char buffer[1 << 16];
   for (int open = 2; open > 0;) {
@@ -91,8 +68,7 @@ ChildOutput run(const std::string& helper, const std::string& path) {
   }
   for (const pollfd& f : fds)
     if (f.fd >= 0) close(f.fd);
-  while (waitpid(pid, &result.status, 0) < 0 && errno == EINTR) {
-  }
+  result.status = waitHelper(pid);
   return result;
 }
 

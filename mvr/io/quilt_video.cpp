@@ -1,13 +1,10 @@
 #include "mvr/io/quilt_video.h"
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <array>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -16,8 +13,6 @@
 #include "mvr/color.h"
 #include "mvr/error.h"
 #include "mvr/io/helper_program.h"
-
-extern char** environ;
 
 namespace mvr {
 namespace {
@@ -42,30 +37,11 @@ std::string readAll(int fd) {
 QuiltVideo::QuiltVideo(std::string path, int width, int height, double fps, int crf, int frames, Chroma chroma)
     : path_(std::move(path)), width_(width), height_(height), rgba_(size_t(width) * height * 4) {
   const std::string helper = helperProgram("mvr-encode", "MVR_ENCODE", path_, "videos are encoded");
-  int in[2], err[2];
-  if (pipe2(in, O_CLOEXEC) != 0) fail(path_, "cannot start mvr-encode (pipe)");
-  if (pipe2(err, O_CLOEXEC) != 0) {
-    close(in[0]), close(in[1]);
-    fail(path_, "cannot start mvr-encode (pipe)");
-  }
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, in[0], STDIN_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, err[1], STDERR_FILENO);
-  const std::string args[] = {helper, path_, std::to_string(width), std::to_string(height), std::to_string(fps),
-                              std::to_string(crf), std::to_string(frames),
-                              chroma == Chroma::Full ? "yuv444p" : "yuv420p"};
-  std::array<char*, 9> argv{};
-  for (size_t i = 0; i < 8; ++i) argv[i] = const_cast<char*>(args[i].c_str());
-  const int spawned = posix_spawn(&pid_, helper.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  close(in[0]), close(err[1]);
-  input_ = in[1], errors_ = err[0];
-  if (spawned != 0) {
-    pid_ = -1;
-    stop();
-    fail(path_, "cannot start " + helper + ": " + std::strerror(spawned));
-  }
+  const HelperProcess child =
+      spawnHelper({helper, path_, std::to_string(width), std::to_string(height), std::to_string(fps),
+                   std::to_string(crf), std::to_string(frames), chroma == Chroma::Full ? "yuv444p" : "yuv420p"},
+                  HelperPipe::Stdin, path_);
+  pid_ = child.pid, input_ = child.stream, errors_ = child.errors;
   // A vanished encoder is an error from write(), not a kill.
   signal(SIGPIPE, SIG_IGN);
 }
@@ -76,9 +52,7 @@ void QuiltVideo::stop() {
   if (input_ >= 0) close(input_);
   if (pid_ > 0) {
     kill(pid_, SIGKILL);
-    int status = 0;
-    while (waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
-    }
+    waitHelper(pid_);
     std::error_code ec;
     fs::remove(path_ + ".part", ec);
   }
@@ -115,9 +89,7 @@ void QuiltVideo::finish() {
   close(input_);
   input_ = -1;
   const std::string err = readAll(errors_);
-  int status = 0;
-  while (waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
-  }
+  const int status = waitHelper(pid_);
   pid_ = -1;
   close(errors_);
   errors_ = -1;
