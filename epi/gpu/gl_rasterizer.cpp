@@ -125,7 +125,11 @@ class GlRasterizer final : public EpiRasterizer {
     const int batch = chunks > 1 ? 1 : std::clamp(std::min(int(maxSize), budgetRows) / n, 1, h);
     const RenderTarget& target = targetFor(w, batch * chunkRows, storage);
     const size_t rowBytes = size_t(w) * 4 * Image::channelBytes(type_);
-    ReadbackRing ring(size_t(batch) * n * rowBytes);
+    // Where the sink lends a texture of EPIs (mvr live's screen), each is
+    // copied into its layer on the GPU and nothing is read back.
+    const GLuint layers = target.copiesBytes() ? sink.epiTexture(row, w, n, type_) : 0;
+    std::optional<ReadbackRing> ring;
+    if (!layers) ring.emplace(size_t(batch) * n * rowBytes);
     ImagePool pool;
     setDepthConvention();
     target.bind();
@@ -150,7 +154,8 @@ class GlRasterizer final : public EpiRasterizer {
         if (materials_) materials_->bind();
       }
       // The batch's EPIs, filled chunk by chunk as the ring hands them over.
-      const EpiBatch epis(sink, pool, row, {own, ownEnd}, w, n, type_);
+      std::optional<EpiBatch> epis;
+      if (!layers) epis.emplace(sink, pool, row, IndexRange{own, ownEnd}, w, n, type_);
       // A share that owns part of the batch clears and draws only its rows:
       // on a CPU implementation of GL the clear of a whole batch costs as
       // much as filling it.
@@ -166,24 +171,32 @@ class GlRasterizer final : public EpiRasterizer {
         gl::GpuClock::mark("draw");
         const Batch b{first, count, n, chunkRows, view0, scale, eye0, eyeStep};
         for (const EpiPass& pass : passes_) drawPass(pass, host, slices, b, stats);
+        if (layers) {
+          for (int j = own; j < ownEnd; ++j) target.copyRows((j - first) * chunkRows, views, layers, view0, j);
+          continue;
+        }
         {
           ScopedStage s(stats.times, "readback");
           gl::GpuClock::mark("readback");
           if (views == chunkRows) {
             // The batch's EPIs are stacked without gaps: one read for all.
-            ring.readRowRuns(target, (own - first) * chunkRows, views, epis.rows(view0));
+            ring->readRowRuns(target, (own - first) * chunkRows, views, epis->rows(view0));
           } else {
             for (int j = own; j < ownEnd; ++j)
-              ring.readRows(target, (j - first) * chunkRows, views, epis.rows(j - own, view0));
+              ring->readRows(target, (j - first) * chunkRows, views, epis->rows(j - own, view0));
           }
         }
         if (c + 1 < chunks) continue;
-        ring.submit([=, &sink] { epis.handOn(sink); });
+        ring->submit([epis = *epis, &sink] { epis.handOn(sink); });
       }
       if (part) gl::Disable(GL_SCISSOR_TEST);
     }
-    ring.drain();
-    stats.times.add("gpu_wait", ring.waitSeconds());
+    if (ring) {
+      ring->drain();
+      stats.times.add("gpu_wait", ring->waitSeconds());
+    } else {
+      stats.notes["epis"] = "texture";
+    }
     gl::Disable(GL_PRIMITIVE_RESTART_FIXED_INDEX);
     // The passes' blending back to GL's defaults: a two-source blend left
     // on made the next renderer's draw into two colour targets (deferred's

@@ -69,12 +69,12 @@ GLuint RenderTarget::readableFramebuffer(int y, int h) const {
   return resolveFbo_.id();
 }
 
-void RenderTarget::copyToLayer(GLuint texture, int layer) const {
+void RenderTarget::copyRows(int y, int h, GLuint texture, int toY, int layer) const {
   if (!copiesBytes()) fail("GL", "the render target's pixels are not stored as bytes");
   // A raw copy of the stored bytes: sRGB and RGBA8 texels are alike to it.
-  const GLuint source = readableFramebuffer(0, height_) == fbo_.id() ? color_.id() : resolved_.id();
-  gl::CopyImageSubData(source, GL_TEXTURE_2D, 0, 0, 0, 0, texture, GL_TEXTURE_2D_ARRAY, 0, 0, 0, layer, width_,
-                       height_, 1);
+  const GLuint source = readableFramebuffer(y, h) == fbo_.id() ? color_.id() : resolved_.id();
+  gl::CopyImageSubData(source, GL_TEXTURE_2D, 0, 0, y, 0, texture, GL_TEXTURE_2D_ARRAY, 0, 0, toY, layer, width_, h,
+                       1);
 }
 
 void RenderTarget::clear() const {

@@ -35,8 +35,10 @@ class RenderTarget {
   // a copy on the GPU can take (not F32 storage read as U8).
   bool copiesBytes() const { return !layers_ && (isByteType(storage_) || resolved_); }
   // The pixels as read back into layer `layer` of an RGBA8 2D array
-  // texture of the target's size, on the GPU; needs copiesBytes().
-  void copyToLayer(GLuint texture, int layer) const;
+  // texture of the target's width, on the GPU; needs copiesBytes(): rows
+  // [y, y + h) to rows [toY, toY + h) of the layer, or the whole target.
+  void copyRows(int y, int h, GLuint texture, int toY, int layer) const;
+  void copyToLayer(GLuint texture, int layer) const { copyRows(0, height_, texture, 0, layer); }
 
  private:
   int width_, height_, layers_;

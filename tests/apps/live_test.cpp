@@ -98,8 +98,9 @@ TEST(Live, WindowShowsTheTurningScene) {
 // The GPU path (the renderer in the screen's context, into its texture)
 // shows what the CPU path (a render thread, an EPI volume uploaded) does,
 // byte for byte, while the scene turns: the GPU spans write the texture's
-// layers and svr copies each view into its layer, reading nothing back; a
-// back end that hands EPIs on has them uploaded into the layers instead.
+// layers, the GL modes copy each EPI and svr each view into its layer,
+// reading nothing back; the CPU's spans, which hand EPIs on, have them
+// uploaded into the layers instead.
 TEST(Live, GpuPathShowsWhatTheCpuPathShows) {
   const fs::path dir = test::freshDir("live_paths");
   const fs::path calibration = writeCalibration(dir);
@@ -107,6 +108,7 @@ TEST(Live, GpuPathShowsWhatTheCpuPathShows) {
     std::string backend, said;
   };
   for (const Case& c : {Case{"--pst spans", "into its texture on the GPU, nothing read back"},
+                        Case{"--pst strip", "into its texture on the GPU, nothing read back"},
                         Case{"--pst cpu", "read back and uploaded"},
                         Case{"--backend svr", "into its texture on the GPU, nothing read back"}}) {
     std::string shots[2];
