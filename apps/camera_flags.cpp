@@ -29,6 +29,15 @@ std::vector<double> numbers(const std::string& text, const char* option) {
 
 }  // namespace
 
+std::string CameraFlags::firstGiven() const {
+  for (const auto& [flag, given] : {std::pair{"--cone", cone.has_value()}, {"--fov", fov.has_value()},
+                                    {"--focal", !focal.empty()}, {"--depthiness", depthiness.has_value()},
+                                    {"--background", !background.empty()}, {"--opaque", opaque},
+                                    {"--camera", !fileCamera.empty()}})
+    if (given) return flag;
+  return "";
+}
+
 void CameraFlags::add(CLI::App& app) {
   app.add_option("--cone", cone, "view cone in degrees: the track's angle seen from the image plane's centre")
       ->type_name("DEG");

@@ -35,6 +35,8 @@ struct CameraFlags {
   void add(CLI::App& app);
   // Throws mvr::Error naming the option for a value out of range.
   void validate() const;
+  // The first of these options the command line gave ("--cone"), or "".
+  std::string firstGiven() const;
   // With --camera: moves the scene into that camera's view and makes it
   // the scene's camera.
   void viewThroughFileCamera(Scene& scene, int width, int height) const;

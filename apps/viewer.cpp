@@ -15,8 +15,10 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/backend_flags.h"
+#include "apps/camera_flags.h"
 #include "apps/cli.h"
 #include "apps/quilt_layout.h"
+#include "mvr/frames/frame_sinks.h"
 #include "mvr/frames/volume.h"
 #include "mvr/error.h"
 #include "mvr/gl/view_panel.h"
@@ -265,7 +267,7 @@ void checkStart(const ViewSet& set, const std::optional<int>& view, const std::o
 int runView(int argc, char** argv) {
   CLI::App app("Shows one view of a rendered set (a folder with manifest.json) with the EPI of "
                "one scanline below it. Given a scene instead, renders it first (--views, "
-               "--size, --backend and its options as for render).",
+               "--size, --backend and its options, and the camera options, as for render).",
                "mvr view");
   app.footer(std::string("Keys: ") + kKeys + ".");
   std::string source, screenshot;
@@ -284,6 +286,8 @@ int runView(int argc, char** argv) {
   addViewCountOptions(app, views, rows);
   addSizeOption(app, "size", size, "scene: image size in pixels");
   backend.add(app);
+  CameraFlags camera;
+  camera.add(app);
   if (auto exit = parseCommandLine(app, argc - 1, argv + 1)) return *exit;
 
   const bool shot = !screenshot.empty();
@@ -291,13 +295,20 @@ int runView(int argc, char** argv) {
   std::unique_ptr<GlfwWindow> window;
   const bool quilt = fs::is_regular_file(source) && fs::path(source).filename().string().find("_qs") != std::string::npos;
   if (fs::is_directory(source) || quilt) {
+    if (const std::string flag = camera.firstGiven(); !flag.empty())
+      fail(flag, "applies to a scene (a rendered set or quilt has its camera)");
     set = quilt ? loadQuilt(source) : loadSet(source);
     checkStart(set, startView, startScanline);
     window = GlfwWindow::open(set.width, set.height + std::min(set.views, 512), "mvr view", false);
   } else {  // live: render the scene in this window's context
     BackendOptions options = backend.resolve();
+    camera.validate();
     Scene scene = loadInputScene(source, false);
     const auto [w, h] = size;
+    // The camera as render frames it: the file's camera, the focal plane,
+    // then the display-terms adjustments.
+    camera.viewThroughFileCamera(scene, w, h);
+    camera.placeFocalPlane(scene);
     set.views = views;
     set.rows = rows;
     set.width = w;
@@ -305,15 +316,18 @@ int runView(int argc, char** argv) {
     set.images.assign(set.rows, std::vector<Image>(set.views));
     checkStart(set, startView, startScanline);
     window = GlfwWindow::open(w, h + std::min(set.views, 512), "mvr view", false);
-    ShearingCamera cam(cameraFor(scene, w, h), w, h, set.views, set.rows);
+    ShearingCamera cam(camera.adjust(cameraFor(scene, w, h), w, h), w, h, set.views, set.rows);
     backend.chooseDefaultPst(options, scene);
     auto renderer = makeRenderer(options, scene, PixelType::Srgb8);
     ViewCollector collect(set);
+    std::optional<BackgroundSink> background;
+    if (const auto color = camera.backgroundColor()) background.emplace(collect, *color);
+    FrameSink& views = background ? static_cast<FrameSink&>(*background) : collect;
     std::unique_ptr<EpisToViews> reorder;
     if (renderer->order() == FrameOrder::Epi)
-      reorder = std::make_unique<EpisToViews>(collect, w, h, set.views, PixelType::Srgb8);
+      reorder = std::make_unique<EpisToViews>(views, w, h, set.views, PixelType::Srgb8);
     RenderStats stats;
-    renderer->render(cam, reorder ? static_cast<FrameSink&>(*reorder) : collect, stats);
+    renderer->render(cam, reorder ? static_cast<FrameSink&>(*reorder) : views, stats);
   }
   toDisplay(set);
   const int view = startView.value_or(set.views / 2);

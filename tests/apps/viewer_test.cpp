@@ -9,6 +9,7 @@
 #include "mvr/io/compare.h"
 #include "mvr/io/image_file.h"
 #include "tests/support/cli.h"
+#include "tests/support/gl_fixture.h"
 
 namespace mvr {
 namespace {
@@ -45,6 +46,34 @@ TEST(Viewer, ScreenshotShowsTheViewAndItsEpi) {
     Image vi = overBlack(readImage((set / name).string()));
     ASSERT_EQ(0, std::memcmp(s.row(48 + i), vi.row(30), vi.rowBytes())) << "EPI row " << i;
   }
+}
+
+// A scene is rendered with the camera options as mvr render renders it:
+// the middle view shown is render's, byte for byte, and not the view
+// without them; the options are refused for a rendered set.
+TEST(Viewer, RendersASceneWithTheCameraOptionsAsRenderDoes) {
+  if (!haveXvfb()) GTEST_SKIP() << "no xvfb-run";
+  auto dir = test::freshDir("viewer_camera");
+  const std::string scene = test::assetsDir() + "/default.json", camera = " --cone 30 --focal center --depthiness 1.5";
+  ASSERT_EQ(test::runMvr("render " + scene + " --views 5 --size 64x48" + camera + " --out " + (dir / "set").string())
+                .status,
+            0);
+  Image shots[2];
+  for (int k = 0; k < 2; ++k) {
+    const std::string shot = (dir / ("shot" + std::to_string(k) + ".png")).string();
+    auto r = test::shell("xvfb-run -a " + test::mvrBinary() + " view " + scene +
+                         " --views 5 --size 64x48 --view 2 --scanline 20 --screenshot " + shot +
+                         (k == 0 ? camera : ""));
+    ASSERT_EQ(r.status, 0) << r.err;
+    shots[k] = readImage(shot);
+  }
+  const Image view = overBlack(readImage((dir / "set" / "view_0002.png").string()));
+  ASSERT_EQ(shots[0].width, 64);
+  for (int y = 0; y < 48; ++y) ASSERT_EQ(0, std::memcmp(shots[0].row(y), view.row(y), view.rowBytes())) << y;
+  EXPECT_NE(shots[1].bytes, shots[0].bytes);
+  auto r = test::shell("env -u DISPLAY " + test::mvrBinary() + " view " + (dir / "set").string() + " --cone 30");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("--cone: applies to a scene"), std::string::npos) << r.err;
 }
 
 // A quilt opens as its views; with no --view or --scanline the viewer
