@@ -71,8 +71,10 @@ GLuint RenderTarget::readableFramebuffer(int y, int h) const {
 
 void RenderTarget::copyRows(int y, int h, GLuint texture, int toY, int layer) const {
   if (!copiesBytes()) fail("GL", "the render target's pixels are not stored as bytes");
-  // A raw copy of the stored bytes: sRGB and RGBA8 texels are alike to it.
-  const GLuint source = readableFramebuffer(y, h) == fbo_.id() ? color_.id() : resolved_.id();
+  // A raw copy of the stored bytes (sRGB and RGBA8 texels are alike to
+  // it), from the encoded copy where F32 storage is read as Srgb8.
+  readableFramebuffer(y, h);
+  const GLuint source = resolved_ ? resolved_.id() : color_.id();
   gl::CopyImageSubData(source, GL_TEXTURE_2D, 0, 0, y, 0, texture, GL_TEXTURE_2D_ARRAY, 0, 0, toY, layer, width_, h,
                        1);
 }

@@ -57,10 +57,14 @@ class MvrRenderer final : public Renderer {
   // view independently) once; per row of views, compute passes and draws.
   void renderOnGpu(const ShearingCamera& cam, FrameSink& sink, RenderStats& stats) {
     if (!gpuTransform_ || gpuMoved_) {
-      std::optional<ScopedStage> s(std::in_place, stats.times, "lighting");
-      const shading::VertexColors colors = shading::litVertexColors(scene_);
-      const std::vector<float> extras = shading::vertexExtras(scene_, shading_.plan);
-      s.emplace(stats.times, "upload");
+      shading::VertexColors colors;
+      std::vector<float> extras;
+      {
+        ScopedStage s(stats.times, "lighting");
+        colors = shading::litVertexColors(scene_);
+        extras = shading::vertexExtras(scene_, shading_.plan);
+      }
+      ScopedStage s(stats.times, "upload");
       if (gpuTransform_)
         gpuTransform_->moved(scene_, colors, extras);
       else
