@@ -14,6 +14,7 @@
 #include "mvr/backends/backend.h"
 #include "mvr/io/scene_io.h"
 #include "tests/support/asset_scene.h"
+#include "tests/support/cli.h"
 #include "tests/support/render_helpers.h"
 
 namespace mvr {
@@ -21,8 +22,10 @@ namespace {
 
 class RealAssetTest : public ::testing::TestWithParam<const char*> {};
 
+// Written into a folder of this process's own: ctest runs each case as a
+// process, two at a time, and a shared folder was read while rewritten.
 const Scene& assetScene() {
-  static const Scene scene = loadScene(test::writeAssetScene(std::filesystem::temp_directory_path() / "mvr_real_asset"));
+  static const Scene scene = loadScene(test::writeAssetScene(test::freshDir("real_asset")));
   return scene;
 }
 
