@@ -163,6 +163,7 @@ void poseInstance(const AnimatedInstance& inst, const NodePose& pose, const std:
   const glm::mat3 rigidNormals = glm::transpose(glm::inverse(glm::mat3(rigid)));
   const std::vector<float>& weights = pose.weights[size_t(inst.node)];
   const bool skinned = inst.skin >= 0;
+  const size_t sets = size_t(std::max(inst.jointSets, 1));
   constexpr int kBlock = 4096;
   const int blocks = int((inst.positions.size() + kBlock - 1) / kBlock);
   auto run = [&](int b) {
@@ -172,9 +173,13 @@ void poseInstance(const AnimatedInstance& inst, const NodePose& pose, const std:
       morphed(inst, weights, v, p, n);
       glm::mat4 m = rigid;
       if (skinned) {
-        const glm::u16vec4 j = inst.joints[v];
-        const glm::vec4 w = inst.jointWeights[v];
-        m = after * (w.x * joints[j.x] + w.y * joints[j.y] + w.z * joints[j.z] + w.w * joints[j.w]);
+        glm::mat4 blend(0.0f);
+        for (size_t s = v * sets; s < (v + 1) * sets; ++s) {
+          const glm::u16vec4 j = inst.joints[s];
+          const glm::vec4 w = inst.jointWeights[s];
+          blend += w.x * joints[j.x] + w.y * joints[j.y] + w.z * joints[j.z] + w.w * joints[j.w];
+        }
+        m = after * blend;
       }
       scene.positions[inst.first + v] = glm::vec3(m * glm::vec4(p, 1.0f));
       if (inst.flat) continue;  // its normals come from the posed triangles, below
@@ -208,7 +213,9 @@ void SceneAnimation::pose(Scene& scene, double t, int clip, const glm::mat4& aft
   static const std::vector<glm::mat4> none;
   for (const AnimatedInstance& inst : instances) {
     if (inst.node < 0 || size_t(inst.node) >= nodes.size() || inst.first > scene.positions.size() ||
-        inst.positions.size() > scene.positions.size() - inst.first || inst.skin >= int(skins.size()))
+        inst.positions.size() > scene.positions.size() - inst.first || inst.skin >= int(skins.size()) ||
+        (inst.skin >= 0 && (inst.joints.size() != inst.positions.size() * size_t(std::max(inst.jointSets, 1)) ||
+                            inst.jointWeights.size() != inst.joints.size())))
       fail("animation", "a mesh instance outside the scene's vertices");
     poseInstance(inst, nodePose, inst.skin >= 0 ? skinJoints[size_t(inst.skin)] : none, after, scene);
   }

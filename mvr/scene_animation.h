@@ -72,6 +72,9 @@ struct AnimatedInstance {
   // empty when the target has none).
   std::vector<std::vector<glm::vec3>> morphPositions, morphNormals;
   int skin = -1;
+  // Per vertex jointSets influences of four (glTF's JOINTS_n, WEIGHTS_n
+  // sets), their weights summing to 1 over all sets.
+  int jointSets = 1;
   std::vector<glm::u16vec4> joints;  // into the skin's joints
   std::vector<glm::vec4> jointWeights;
 };
