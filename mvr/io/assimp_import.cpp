@@ -21,6 +21,7 @@
 #include "mvr/io/imported_model.h"
 #include "mvr/io/load_warnings.h"
 #include "mvr/io/mesh_check.h"
+#include "mvr/io/text_encoding.h"
 
 namespace mvr {
 namespace {
@@ -138,6 +139,42 @@ void resolveTextures(ImportedModel& model, const std::string& path) {
   }
 }
 
+// What assimp is given to read: the file, or where its text is UTF-16
+// (assimp's XML reader takes UTF-8) a UTF-8 copy in a folder of its own,
+// removed with this object. Textures are still found from the file.
+class Utf8Copy {
+ public:
+  explicit Utf8Copy(const std::string& path) : path_(path) {
+    if (!isUtf16(fileStart(path, 2))) return;
+    std::string text = utf8OfUtf16File(path);
+    // Its XML declaration says UTF-16; the copy is not.
+    const size_t end = text.rfind("?>", 200);
+    if (text.rfind("<?xml", 0) == 0 && end != std::string::npos) {
+      const size_t at = text.find("UTF-16"), low = text.find("utf-16");
+      const size_t which = std::min(at, low);
+      if (which < end) text.replace(which, 6, "UTF-8");
+    }
+    std::string dir = (fs::temp_directory_path() / "mvr-import-XXXXXX").string();
+    if (!::mkdtemp(dir.data())) fail(path, "cannot make a folder for its UTF-8 copy");
+    dir_ = dir;
+    path_ = (fs::path(dir) / fs::path(path).filename()).string();
+    std::ofstream out(path_, std::ios::binary);
+    out << text;
+    if (!out.flush()) fail(path, "cannot write its UTF-8 copy in " + dir);
+  }
+  ~Utf8Copy() {
+    std::error_code ec;
+    if (!dir_.empty()) fs::remove_all(dir_, ec);
+  }
+  Utf8Copy(const Utf8Copy&) = delete;
+  Utf8Copy& operator=(const Utf8Copy&) = delete;
+  const std::string& path() const { return path_; }
+  bool transcoded() const { return !dir_.empty(); }
+
+ private:
+  std::string path_, dir_;
+};
+
 }  // namespace
 
 bool isAssimpPath(const std::string& path) {
@@ -148,7 +185,9 @@ bool isAssimpPath(const std::string& path) {
 Scene importWithAssimp(const std::string& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) fail(path, "no such model file");
-  const ChildOutput child = run(helperProgram("mvr-import", "MVR_IMPORT", path, "FBX, Collada and 3DS files are read"), path);
+  const Utf8Copy text(path);
+  const ChildOutput child =
+      run(helperProgram("mvr-import", "MVR_IMPORT", path, "FBX, Collada and 3DS files are read"), text.path());
   if (child.timedOut) fail(path, "the importer (assimp) took more than " + std::to_string(kTimeoutSeconds) + " s");
   if (WIFSIGNALED(child.status))
     fail(path, "the importer (assimp) failed on this file (signal " + std::to_string(WTERMSIG(child.status)) +
@@ -157,6 +196,7 @@ Scene importWithAssimp(const std::string& path) {
     fail(path, child.err.empty() ? "the importer (assimp) could not read it" : firstLine(child.err));
   ImportedModel model = readImportedModel(child.out, path);
   for (std::string& w : model.scene.warnings) w = path + ": " + w;
+  if (text.transcoded()) model.scene.warnings.push_back(path + ": UTF-16 text read as UTF-8");
   resolveTextures(model, path);
   if (model.scene.triangles.empty()) fail(path, "mesh has no triangles");
   return std::move(model.scene);

@@ -13,6 +13,7 @@
 #include <tiny_gltf.h>
 
 #include "mvr/error.h"
+#include "mvr/io/assimp_import.h"
 #include "mvr/io/gltf_reader.h"
 #include "mvr/io/mesh_check.h"
 
@@ -54,7 +55,15 @@ class MappedFile {
   size_t size_ = 0;
 };
 
-constexpr const char* kVersionOne = "glTF 1.0 is not read, glTF 2.0 is (re-export, or convert with a glTF 1-to-2 tool)";
+constexpr const char* kVersionOne = "glTF 1.0";
+
+// tinygltf reads glTF 2.0 only; a glTF 1.0 file's meshes, nodes and
+// materials are assimp's to read (its techniques' shaders are not run).
+Scene loadVersionOne(const std::string& path) {
+  Scene scene = importWithAssimp(path);
+  scene.warnings.push_back(path + ": glTF 1.0, read by assimp: its materials as their colours and textures, unanimated");
+  return scene;
+}
 
 // Extensions without which a file's meshes cannot be read at all.
 bool isGeometryExtension(const std::string& e) {
@@ -107,7 +116,7 @@ Scene loadGltf(const std::string& path) {
     const size_t size = file.size();
     if (size > 0xffffffffu) fail(path, "GLB file over 4 GiB");
     if (size >= 8 && std::memcmp(bytes, "glTF", 4) == 0 && bytes[4] == 1 && !bytes[5] && !bytes[6] && !bytes[7])
-      fail(path, kVersionOne);
+      return loadVersionOne(path);
     ok = loader.LoadBinaryFromMemory(&model, &error, &warning, bytes, unsigned(size),
                                      std::filesystem::path(path).parent_path().string());
   } else {
@@ -115,9 +124,10 @@ Scene loadGltf(const std::string& path) {
   }
   if (!ok) {
     const std::string why = refusal(path);
+    if (why == kVersionOne) return loadVersionOne(path);
     fail(path, !why.empty() ? why : error.empty() ? "cannot read glTF" : firstLine(error));
   }
-  if (!model.asset.version.empty() && model.asset.version[0] == '1') fail(path, kVersionOne);
+  if (!model.asset.version.empty() && model.asset.version[0] == '1') return loadVersionOne(path);
   for (const std::string& e : model.extensionsRequired)
     if (isGeometryExtension(e)) fail(path, unreadExtension(e));
   Scene scene = gltf::GltfReader(model, path).read();

@@ -9,6 +9,7 @@
 
 #include "mvr/error.h"
 #include "mvr/io/gltf_reader.h"
+#include "mvr/io/point_line_solids.h"
 
 namespace mvr::gltf {
 namespace {
@@ -57,6 +58,10 @@ Scene GltfReader::read() {
   if (!model_.animations.empty() || !model_.skins.empty() || morphs) animation_ = std::make_shared<SceneAnimation>();
   onPath_.assign(model_.nodes.size(), false);
   for (int r : roots()) node(r, glm::mat4(1.0f), -1);
+  if (!marks_.empty()) {
+    addPointLineSolids(scene_, marks_);
+    warn_("points and lines drawn as small solids (mvr/io/point_line_solids.h)");
+  }
   if (scene_.triangles.empty()) fail(path_, "glTF scene has no triangles");
   if (animation_) {
     readSkins();
@@ -178,7 +183,7 @@ const Accessor* GltfReader::attribute(const tinygltf::Primitive& p, const std::s
 void GltfReader::primitive(const tinygltf::Primitive& p, const glm::mat4& world) {
   if (p.mode != -1 && p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
       p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-    warn_("points and lines skipped");
+    pointsAndLines(p, world);
     return;
   }
   std::unique_ptr<Accessor> positionHold, normalHold, uvHold, colorHold;
@@ -241,6 +246,45 @@ void GltfReader::primitive(const tinygltf::Primitive& p, const glm::mat4& world)
     const auto base = uint32_t(scene_.positions.size());
     for (uint32_t k : {t.x, t.y, t.z}) vertex(k, n, local);
     add(glm::uvec3(base, base + 1, base + 2), false, materialId);
+  }
+}
+
+// A primitive of points or lines (POINTS, LINES, LINE_LOOP, LINE_STRIP),
+// in world coordinates, for the solids that draw them (unanimated).
+void GltfReader::pointsAndLines(const tinygltf::Primitive& p, const glm::mat4& world) {
+  std::unique_ptr<Accessor> positionHold, colorHold;
+  const Accessor* position = attribute(p, "POSITION", positionHold);
+  if (!position) return;
+  if (position->components() != 3) fail(path_, "POSITION must be VEC3");
+  const Accessor* color = attribute(p, "COLOR_0", colorHold);
+  if (color && color->count() != position->count()) fail(path_, "a primitive's attributes differ in count");
+  if (instance_ && (instance_->skin >= 0 || !p.targets.empty())) warn_("skinned or morphed points and lines drawn at rest");
+  const uint32_t material = p.material >= 0 && size_t(p.material) < scene_.materials.size() ? uint32_t(p.material)
+                                                                                            : defaultMaterial();
+  if (material < hidden_.size() && hidden_[material]) return;
+  std::vector<uint32_t> idx;
+  if (p.indices >= 0) {
+    const Accessor a(model_, p.indices, path_);
+    for (size_t k = 0; k < a.count(); ++k)
+      if (idx.push_back(a.index(k)); idx.back() >= position->count())
+        fail(path_, "index " + std::to_string(idx.back()) + " beyond the vertices");
+  } else {
+    for (size_t k = 0; k < position->count(); ++k) idx.push_back(uint32_t(k));
+  }
+  auto mark = [&](uint32_t k) {
+    const glm::vec3 c = color ? glm::clamp(glm::vec3(color->at(k)), 0.0f, 1.0f) : glm::vec3(1.0f);
+    return PointLineSet::Mark{glm::vec3(world * glm::vec4(glm::vec3(position->at(k)), 1.0f)), c};
+  };
+  const size_t n = idx.size();
+  if (p.mode == TINYGLTF_MODE_POINTS) {
+    for (uint32_t k : idx) marks_.addPoint(mark(k), material);
+  } else if (p.mode == TINYGLTF_MODE_LINE) {
+    for (size_t k = 0; k + 1 < n; k += 2) marks_.addSegment(mark(idx[k]), mark(idx[k + 1]), material);
+  } else if (p.mode == TINYGLTF_MODE_LINE_STRIP || p.mode == TINYGLTF_MODE_LINE_LOOP) {
+    for (size_t k = 0; k + 1 < n; ++k) marks_.addSegment(mark(idx[k]), mark(idx[k + 1]), material);
+    if (p.mode == TINYGLTF_MODE_LINE_LOOP && n > 2) marks_.addSegment(mark(idx[n - 1]), mark(idx[0]), material);
+  } else {
+    warn_("a primitive of unknown mode " + std::to_string(p.mode) + " skipped");
   }
 }
 

@@ -14,6 +14,7 @@
 
 #include "mvr/io/gltf_accessor.h"
 #include "mvr/io/load_warnings.h"
+#include "mvr/io/point_line_solids.h"
 #include "mvr/scene.h"
 
 namespace mvr::gltf {
@@ -44,6 +45,7 @@ class GltfReader {
   std::vector<int> roots() const;
   void node(int index, const glm::mat4& parent, int parentSlot);
   void primitive(const tinygltf::Primitive& p, const glm::mat4& world);
+  void pointsAndLines(const tinygltf::Primitive& p, const glm::mat4& world);
   std::vector<glm::uvec3> corners(const tinygltf::Primitive& p, size_t vertices);
   const Accessor* attribute(const tinygltf::Primitive& p, const std::string& name, std::unique_ptr<Accessor>& holder);
   void camera(const tinygltf::Node& n, const glm::mat4& world);
@@ -78,6 +80,7 @@ class GltfReader {
   std::string path_;
   Scene scene_;
   std::vector<bool> onPath_;
+  PointLineSet marks_;  // the points and lines, drawn as solids after the triangles
   std::vector<std::pair<size_t, glm::mat4>> placedLights_;  // light, its node's world transform
   std::vector<glm::mat3> uvTransforms_;  // per material: its base colour texture's KHR_texture_transform
   std::vector<int> uvSets_;              // per material: the TEXCOORD_n its base colour texture reads

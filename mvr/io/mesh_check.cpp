@@ -94,6 +94,10 @@ void noteObjStatement(const std::string& key, long line, ObjStatements& notes) {
 
 void checkObjFile(const std::string& path, ObjStatements* notes) {
   std::ifstream in(path);
+  checkObjText(in, path, notes);
+}
+
+void checkObjText(std::istream& in, const std::string& path, ObjStatements* notes) {
   std::vector<long> corners;
   long defined[3] = {0, 0, 0};  // v, vt, vn
   long line = 0;

@@ -6,6 +6,7 @@
 // does not exist corrupted its heap. These checks are bounded and read
 // the file once; each rejection is one line naming the file and the line
 // or element, which the libraries' own messages do not.
+#include <istream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -49,8 +50,10 @@ struct ObjStatements {
   bool spacedNames = false;
 };
 
-// The OBJ checks of checkMeshFile, noting the statements not drawn.
+// The OBJ checks of checkMeshFile, noting the statements not drawn; of
+// the file's text as read from `in` (path: for errors).
 void checkObjFile(const std::string& path, ObjStatements* notes);
+void checkObjText(std::istream& in, const std::string& path, ObjStatements* notes);
 
 // The file name's extension in lower case (".ply"): how the loaders pick a
 // format.

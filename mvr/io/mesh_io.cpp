@@ -26,6 +26,7 @@
 #include "mvr/io/assimp_import.h"
 #include "mvr/io/gltf_io.h"
 #include "mvr/io/mesh_check.h"
+#include "mvr/io/point_line_solids.h"
 #include "mvr/io/obj_io.h"
 
 namespace mvr {
@@ -106,6 +107,17 @@ std::string withCommentedLines(const std::string& path, const std::vector<long>&
   return text;
 }
 
+// A file of vertices and no faces (a scanner's point cloud): its points
+// drawn as small solids, in their colours.
+Scene pointCloud(Scene s) {
+  PointLineSet points;
+  for (size_t v = 0; v < s.positions.size(); ++v) points.addPoint({s.positions[v], s.colors[v]}, 0);
+  s.positions.clear(), s.normals.clear(), s.colors.clear(), s.uvs.clear();
+  addPointLineSolids(s, points);
+  s.warnings.push_back(s.source + ": a point cloud: its points drawn as small solids (mvr/io/point_line_solids.h)");
+  return s;
+}
+
 }  // namespace
 
 Scene loadMesh(const std::string& path) {
@@ -134,7 +146,7 @@ Scene loadMesh(const std::string& path) {
   }
   if (!read) fail(path, "cannot read mesh (unsupported format or broken file)");
   const size_t dropped = importer.dropped;
-  if (mesh.n_faces() == 0)
+  if (mesh.n_faces() == 0 && (dropped || mesh.n_vertices() == 0))
     fail(path, dropped ? "mesh has no usable triangles (" + std::to_string(dropped) +
                              " faces with repeated or missing corners)"
                        : std::string("mesh has no triangles"));
@@ -185,6 +197,7 @@ Scene loadMesh(const std::string& path) {
   }
   s.materialIds.assign(s.triangles.size(), 0);
   s.materials.emplace_back();
+  if (s.triangles.empty()) return pointCloud(std::move(s));
   if (!fileNormals) computeVertexNormals(s);
   return s;
 }

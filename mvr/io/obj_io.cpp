@@ -14,6 +14,8 @@
 #include "mvr/io/file_search.h"
 #include "mvr/io/load_warnings.h"
 #include "mvr/io/mesh_check.h"
+#include "mvr/io/point_line_solids.h"
+#include "mvr/io/text_encoding.h"
 
 namespace mvr {
 namespace {
@@ -35,8 +37,7 @@ std::string joined(const std::string& name) {
 }
 
 // The OBJ's text with each usemtl name joined.
-std::string withJoinedNames(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+std::string withJoinedNames(std::istream& in) {
   std::string out;
   for (std::string line; std::getline(in, line);) {
     const size_t at = line.find_first_not_of(" \t");
@@ -156,8 +157,20 @@ class ObjBuilder {
     checkAttributes();
     for (const tinyobj::shape_t& s : shapes) note(s.mesh);
     for (const tinyobj::shape_t& s : shapes) faces(s.mesh);
-    if (allNormals_) return;
-    // Smooth normals over each position, shared by its copies.
+    if (!allNormals_) smoothNormals();
+    PointLineSet marks;
+    for (const tinyobj::shape_t& s : shapes) pointsAndLines(s, marks);
+    if (marks.empty() && scene_.triangles.empty() && !scene_.droppedFaces) {
+      // Vertices and nothing else (a scanner's point cloud, as Meshlab saves one).
+      for (size_t v = 0; v < a_.vertices.size() / 3; ++v) marks.addPoint({position(v), color(v)}, material(-1, false));
+      if (!marks.empty()) warn_("a point cloud: its vertices drawn as small solids (mvr/io/point_line_solids.h)");
+    }
+    addPointLineSolids(scene_, marks);
+  }
+
+ private:
+  // Smooth normals over each position, shared by its copies.
+  void smoothNormals() {
     Scene byPosition;
     for (size_t v = 0; v < a_.vertices.size() / 3; ++v) byPosition.positions.push_back(position(v));
     byPosition.triangles = positionTriangles_;
@@ -166,8 +179,27 @@ class ObjBuilder {
     for (int v : vertexPosition_) scene_.normals.push_back(byPosition.normals[size_t(v)]);
   }
 
- private:
+  // A shape's `p` and `l` statements (l: polylines), in the default material.
+  void pointsAndLines(const tinyobj::shape_t& s, PointLineSet& marks) {
+    const int vertices = int(a_.vertices.size() / 3);
+    auto mark = [&](const tinyobj::index_t& i) {
+      if (i.vertex_index < 0 || i.vertex_index >= vertices) fail(path_, "a point or line refers to a vertex that does not exist");
+      return PointLineSet::Mark{position(size_t(i.vertex_index)), color(size_t(i.vertex_index))};
+    };
+    if (s.points.indices.empty() && s.lines.indices.empty()) return;
+    const uint32_t m = material(-1, false);
+    for (const tinyobj::index_t& i : s.points.indices) marks.addPoint(mark(i), m);
+    size_t at = 0;
+    for (int count : s.lines.num_line_vertices) {
+      for (int k = 0; k + 1 < count && at + size_t(k) + 1 < s.lines.indices.size(); ++k)
+        marks.addSegment(mark(s.lines.indices[at + size_t(k)]), mark(s.lines.indices[at + size_t(k) + 1]), m);
+      at += size_t(std::max(count, 0));
+    }
+  }
   glm::vec3 position(size_t v) const { return {a_.vertices[3 * v], a_.vertices[3 * v + 1], a_.vertices[3 * v + 2]}; }
+  glm::vec3 color(size_t v) const {
+    return 3 * v + 2 < a_.colors.size() ? glm::vec3(a_.colors[3 * v], a_.colors[3 * v + 1], a_.colors[3 * v + 2]) : glm::vec3(1.0f);
+  }
 
   void checkAttributes() {
     for (size_t v = 0; v < a_.vertices.size() / 3; ++v) {
@@ -222,9 +254,7 @@ class ObjBuilder {
     const auto v = size_t(i.vertex_index);
     scene_.positions.push_back(position(v));
     vertexPosition_.push_back(i.vertex_index);
-    scene_.colors.push_back(3 * v + 2 < a_.colors.size()
-                                ? glm::vec3(a_.colors[3 * v], a_.colors[3 * v + 1], a_.colors[3 * v + 2])
-                                : glm::vec3(1.0f));
+    scene_.colors.push_back(color(v));
     if (anyUv_) {
       const auto t = size_t(key.t);
       scene_.uvs.push_back(key.t >= 0 ? glm::vec2(a_.texcoords[2 * t], a_.texcoords[2 * t + 1]) : glm::vec2(0.0f));
@@ -239,9 +269,9 @@ class ObjBuilder {
   }
 
   // Our material for the file's (-1: none), each added when first used.
-  uint32_t material(int id) {
+  uint32_t material(int id, bool faces = true) {
     if (id < 0 || size_t(id) >= materials_.size()) {
-      if (!materials_.empty()) warn_("faces of no material the MTL files define are drawn as the default");
+      if (!materials_.empty() && faces) warn_("faces of no material the MTL files define are drawn as the default");
       id = -1;
     }
     auto [it, added] = materialOf_.emplace(id, uint32_t(scene_.materials.size()));
@@ -265,7 +295,7 @@ class ObjBuilder {
 };
 
 void warnStatements(const ObjStatements& notes, LoadWarnings& warn) {
-  if (notes.pointsOrLines) warn("points and lines skipped");
+  if (notes.pointsOrLines) warn("points and lines drawn as small solids (mvr/io/point_line_solids.h)");
   if (notes.ignored.empty()) return;
   std::string list;
   for (const auto& [key, line] : notes.ignored)
@@ -278,20 +308,26 @@ void warnStatements(const ObjStatements& notes, LoadWarnings& warn) {
 Scene loadObj(const std::string& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) fail(path, "no such mesh file");
+  // A UTF-16 file's text, as UTF-8, read from memory; any other's from the file.
+  const bool utf16 = isUtf16(fileStart(path, 2));
+  std::istringstream utf8(utf16 ? utf8OfUtf16File(path) : "");
+  std::ifstream file(path, std::ios::binary);
+  std::istream& source = utf16 ? static_cast<std::istream&>(utf8) : file;
   ObjStatements notes;
-  checkObjFile(path, &notes);  // names the line of a bad index or number, which tinyobjloader does not
+  checkObjText(source, path, &notes);  // names the line of a bad index or number, which tinyobjloader does not
+  source.clear(), source.seekg(0);
   Scene scene;
   scene.source = path;
   LoadWarnings warn(scene, path);
+  if (utf16) warn("UTF-16 text read as UTF-8");
   warnStatements(notes, warn);
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
   std::string tinyWarn, error;
   MtlFiles mtl(fs::path(path).parent_path(), warn, notes.spacedNames);
-  std::ifstream file(path, std::ios::binary);
-  std::istringstream text(notes.spacedNames ? withJoinedNames(path) : "");
-  std::istream& in = notes.spacedNames ? static_cast<std::istream&>(text) : file;
+  std::istringstream joined(notes.spacedNames ? withJoinedNames(source) : "");
+  std::istream& in = notes.spacedNames ? static_cast<std::istream&>(joined) : source;
   if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &tinyWarn, &error, &in, &mtl, true, true))
     fail(path, error.empty() ? "cannot read OBJ" : error.substr(0, error.find('\n')));
   mtl.folders.resize(materials.size(), fs::path(path).parent_path());

@@ -94,6 +94,21 @@ TEST_F(Assimp, ColladaGeometryMaterialsAndTexture) {
   EXPECT_TRUE(found) << ::testing::PrintToString(s.warnings);
 }
 
+// A Collada file saved as UTF-16 (with its declaration saying so): the
+// same quad as the UTF-8 file's.
+TEST_F(Assimp, Utf16ColladaIsReadAsItsUtf8) {
+  std::string text = kCollada;
+  text.replace(text.find("utf-8"), 5, "UTF-16");
+  std::string wide = "\xff\xfe";
+  for (char c : text) wide += std::string{c, '\0'};
+  const Scene s = loadMesh(write("wide.dae", wide));
+  ASSERT_EQ(s.triangles.size(), 2u);
+  for (const glm::vec3& p : s.positions) EXPECT_FLOAT_EQ(p.z, 0.5f);
+  bool said = false;
+  for (const std::string& w : s.warnings) said = said || w.find("UTF-16 text read as UTF-8") != std::string::npos;
+  EXPECT_TRUE(said) << ::testing::PrintToString(s.warnings);
+}
+
 TEST_F(Assimp, FailuresAreOneLine) {
   expectError(write("junk.fbx", "this is no FBX file"), "");
   expectError(write("cut.dae", std::string(kCollada).substr(0, 700)), "");

@@ -80,16 +80,16 @@ TEST_F(Obj, PolygonsSeamsAndColours) {
                                 "v 0 0 0 1 0 0\nv 1 0 0\nv 1.5 1 0.5\nv 0.5 1.5 0\nv -0.5 1 0.5\nvt 0 0\nvt 1 0\nvt 0.5 1\n"
                                 "f 1/1 2/2 3/3 4/3 5/3\nf 2/1 1/1 5/3\nl 1 2\n");
   const Scene s = loadMesh(obj);
-  EXPECT_EQ(s.triangles.size(), 4u);
-  EXPECT_TRUE(anyWarning(s, "points and lines skipped"));
-  EXPECT_EQ(s.positions.size(), 6u);  // 5 positions, one twice
+  EXPECT_EQ(s.triangles.size(), 4u + 8);  // the line a prism of 8 after them
+  EXPECT_TRUE(anyWarning(s, "points and lines drawn as small solids"));
+  EXPECT_EQ(s.positions.size(), 6u + 8);  // 5 positions, one twice; then the prism's
   std::vector<size_t> atCorner;
-  for (size_t v = 0; v < s.positions.size(); ++v)
+  for (size_t v = 0; v < 6; ++v)
     if (s.positions[v] == glm::vec3(1, 0, 0)) atCorner.push_back(v);
   ASSERT_EQ(atCorner.size(), 2u);
   EXPECT_EQ(s.normals[atCorner[0]], s.normals[atCorner[1]]);
   EXPECT_NE(s.uvs[atCorner[0]], s.uvs[atCorner[1]]);
-  for (size_t v = 0; v < s.positions.size(); ++v)  // vertex 1's colour; the others white
+  for (size_t v = 0; v < 6; ++v)  // vertex 1's colour; the others white
     EXPECT_EQ(s.colors[v], s.positions[v] == glm::vec3(0.0f) ? glm::vec3(1, 0, 0) : glm::vec3(1.0f)) << v;
 }
 
@@ -149,10 +149,9 @@ TEST_F(Obj, BadFilesAreOneLineErrors) {
     test::expectOneLineError([&] { loadScene(path); }, path, what);
   };
   expectError(write("uv.obj", std::string(kSquare) + "f 1/9 2/2 3/3\n"), "uv.obj:10: face refers to texture coordinate 9");
-  expectError(write("dots.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1 2 3\n"), "mesh has no triangles");
+  expectError(write("empty.obj", "# nothing but this\n"), "mesh has no triangles");
   expectError(write("bright.obj", "v 0 0 0 0 0 3\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), "vertex 0 has a colour outside [0, 1]");
   expectError((dir_ / "absent.obj").string(), "no such mesh file");
-  expectError(write("wide.obj", std::string("\xfe\xff\0v\0 \0\x30", 8)), "UTF-16 text is not read");
 }
 
 // A square textured by its MTL's map_Kd (one colour), lit head on: svr's
@@ -173,6 +172,19 @@ TEST_F(Obj, TexturedQuadMvrAgainstSvr) {
   EXPECT_NEAR(c.r, decodeSrgb8(test::kRed).r, 0.02f);
   EXPECT_GT(c.r, 5 * c.g);
   test::expectCloseOnAnyGl(test::compareViews(a, b), 0.99, 30.0, "OBJ textured quad, mvr cpu");
+}
+
+// A UTF-16 file (Windows' "Unicode"), either byte order: read as its UTF-8 text.
+TEST_F(Obj, Utf16TextIsReadAsUtf8) {
+  const std::string text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  for (bool big : {true, false}) {
+    std::string wide = big ? "\xfe\xff" : "\xff\xfe";
+    for (char c : text) wide += big ? std::string{'\0', c} : std::string{c, '\0'};
+    const Scene s = loadMesh(write(big ? "be.obj" : "le.obj", wide));
+    ASSERT_EQ(s.triangles.size(), 1u) << big;
+    EXPECT_EQ(s.positions[s.triangles[0].y], glm::vec3(1, 0, 0));
+    EXPECT_TRUE(anyWarning(s, "UTF-16 text read as UTF-8"));
+  }
 }
 
 }  // namespace

@@ -179,7 +179,8 @@ TEST_F(SceneIo, SavedFuzzCrashersAreOneLineErrors) {
   EXPECT_GE(inputs, 10);
 }
 
-TEST_F(SceneIo, EmptyMesh) { expectError(write("empty.obj", "v 0 0 0\nv 1 0 0\n"), "no triangles"); }
+// Nothing at all to draw (vertices alone are a point cloud, drawn).
+TEST_F(SceneIo, EmptyMesh) { expectError(write("empty.obj", "o nothing\ng here\n"), "no triangles"); }
 
 // Binary PLY carries NaN and infinity through to the loader untouched.
 std::string plyTriangle(float bad) {
