@@ -83,6 +83,7 @@ struct PreparedJob {
   size_t referenceCount = 0;
   StageTimes startup;
   Stopwatch sinceStart;
+  double poseSeconds = 0.0;  // a sequence's frame: posing its scene (skins, morphs, nodes)
   MpiSession* mpi = nullptr;
   // Frames held, decided before rendering starts.
   bool reorders = false, depthReorders = false;

@@ -210,7 +210,9 @@ int writeSequence(const RenderJob& job, PreparedJob& p) {
       frames.push_back(frameRecord(frame));
       continue;
     }
+    const Stopwatch posing;
     mover.moveTo(frame);
+    p.poseSeconds = posing.seconds();
     RenderJob one = job;
     one.frame = frame;
     p.startup = startup;

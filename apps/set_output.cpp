@@ -69,6 +69,7 @@ void describe(const RenderJob& job, const PreparedJob& p, const SetRun& run, Man
   if (const std::optional<glm::vec4> b = job.camera.backgroundColor()) m["background"] = {b->r, b->g, b->b, b->a};
   m["timings_s"] = run.stats.times.seconds;
   m["timings_s"]["total"] = run.total.seconds();
+  if (p.poseSeconds > 0.0) m["timings_s"]["pose"] = p.poseSeconds;
   StageTimes startup = p.startup;
   if (const double load = imageCodecLoadSeconds(); load > 0.0) startup.add("image_module_load", load);
   m["startup_s"] = startup.seconds;

@@ -60,6 +60,22 @@ Accessor::Accessor(const tinygltf::Model& m, int index, const std::string& where
   if (a.sparse.isSparse) sparse(m, a, element);
 }
 
+Accessor::Accessor(std::vector<float> values, int components, const std::string& where)
+    : where_(where), type_(TINYGLTF_COMPONENT_TYPE_FLOAT), components_(components) {
+  count_ = components > 0 ? values.size() / size_t(components) : 0;
+  stride_ = 4 * size_t(components);
+  owned_.resize(values.size() * 4);
+  std::memcpy(owned_.data(), values.data(), owned_.size());
+  data_ = owned_.data();
+}
+
+Accessor::Accessor(const std::vector<uint32_t>& indices, const std::string& where)
+    : where_(where), type_(TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT), components_(1), count_(indices.size()), stride_(4) {
+  owned_.resize(indices.size() * 4);
+  std::memcpy(owned_.data(), indices.data(), owned_.size());
+  data_ = owned_.data();
+}
+
 // The base's elements (zeros without one) copied packed, then each sparse
 // index's element replaced by its value (glTF 2.0, 3.6.2.3).
 void Accessor::sparse(const tinygltf::Model& m, const tinygltf::Accessor& a, size_t element) {

@@ -16,6 +16,10 @@ class Accessor {
  public:
   // `where`: the file, for errors.
   Accessor(const tinygltf::Model& m, int index, const std::string& where);
+  // Elements decoded elsewhere (a Draco-compressed primitive's): `count`
+  // packed elements of `components` floats, or unsigned ints (indices).
+  Accessor(std::vector<float> values, int components, const std::string& where);
+  explicit Accessor(const std::vector<uint32_t>& indices, const std::string& where);
 
   size_t count() const { return count_; }
   int components() const { return components_; }

@@ -14,6 +14,7 @@
 
 #include "mvr/error.h"
 #include "mvr/io/assimp_import.h"
+#include "mvr/io/gltf_draco.h"
 #include "mvr/io/gltf_reader.h"
 #include "mvr/io/mesh_check.h"
 
@@ -67,7 +68,7 @@ Scene loadVersionOne(const std::string& path) {
 
 // Extensions without which a file's meshes cannot be read at all.
 bool isGeometryExtension(const std::string& e) {
-  return e == "KHR_draco_mesh_compression" || e == "EXT_meshopt_compression";
+  return e == "EXT_meshopt_compression";
 }
 
 std::string unreadExtension(const std::string& e) {
@@ -117,10 +118,24 @@ Scene loadGltf(const std::string& path) {
     if (size > 0xffffffffu) fail(path, "GLB file over 4 GiB");
     if (size >= 8 && std::memcmp(bytes, "glTF", 4) == 0 && bytes[4] == 1 && !bytes[5] && !bytes[6] && !bytes[7])
       return loadVersionOne(path);
-    ok = loader.LoadBinaryFromMemory(&model, &error, &warning, bytes, unsigned(size),
-                                     std::filesystem::path(path).parent_path().string());
+    const std::string dir = std::filesystem::path(path).parent_path().string();
+    ok = loader.LoadBinaryFromMemory(&model, &error, &warning, bytes, unsigned(size), dir);
+    if (const std::string patched = ok ? "" : gltf::glbWithoutDracoIndices(bytes, size); !patched.empty()) {
+      error.clear(), warning.clear();
+      ok = loader.LoadBinaryFromMemory(&model, &error, &warning, reinterpret_cast<const unsigned char*>(patched.data()),
+                                       unsigned(patched.size()), dir);
+    }
   } else {
     ok = loader.LoadASCIIFromFile(&model, &error, &warning, path);
+    if (!ok) {
+      std::ifstream in(path, std::ios::binary);
+      const std::string patched = gltf::withoutDracoIndices(std::string(std::istreambuf_iterator<char>(in), {}));
+      if (!patched.empty()) {
+        error.clear(), warning.clear();
+        ok = loader.LoadASCIIFromString(&model, &error, &warning, patched.c_str(), unsigned(patched.size()),
+                                        std::filesystem::path(path).parent_path().string());
+      }
+    }
   }
   if (!ok) {
     const std::string why = refusal(path);

@@ -20,7 +20,7 @@ constexpr size_t kMaxTriangles = size_t(1) << 28;
 // Extensions read where they are used; any other is named in a warning.
 bool isRead(const std::string& e) {
   return e == "KHR_texture_transform" || e == "KHR_lights_punctual" || e == "KHR_mesh_quantization" ||
-         e == "KHR_materials_emissive_strength" || e == "KHR_materials_unlit";
+         e == "KHR_materials_emissive_strength" || e == "KHR_materials_unlit" || e == "KHR_draco_mesh_compression";
 }
 
 glm::vec3 unit(glm::vec3 v) {
@@ -152,11 +152,10 @@ void GltfReader::camera(const tinygltf::Node& n, const glm::mat4& world) {
 // The primitive's triangles as corner indices, by its mode.
 std::vector<glm::uvec3> GltfReader::corners(const tinygltf::Primitive& p, size_t vertices) {
   std::vector<uint32_t> idx;
-  if (p.indices >= 0) {
-    const Accessor a(model_, p.indices, path_);
-    idx.resize(a.count());
+  if (const std::shared_ptr<const Accessor> a = indices(p)) {
+    idx.resize(a->count());
     for (size_t k = 0; k < idx.size(); ++k)
-      if ((idx[k] = a.index(k)) >= vertices) fail(path_, "index " + std::to_string(idx[k]) + " beyond the vertices");
+      if ((idx[k] = a->index(k)) >= vertices) fail(path_, "index " + std::to_string(idx[k]) + " beyond the vertices");
   } else {
     idx.resize(vertices);
     for (size_t k = 0; k < vertices; ++k) idx[k] = uint32_t(k);
@@ -173,11 +172,17 @@ std::vector<glm::uvec3> GltfReader::corners(const tinygltf::Primitive& p, size_t
   return out;
 }
 
-const Accessor* GltfReader::attribute(const tinygltf::Primitive& p, const std::string& name, std::unique_ptr<Accessor>& holder) {
+std::shared_ptr<const Accessor> GltfReader::attribute(const tinygltf::Primitive& p, const std::string& name) {
   auto it = p.attributes.find(name);
   if (it == p.attributes.end()) return nullptr;
-  holder = std::make_unique<Accessor>(model_, it->second, path_);
-  return holder.get();
+  if (draco_)
+    if (const auto decoded = draco_->attributes.find(name); decoded != draco_->attributes.end()) return decoded->second;
+  return std::make_shared<Accessor>(model_, it->second, path_);
+}
+
+std::shared_ptr<const Accessor> GltfReader::indices(const tinygltf::Primitive& p) {
+  if (draco_ && draco_->indices) return draco_->indices;
+  return p.indices >= 0 ? std::make_shared<Accessor>(model_, p.indices, path_) : nullptr;
 }
 
 void GltfReader::primitive(const tinygltf::Primitive& p, const glm::mat4& world) {
@@ -186,8 +191,8 @@ void GltfReader::primitive(const tinygltf::Primitive& p, const glm::mat4& world)
     pointsAndLines(p, world);
     return;
   }
-  std::unique_ptr<Accessor> positionHold, normalHold, uvHold, colorHold;
-  const Accessor* position = attribute(p, "POSITION", positionHold);
+  draco_ = decodeDraco(model_, p, path_);
+  const std::shared_ptr<const Accessor> position = attribute(p, "POSITION");
   if (!position) {
     warn_("a primitive without POSITION skipped");
     return;
@@ -196,10 +201,9 @@ void GltfReader::primitive(const tinygltf::Primitive& p, const glm::mat4& world)
   const uint32_t materialId = p.material >= 0 && size_t(p.material) < scene_.materials.size() ? uint32_t(p.material)
                                                                                                : defaultMaterial();
   const int uvSet = materialId < uvSets_.size() ? uvSets_[materialId] : 0;
-  const Accessor* normal = attribute(p, "NORMAL", normalHold);
-  const Accessor* uv = attribute(p, "TEXCOORD_" + std::to_string(uvSet), uvHold);
-  const Accessor* color = attribute(p, "COLOR_0", colorHold);
-  for (const Accessor* a : {normal, uv, color})
+  const std::shared_ptr<const Accessor> normal = attribute(p, "NORMAL"), color = attribute(p, "COLOR_0"),
+                                        uv = attribute(p, "TEXCOORD_" + std::to_string(uvSet));
+  for (const auto& a : {normal, uv, color})
     if (a && a->count() != position->count()) fail(path_, "a primitive's attributes differ in count");
   if (normal && normal->components() != 3) fail(path_, "NORMAL must be VEC3");
   const Deformation deform = deformation(p, position->count(), normal != nullptr);
@@ -252,21 +256,20 @@ void GltfReader::primitive(const tinygltf::Primitive& p, const glm::mat4& world)
 // A primitive of points or lines (POINTS, LINES, LINE_LOOP, LINE_STRIP),
 // in world coordinates, for the solids that draw them (unanimated).
 void GltfReader::pointsAndLines(const tinygltf::Primitive& p, const glm::mat4& world) {
-  std::unique_ptr<Accessor> positionHold, colorHold;
-  const Accessor* position = attribute(p, "POSITION", positionHold);
+  draco_ = decodeDraco(model_, p, path_);
+  const std::shared_ptr<const Accessor> position = attribute(p, "POSITION");
   if (!position) return;
   if (position->components() != 3) fail(path_, "POSITION must be VEC3");
-  const Accessor* color = attribute(p, "COLOR_0", colorHold);
+  const std::shared_ptr<const Accessor> color = attribute(p, "COLOR_0");
   if (color && color->count() != position->count()) fail(path_, "a primitive's attributes differ in count");
   if (instance_ && (instance_->skin >= 0 || !p.targets.empty())) warn_("skinned or morphed points and lines drawn at rest");
   const uint32_t material = p.material >= 0 && size_t(p.material) < scene_.materials.size() ? uint32_t(p.material)
                                                                                             : defaultMaterial();
   if (material < hidden_.size() && hidden_[material]) return;
   std::vector<uint32_t> idx;
-  if (p.indices >= 0) {
-    const Accessor a(model_, p.indices, path_);
-    for (size_t k = 0; k < a.count(); ++k)
-      if (idx.push_back(a.index(k)); idx.back() >= position->count())
+  if (const std::shared_ptr<const Accessor> a = indices(p)) {
+    for (size_t k = 0; k < a->count(); ++k)
+      if (idx.push_back(a->index(k)); idx.back() >= position->count())
         fail(path_, "index " + std::to_string(idx.back()) + " beyond the vertices");
   } else {
     for (size_t k = 0; k < position->count(); ++k) idx.push_back(uint32_t(k));

@@ -13,6 +13,7 @@
 #include <tiny_gltf.h>
 
 #include "mvr/io/gltf_accessor.h"
+#include "mvr/io/gltf_draco.h"
 #include "mvr/io/load_warnings.h"
 #include "mvr/io/point_line_solids.h"
 #include "mvr/scene.h"
@@ -35,8 +36,8 @@ class GltfReader {
   // displacements and skin joints, read once and added per vertex.
   struct Deformation {
     std::string path;
-    std::vector<std::unique_ptr<Accessor>> positions, normals;  // per target; null: none
-    std::vector<std::unique_ptr<Accessor>> joints, weights;     // per JOINTS_n / WEIGHTS_n set
+    std::vector<std::shared_ptr<const Accessor>> positions, normals;  // per target; null: none
+    std::vector<std::shared_ptr<const Accessor>> joints, weights;     // per JOINTS_n / WEIGHTS_n set
     size_t jointCount = 0;
     void add(uint32_t k, AnimatedInstance& inst) const;
   };
@@ -47,7 +48,10 @@ class GltfReader {
   void primitive(const tinygltf::Primitive& p, const glm::mat4& world);
   void pointsAndLines(const tinygltf::Primitive& p, const glm::mat4& world);
   std::vector<glm::uvec3> corners(const tinygltf::Primitive& p, size_t vertices);
-  const Accessor* attribute(const tinygltf::Primitive& p, const std::string& name, std::unique_ptr<Accessor>& holder);
+  // The primitive's attribute (null: none) and indices (null: none), from
+  // its Draco data where it is compressed.
+  std::shared_ptr<const Accessor> attribute(const tinygltf::Primitive& p, const std::string& name);
+  std::shared_ptr<const Accessor> indices(const tinygltf::Primitive& p);
   void camera(const tinygltf::Node& n, const glm::mat4& world);
   void reserve(size_t vertices, size_t triangles);
   void add(glm::uvec3 t, bool mirrored, uint32_t materialId);
@@ -80,6 +84,7 @@ class GltfReader {
   std::string path_;
   Scene scene_;
   std::vector<bool> onPath_;
+  std::unique_ptr<DracoPrimitive> draco_;  // the primitive being read, decoded, where compressed
   PointLineSet marks_;  // the points and lines, drawn as solids after the triangles
   std::vector<std::pair<size_t, glm::mat4>> placedLights_;  // light, its node's world transform
   std::vector<glm::mat3> uvTransforms_;  // per material: its base colour texture's KHR_texture_transform

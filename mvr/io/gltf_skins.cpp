@@ -103,10 +103,10 @@ GltfReader::Deformation GltfReader::deformation(const tinygltf::Primitive& p, si
   d.path = path_;
   if (!instance_) return d;
   for (const auto& target : p.targets) {
-    auto accessor = [&](const char* name) -> std::unique_ptr<Accessor> {
+    auto accessor = [&](const char* name) -> std::shared_ptr<const Accessor> {
       const auto it = target.find(name);
       if (it == target.end()) return nullptr;
-      auto a = std::make_unique<Accessor>(model_, it->second, path_);
+      auto a = std::make_shared<const Accessor>(model_, it->second, path_);
       if (a->components() != 3 || a->count() != count) fail(path_, std::string("a morph target's ") + name + " must be VEC3, one per vertex");
       return a;
     };
@@ -120,8 +120,8 @@ GltfReader::Deformation GltfReader::deformation(const tinygltf::Primitive& p, si
   for (int s = 0; p.attributes.count("JOINTS_" + std::to_string(s)); ++s) {
     const std::string joints = "JOINTS_" + std::to_string(s), weights = "WEIGHTS_" + std::to_string(s);
     if (!p.attributes.count(weights)) fail(path_, joints + " without " + weights);
-    d.joints.push_back(std::make_unique<Accessor>(model_, p.attributes.at(joints), path_));
-    d.weights.push_back(std::make_unique<Accessor>(model_, p.attributes.at(weights), path_));
+    d.joints.push_back(attribute(p, joints));
+    d.weights.push_back(attribute(p, weights));
     if (d.joints.back()->components() != 4 || d.weights.back()->components() != 4 || d.joints.back()->count() != count ||
         d.weights.back()->count() != count)
       fail(path_, joints + " and " + weights + " must be VEC4, one per vertex");

@@ -30,7 +30,7 @@ class Cursor {
   void take(std::vector<T>& v, size_t count) {
     if (count > (bytes_.size() - at_) / sizeof(T)) fail(where_, "the importer's output is cut short");
     v.resize(count);
-    std::memcpy(v.data(), bytes_.data() + at_, count * sizeof(T));
+    if (count) std::memcpy(v.data(), bytes_.data() + at_, count * sizeof(T));
     at_ += count * sizeof(T);
   }
   template <class T>

@@ -1,14 +1,16 @@
 // The parts of glTF 2.0 past meshes and materials that real files use
 // (issue 56): sparse accessors, every JOINTS_n / WEIGHTS_n set, the
 // texture coordinate set a material names (and KHR_texture_transform's
-// override of it), KHR_materials_unlit, and a warning naming what is not
-// read. Each on a file the test writes, checked against values by hand.
+// override of it), KHR_materials_unlit, Draco-compressed primitives, and
+// a warning naming what is not read. Each on a file the test writes, checked against values by hand.
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
 
+#include <draco/compression/encode.h>
+#include <draco/mesh/triangle_soup_mesh_builder.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -158,6 +160,58 @@ TEST_F(GltfExtensions, UnlitIsItsBaseColourAndUnreadExtensionsAreNamed) {
     named += w.find("KHR_materials_clearcoat") != std::string::npos;
   }
   EXPECT_EQ(named, 1);
+}
+
+// A quad of two triangles compressed by Draco's own encoder (positions
+// unquantised, so exact), in a .gltf and in a .glb: the same corners.
+TEST_F(GltfExtensions, DracoPrimitivesAreDecoded) {
+  const float corners[2][3][3] = {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}}, {{0, 0, 0}, {1, 1, 0}, {0, 1, 0}}};
+  draco::TriangleSoupMeshBuilder builder;
+  builder.Start(2);
+  const int position = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
+  for (int f = 0; f < 2; ++f)
+    builder.SetAttributeValuesForFace(position, draco::FaceIndex(f), corners[f][0], corners[f][1], corners[f][2]);
+  const std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
+  ASSERT_TRUE(mesh);
+  draco::Encoder encoder;
+  draco::EncoderBuffer encoded;
+  ASSERT_TRUE(encoder.EncodeMeshToBuffer(*mesh, &encoded).ok());
+  Document d;
+  d.bytes.assign(encoded.data(), encoded.data() + encoded.size());
+  d.json["bufferViews"].push_back({{"buffer", 0}, {"byteLength", encoded.size()}});
+  d.json["accessors"] = Json::array({{{"componentType", 5125}, {"count", 6}, {"type", "SCALAR"}},
+                                     {{"componentType", 5126}, {"count", mesh->num_points()}, {"type", "VEC3"}}});
+  const Json draco = {{"bufferView", 0}, {"attributes", {{"POSITION", mesh->attribute(position)->unique_id()}}}};
+  d.json["extensionsUsed"] = d.json["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+  d.json["meshes"] = Json::array({{{"primitives", Json::array({{{"attributes", {{"POSITION", 1}}}, {"indices", 0},
+                                                                {"extensions", {{"KHR_draco_mesh_compression", draco}}}}})}}});
+  d.json["nodes"] = Json::array({{{"mesh", 0}}});
+  const std::string gltf = d.write(dir_ / "draco.gltf");
+  // The same as a GLB: header, JSON chunk (its buffer the binary chunk), binary chunk.
+  Json glbJson = d.json;
+  glbJson["buffers"] = Json::array({{{"byteLength", d.bytes.size()}}});
+  std::string json = glbJson.dump(), bin(d.bytes.begin(), d.bytes.end());
+  while (json.size() % 4) json += ' ';
+  while (bin.size() % 4) bin += '\0';
+  auto word = [](uint32_t w) { return std::string(reinterpret_cast<const char*>(&w), 4); };
+  std::ofstream(dir_ / "draco.glb", std::ios::binary)
+      << "glTF" << word(2) << word(uint32_t(28 + json.size() + bin.size())) << word(uint32_t(json.size())) << "JSON" << json
+      << word(uint32_t(bin.size())) << std::string("BIN\0", 4) << bin;
+  // Draco may reorder faces and start a face at another corner; the
+  // winding it keeps. Each face is one of the quad's, rotated.
+  auto corner = [&](int f, int k) { return glm::vec3(corners[f][k][0], corners[f][k][1], corners[f][k][2]); };
+  for (const std::string& path : {gltf, (dir_ / "draco.glb").string()}) {
+    const Scene s = loadMesh(path);
+    ASSERT_EQ(s.triangles.size(), 2u) << path;
+    int found[2] = {0, 0};
+    for (const glm::uvec3& t : s.triangles)
+      for (int f = 0; f < 2; ++f)
+        for (int r = 0; r < 3; ++r)
+          found[f] += s.positions[t[0]] == corner(f, r) && s.positions[t[1]] == corner(f, (r + 1) % 3) &&
+                      s.positions[t[2]] == corner(f, (r + 2) % 3);
+    EXPECT_EQ(found[0], 1) << path;
+    EXPECT_EQ(found[1], 1) << path;
+  }
 }
 
 }  // namespace

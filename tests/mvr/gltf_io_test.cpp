@@ -321,11 +321,11 @@ TEST_F(Gltf, BadFilesAreOneLineErrors) {
   // compressed mesh says so.
   std::ofstream(dir_ / "one.glb", std::ios::binary) << std::string("glTF\x01\0\0\0\x14\0\0\0", 12) << "12345678";
   expectError((dir_ / "one.glb").string(), "");
-  Document draco = triangleDocument();
-  draco.json["extensionsRequired"] = {"KHR_draco_mesh_compression"};
-  draco.json["extensionsUsed"] = {"KHR_draco_mesh_compression"};
-  draco.json["nodes"] = Json::array({{{"mesh", 0}}});
-  expectError(draco.write(dir_ / "draco.gltf"), "needs the extension KHR_draco_mesh_compression");
+  Document meshopt = triangleDocument();
+  meshopt.json["extensionsRequired"] = {"EXT_meshopt_compression"};
+  meshopt.json["extensionsUsed"] = {"EXT_meshopt_compression"};
+  meshopt.json["nodes"] = Json::array({{{"mesh", 0}}});
+  expectError(meshopt.write(dir_ / "meshopt.gltf"), "needs the extension EXT_meshopt_compression");
 }
 
 }  // namespace
