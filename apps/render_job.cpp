@@ -1,6 +1,7 @@
 #include "apps/render_job.h"
 
 #include <future>
+#include <utility>
 
 #include "apps/cli.h"
 #include "apps/job_split.h"
@@ -30,7 +31,8 @@ namespace {
 void start(RenderJob& job, PreparedJob& p) {
   // Under mpirun the ranks share the job (apps/job_split.h); rank 0 reports.
   p.mpi = MpiSession::current();
-  if (p.mpi && p.mpi->rank() != 0) setProgressEnabled(false);
+  if (p.mpi && job.sequence.active() && !job.streaming()) p.frameShare = std::exchange(p.mpi, nullptr);
+  if (MpiSession::current() && MpiSession::current()->rank() != 0) setProgressEnabled(false);
   // OpenImageIO (about 260 libraries) loads beside the scene's loading,
   // for the files PNG is not (mvr/io/png_encoder.h writes PNGs). Not later:
   // dlopen holds the dynamic loader's lock, which GL start-up (its driver),

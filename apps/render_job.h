@@ -84,7 +84,10 @@ struct PreparedJob {
   StageTimes startup;
   Stopwatch sinceStart;
   double poseSeconds = 0.0;  // a sequence's frame: posing its scene (skins, morphs, nodes)
-  MpiSession* mpi = nullptr;
+  MpiSession* mpi = nullptr;  // a set split over ranks
+  // A sequence under mpirun: the ranks share its frames, each frame a
+  // whole set written as one process writes it (mpi stays null).
+  MpiSession* frameShare = nullptr;
   // Frames held, decided before rendering starts.
   bool reorders = false, depthReorders = false;
   ReorderMemory reorder, depthReorder;

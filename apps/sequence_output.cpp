@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "apps/job_phase.h"
 #include "apps/render_job.h"
 #include "mvr/error.h"
 #include "mvr/io/atomic_file.h"
@@ -128,21 +129,26 @@ class FrameMover {
   int posed_ = 0;    // the renderer's scene is frame 0's
 };
 
-// Frames counted as they are done, with the time left.
+// Frames counted as they are done, with the time left: this process's
+// frames, one in `ranks` of the sequence's when ranks share it (rank 0
+// reports).
 class FrameProgress {
  public:
-  explicit FrameProgress(int frames) : frames_(frames) {}
+  FrameProgress(int frames, int ranks, bool reports) : frames_(frames), ranks_(ranks), reports_(reports) {}
   void done(const RenderJob::Frame& frame) {
     ++rendered_;
+    if (!reports_) return;
     const double each = total_.seconds() / rendered_;
+    const int left = (frames_ - frame.index - 1 + ranks_ - 1) / ranks_;
     std::fprintf(stderr, "mvr: frame %d of %d (t %.3f s, %.1f deg) done, %.3f s a frame, about %.0f s left\n",
-                 frame.index + 1, frames_, frame.time, frame.degrees, each, each * (frames_ - frame.index - 1));
+                 frame.index + 1, frames_, frame.time, frame.degrees, each, each * left);
   }
   int rendered() const { return rendered_; }
   double seconds() const { return total_.seconds(); }
 
  private:
-  int frames_, rendered_ = 0;
+  int frames_, ranks_, rendered_ = 0;
+  bool reports_;
   Stopwatch total_;
 };
 
@@ -164,7 +170,7 @@ int streamSequence(const RenderJob& job, PreparedJob& p) {
   const Sequence& s = job.sequence;
   keepLargeBuffers();
   FrameMover mover(job, p);
-  FrameProgress progress(s.frames);
+  FrameProgress progress(s.frames, 1, true);
   StreamedFrames frames{.count = s.frames, .startTime = s.start, .frameRate = s.fps,
                         .beforeFrame = [&](int k) { mover.moveTo(frameAt(s, k)); },
                         .afterFrame = [&](int k) { progress.done(frameAt(s, k)); }};
@@ -174,7 +180,7 @@ int streamSequence(const RenderJob& job, PreparedJob& p) {
 }  // namespace
 
 void startSequence(RenderJob& job, PreparedJob& p) {
-  if (p.mpi) fail("--frames", "a sequence is not split across ranks yet: run it without mpirun");
+  if (p.mpi) fail("--frames", "a streamed sequence is not split across ranks: stream it from one process");
   Sequence& s = job.sequence;
   if (!s.clip.empty() && !hasClip(p.scene, s.clip))
     fail("--clip", "the scene has no animation clip named '" + s.clip + "'");
@@ -186,51 +192,67 @@ void startSequence(RenderJob& job, PreparedJob& p) {
 int writeSequence(const RenderJob& job, PreparedJob& p) {
   if (job.streaming()) return streamSequence(job, p);
   const Sequence& s = job.sequence;
+  // Under mpirun the ranks share the frames, interleaved (neighbouring
+  // frames cost alike, so each rank's share costs alike), each frame a
+  // whole set as one process writes it; the video is encoded once, by
+  // rank 0, from the finished frames.
+  MpiSession* const share = p.frameShare;
+  const int ranks = share ? share->ranks() : 1, rank = share ? share->rank() : 0;
   keepLargeBuffers();
   FrameMover mover(job, p);
-  FrameProgress progress(s.frames);
+  FrameProgress progress(s.frames, ranks, rank == 0);
   const StageTimes startup = p.startup;  // the process's, in every frame's manifest
   fs::create_directories(job.out);
-  nlohmann::json frames = nlohmann::json::array();
   std::optional<VideoOut> video, nativeVideo;
-  if (s.video) {
-    video.emplace(job, VideoOut::Of::Quilt);
-    p.quiltOut = [&](const Image& quilt, const std::string& name) { video->add(quilt, name); };
-  }
-  if (s.video && job.native) {
-    nativeVideo.emplace(job, VideoOut::Of::Native);
+  if (s.video) video.emplace(job, VideoOut::Of::Quilt);
+  if (s.video && job.native) nativeVideo.emplace(job, VideoOut::Of::Native);
+  if (video && !share) p.quiltOut = [&](const Image& quilt, const std::string& name) { video->add(quilt, name); };
+  if (nativeVideo && !share)
     p.nativeOut = [&](const Image& native, const std::string& name) { nativeVideo->add(native, name); };
-  }
-  for (int k = 0; k < s.frames; ++k) {
-    const RenderJob::Frame frame = frameAt(s, k);
-    const fs::path final = fs::path(job.out) / frameFolderName(k);
-    if (s.resume && fs::exists(final / "manifest.json")) {
-      if (video) video->addKept(final);
-      if (nativeVideo) nativeVideo->addKept(final);
-      frames.push_back(frameRecord(frame));
-      continue;
+  const auto keep = [&](const fs::path& frame) {
+    if (video) video->addKept(frame);
+    if (nativeVideo) nativeVideo->addKept(frame);
+  };
+  inPhase(share, [&] {
+    for (int k = rank; k < s.frames; k += ranks) {
+      const RenderJob::Frame frame = frameAt(s, k);
+      const fs::path final = fs::path(job.out) / frameFolderName(k);
+      if (s.resume && fs::exists(final / "manifest.json")) {
+        if (!share) keep(final);
+        continue;
+      }
+      const Stopwatch posing;
+      mover.moveTo(frame);
+      p.poseSeconds = posing.seconds();
+      RenderJob one = job;
+      one.frame = frame;
+      p.startup = startup;
+      const fs::path partial = fs::path(job.out) / ("." + frameFolderName(k) + ".partial");
+      std::error_code ec;
+      fs::remove_all(partial, ec);
+      one.out = partial.string();
+      if (writeSet(one, p) != 0) fail(final.string(), "the frame's set was not written");
+      replaceFolder(partial, final);
+      progress.done(frame);
     }
-    const Stopwatch posing;
-    mover.moveTo(frame);
-    p.poseSeconds = posing.seconds();
-    RenderJob one = job;
-    one.frame = frame;
-    p.startup = startup;
-    const fs::path partial = fs::path(job.out) / ("." + frameFolderName(k) + ".partial");
-    std::error_code ec;
-    fs::remove_all(partial, ec);
-    one.out = partial.string();
-    if (const int status = writeSet(one, p); status != 0) return status;
-    replaceFolder(partial, final);
-    frames.push_back(frameRecord(frame));
-    progress.done(frame);
+  });
+  p.quiltOut = nullptr, p.nativeOut = nullptr;
+  int rendered = progress.rendered();
+  if (share) {
+    rendered = 0;
+    for (const std::string& n : share->gatherAtRoot({std::to_string(progress.rendered())})) rendered += std::stoi(n);
+    if (rank != 0) return 0;
+    if (video || nativeVideo) share->takeTheMachine();
+    for (int k = 0; k < s.frames; ++k) keep(fs::path(job.out) / frameFolderName(k));
   }
   if (video) video->finish();
   if (nativeVideo) nativeVideo->finish();
-  p.quiltOut = nullptr, p.nativeOut = nullptr;
+  nlohmann::json frames = nlohmann::json::array();
+  for (int k = 0; k < s.frames; ++k) frames.push_back(frameRecord(frameAt(s, k)));
   writeSequenceManifest(job, p, frames);
-  std::fprintf(stderr, "mvr: rendered %d of %d frames (%d views each) to %s in %.3f s\n", progress.rendered(),
-               s.frames, job.views * job.rows, job.out.c_str(), progress.seconds());
+  std::fprintf(stderr, "mvr: rendered %d of %d frames (%d views each) to %s in %.3f s%s\n", rendered, s.frames,
+               job.views * job.rows, job.out.c_str(), progress.seconds(),
+               share ? (", " + std::to_string(ranks) + " ranks").c_str() : "");
   return 0;
 }
 

@@ -13,6 +13,7 @@
 #include "mvr/io/image_file.h"
 #include "tests/support/asset_scene.h"
 #include "tests/support/cli.h"
+#include "tests/support/gl_fixture.h"
 
 namespace mvr {
 namespace {
@@ -144,6 +145,59 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(SplitCase{"mvr_bands", "--backend mvr"},          // EPIs in scanline bands, written in place
                       SplitCase{"svr_rows", "--backend svr --rows 3"}),  // 2 ranks: a row each, then views exchanged
     [](const auto& info) { return std::string(info.param.name); });
+
+// A sequence under mpirun: the ranks share its frames, each a whole set;
+// every frame, sequence.json and the video (encoded once, by rank 0, from
+// the finished frames) are one process's bytes, and --resume under ranks
+// renders only the frames that are missing.
+TEST(MpiSequence, RanksShareTheFramesOfTheSingleProcessSequence) {
+  if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
+  const std::string args = "render " + test::assetsDir() +
+                           "/teacup_4k.ply --frames 5 --turntable 90 --quilt portrait --quilt-only --size 42x56 "
+                           "--focal center --video --out ";
+  const fs::path single = test::freshDir("mpi_seq_single");
+  ASSERT_EQ(test::runMvr(args + single.string()).status, 0);
+  const std::string video = "quilt_qs8x6a0.75.mp4";
+  const auto sameAsSingle = [&](const fs::path& dir, const std::string& what) {
+    for (int k = 0; k < 5; ++k) {
+      const std::string frame = "frame_000" + std::to_string(k);
+      const auto expected = imagesIn(single / frame);
+      ASSERT_EQ(expected.size(), 1u);
+      EXPECT_EQ(imagesIn(dir / frame), expected) << frame << ", " << what;
+    }
+    EXPECT_TRUE(contentsOf(dir / video) == contentsOf(single / video)) << what;
+    EXPECT_EQ(nlohmann::json::parse(std::ifstream(dir / "sequence.json")),
+              nlohmann::json::parse(std::ifstream(single / "sequence.json")))
+        << what;
+  };
+  for (int ranks : {2, 3}) {
+    const fs::path dir = test::freshDir("mpi_seq_" + std::to_string(ranks));
+    const test::CliResult r = test::shell(mpirun(ranks) + test::mvrBinary() + " " + args + dir.string() + " >/dev/null");
+    ASSERT_EQ(r.status, 0) << r.err;
+    sameAsSingle(dir, std::to_string(ranks) + " ranks");
+    if (ranks == 2) {
+      // Frames 1 and 4 lost (rank 1's and rank 0's): --resume renders those two.
+      fs::remove_all(dir / "frame_0001"), fs::remove_all(dir / "frame_0004"), fs::remove(dir / video);
+      const auto kept = fs::last_write_time(dir / "frame_0002" / "manifest.json");
+      const test::CliResult resumed =
+          test::shell(mpirun(2) + test::mvrBinary() + " " + args + dir.string() + " --resume >/dev/null");
+      ASSERT_EQ(resumed.status, 0) << resumed.err;
+      EXPECT_NE(resumed.err.find("rendered 2 of 5 frames"), std::string::npos) << resumed.err;
+      EXPECT_EQ(fs::last_write_time(dir / "frame_0002" / "manifest.json"), kept);
+      sameAsSingle(dir, "resumed under 2 ranks");
+    }
+    fs::remove_all(dir);
+  }
+  fs::remove_all(single);
+}
+
+TEST(MpiSequence, AStreamedSequenceUnderRanksIsOneLineError) {
+  if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
+  const test::CliResult r = test::shell(mpirun(2) + test::mvrBinary() +
+                                        " render --frames 3 --turntable 30 --views 4 --size 32x24 --stream /dev/null");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("not split across ranks"), std::string::npos) << r.err;
+}
 
 TEST(MpiRenderErrors, ABadSceneFailsTheJobWithOneLine) {
   if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
