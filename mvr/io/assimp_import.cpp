@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "mvr/error.h"
 #include "mvr/image.h"
@@ -139,40 +141,81 @@ void resolveTextures(ImportedModel& model, const std::string& path) {
   }
 }
 
-// What assimp is given to read: the file, or where its text is UTF-16
-// (assimp's XML reader takes UTF-8) a UTF-8 copy in a folder of its own,
-// removed with this object. Textures are still found from the file.
-class Utf8Copy {
- public:
-  explicit Utf8Copy(const std::string& path) : path_(path) {
-    if (!isUtf16(fileStart(path, 2))) return;
-    std::string text = utf8OfUtf16File(path);
-    // Its XML declaration says UTF-16; the copy is not.
-    const size_t end = text.rfind("?>", 200);
-    if (text.rfind("<?xml", 0) == 0 && end != std::string::npos) {
-      const size_t at = text.find("UTF-16"), low = text.find("utf-16");
-      const size_t which = std::min(at, low);
-      if (which < end) text.replace(which, 6, "UTF-8");
+// Collada lists a number list's values between blanks, leading ones
+// included (xs:list); assimp's reader takes the first blank for a number
+// ("Cannot parse string \"  0.0 ...\""). Blanks that open a <color> or
+// <float> value are dropped. Returns whether any were.
+bool trimLeadingBlanks(std::string& text) {
+  bool trimmed = false;
+  for (const std::string tag : {"<color", "<float>"}) {
+    for (size_t at = text.find(tag); at != std::string::npos; at = text.find(tag, at + 1)) {
+      const size_t open = text.find('>', at);
+      if (open == std::string::npos) break;
+      const size_t value = text.find_first_not_of(" \t\r\n", open + 1);
+      if (value == std::string::npos || value == open + 1 || text[value] == '<') continue;
+      text.erase(open + 1, value - open - 1);
+      trimmed = true;
     }
+  }
+  return trimmed;
+}
+
+// A binary FBX starts "Kaydara FBX Binary  " and the bytes 0, 0x1a, 0. A
+// file whose zero bytes all became blanks went through a text transfer.
+void checkFbxHeader(const std::string& path) {
+  const std::string head = fileStart(path, 23);
+  if (head.rfind("Kaydara FBX Binary", 0) == 0 && head.size() == 23 && head[20] != '\0')
+    fail(path, "binary FBX with its zero bytes replaced (byte 20 is " + std::to_string(int(uint8_t(head[20]))) +
+                   ", not 0): the file was damaged in a text transfer");
+}
+
+// What assimp is given to read: the file, or a UTF-8 copy in a folder of
+// its own, removed with this object, where its text is UTF-16 (assimp's
+// XML reader takes UTF-8) or a Collada number list opens with blanks.
+// Textures are still found from the file.
+class ReadableCopy {
+ public:
+  explicit ReadableCopy(const std::string& path) : path_(path) {
+    const bool utf16 = isUtf16(fileStart(path, 2)), collada = lowerExtension(path) == ".dae";
+    if (!utf16 && !collada) return;
+    std::string text = utf16 ? utf8OfUtf16File(path) : contents(path);
+    if (utf16) {
+      // Its XML declaration says UTF-16; the copy is not.
+      const size_t end = text.rfind("?>", 200);
+      if (text.rfind("<?xml", 0) == 0 && end != std::string::npos) {
+        const size_t at = text.find("UTF-16"), low = text.find("utf-16");
+        const size_t which = std::min(at, low);
+        if (which < end) text.replace(which, 6, "UTF-8");
+      }
+      notes_.push_back("UTF-16 text read as UTF-8");
+    }
+    if (collada && trimLeadingBlanks(text)) notes_.push_back("blanks before number lists dropped for assimp");
+    if (notes_.empty()) return;
     std::string dir = (fs::temp_directory_path() / "mvr-import-XXXXXX").string();
-    if (!::mkdtemp(dir.data())) fail(path, "cannot make a folder for its UTF-8 copy");
+    if (!::mkdtemp(dir.data())) fail(path, "cannot make a folder for its copy");
     dir_ = dir;
     path_ = (fs::path(dir) / fs::path(path).filename()).string();
     std::ofstream out(path_, std::ios::binary);
     out << text;
-    if (!out.flush()) fail(path, "cannot write its UTF-8 copy in " + dir);
+    if (!out.flush()) fail(path, "cannot write its copy in " + dir);
   }
-  ~Utf8Copy() {
+  ~ReadableCopy() {
     std::error_code ec;
     if (!dir_.empty()) fs::remove_all(dir_, ec);
   }
-  Utf8Copy(const Utf8Copy&) = delete;
-  Utf8Copy& operator=(const Utf8Copy&) = delete;
+  ReadableCopy(const ReadableCopy&) = delete;
+  ReadableCopy& operator=(const ReadableCopy&) = delete;
   const std::string& path() const { return path_; }
-  bool transcoded() const { return !dir_.empty(); }
+  // What the copy changed, for the scene's warnings.
+  const std::vector<std::string>& notes() const { return notes_; }
 
  private:
+  static std::string contents(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }
   std::string path_, dir_;
+  std::vector<std::string> notes_;
 };
 
 }  // namespace
@@ -185,7 +228,8 @@ bool isAssimpPath(const std::string& path) {
 Scene importWithAssimp(const std::string& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) fail(path, "no such model file");
-  const Utf8Copy text(path);
+  if (lowerExtension(path) == ".fbx") checkFbxHeader(path);
+  const ReadableCopy text(path);
   const ChildOutput child =
       run(helperProgram("mvr-import", "MVR_IMPORT", path, "FBX, Collada and 3DS files are read"), text.path());
   if (child.timedOut) fail(path, "the importer (assimp) took more than " + std::to_string(kTimeoutSeconds) + " s");
@@ -193,10 +237,12 @@ Scene importWithAssimp(const std::string& path) {
     fail(path, "the importer (assimp) failed on this file (signal " + std::to_string(WTERMSIG(child.status)) +
                    (WTERMSIG(child.status) == SIGXCPU ? ": its CPU time limit)" : ")"));
   if (!WIFEXITED(child.status) || WEXITSTATUS(child.status) != 0)
-    fail(path, child.err.empty() ? "the importer (assimp) could not read it" : firstLine(child.err));
+    fail(path, child.err.empty()                    ? "the importer (assimp) could not read it"
+               : firstLine(child.err) == "std::bad_alloc" ? "the importer (assimp) ran out of memory reading it"
+                                                          : firstLine(child.err));
   ImportedModel model = readImportedModel(child.out, path);
   for (std::string& w : model.scene.warnings) w = path + ": " + w;
-  if (text.transcoded()) model.scene.warnings.push_back(path + ": UTF-16 text read as UTF-8");
+  for (const std::string& note : text.notes()) model.scene.warnings.push_back(path + ": " + note);
   resolveTextures(model, path);
   if (model.scene.triangles.empty()) fail(path, "mesh has no triangles");
   return std::move(model.scene);

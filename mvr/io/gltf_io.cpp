@@ -116,6 +116,11 @@ Scene loadGltf(const std::string& path) {
     const unsigned char* bytes = file.bytes();
     const size_t size = file.size();
     if (size > 0xffffffffu) fail(path, "GLB file over 4 GiB");
+    uint32_t declared = 0;
+    if (size >= 12 && std::memcmp(bytes, "glTF", 4) == 0) std::memcpy(&declared, bytes + 8, 4);
+    if (declared > size)
+      fail(path, "GLB is cut: its header says " + std::to_string(declared) + " bytes, the file has " +
+                     std::to_string(size));
     if (size >= 8 && std::memcmp(bytes, "glTF", 4) == 0 && bytes[4] == 1 && !bytes[5] && !bytes[6] && !bytes[7])
       return loadVersionOne(path);
     const std::string dir = std::filesystem::path(path).parent_path().string();

@@ -109,8 +109,26 @@ TEST_F(Assimp, Utf16ColladaIsReadAsItsUtf8) {
   EXPECT_TRUE(said) << ::testing::PrintToString(s.warnings);
 }
 
+// Blanks before a number list's values (valid Collada, which assimp
+// reads as a number and refuses): the same colour and shininess.
+TEST_F(Assimp, BlanksBeforeColladaNumbersAreDropped) {
+  std::string text = kCollada;
+  text.replace(text.find("<color>0.2"), 10, "<color>  \n 0.2");
+  text.replace(text.find("<float>40"), 9, "<float> 40");
+  const Scene s = loadMesh(write("blanks.dae", text));
+  ASSERT_EQ(s.materials.size(), 2u);
+  EXPECT_NEAR(glm::distance(s.materials[s.materialIds[1]].diffuse, glm::vec3(0.2f, 0.4f, 0.6f)), 0.0f, 1e-6f);
+  EXPECT_EQ(s.materials[s.materialIds[0]].shininess, 40.0f);
+  bool said = false;
+  for (const std::string& w : s.warnings) said = said || w.find("blanks before number lists") != std::string::npos;
+  EXPECT_TRUE(said) << ::testing::PrintToString(s.warnings);
+}
+
 TEST_F(Assimp, FailuresAreOneLine) {
   expectError(write("junk.fbx", "this is no FBX file"), "");
+  // A binary FBX whose zero bytes became blanks (one of assimp's test files).
+  expectError(write("blanks.fbx", std::string("Kaydara FBX Binary   \x1a \x84\x1c  ") + std::string(64, ' ')),
+              "binary FBX with its zero bytes replaced (byte 20 is 32, not 0)");
   expectError(write("cut.dae", std::string(kCollada).substr(0, 700)), "");
   expectError((dir_ / "absent.3ds").string(), "no such model file");
   expectError(write("m.xyz", "x"), "not a model format mvr reads ('.xyz')");

@@ -321,6 +321,9 @@ TEST_F(Gltf, BadFilesAreOneLineErrors) {
   // compressed mesh says so.
   std::ofstream(dir_ / "one.glb", std::ios::binary) << std::string("glTF\x01\0\0\0\x14\0\0\0", 12) << "12345678";
   expectError((dir_ / "one.glb").string(), "");
+  // A GLB shorter than its header says (BoxTextured.glb of assimp's test files).
+  std::ofstream(dir_ / "cut.glb", std::ios::binary) << std::string("glTF\x02\0\0\0\x40\0\0\0", 12) << "12345678";
+  expectError((dir_ / "cut.glb").string(), "GLB is cut: its header says 64 bytes, the file has 20");
   Document meshopt = triangleDocument();
   meshopt.json["extensionsRequired"] = {"EXT_meshopt_compression"};
   meshopt.json["extensionsUsed"] = {"EXT_meshopt_compression"};
