@@ -65,7 +65,6 @@ const Image* LiveQuilts::take() {
 void LiveQuilts::prepare() {
   prepareJob(job_, prepared_);
   PreparedJob& p = prepared_;
-  p.still = std::make_shared<const Scene>(p.scene);
   const Bounds bounds = p.scene.bounds();
   pivot_ = bounds.center();
   radius_ = std::max(0.5f * glm::length(bounds.max - bounds.min), 1e-6f);

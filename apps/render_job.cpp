@@ -1,5 +1,7 @@
 #include "apps/render_job.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <future>
 #include <utility>
 
@@ -145,13 +147,18 @@ FrameChainSpec PreparedJob::chainSpec(const RenderJob& job) const {
 
 void prepareJob(RenderJob& job, PreparedJob& prepared) {
   start(job, prepared);
+  prepared.still = std::make_shared<const Scene>(prepared.scene);  // before the focal plane moves it (poseJob)
   setUp(job, prepared);
   planMemory(job, prepared);
 }
 
 void poseJob(const RenderJob& job, PreparedJob& p, double time, const glm::mat4& move) {
-  poseGeometry(p.scene, *p.still, move);
-  poseAnimations(p.scene, time, job.sequence.clip, move);
+  // The still is the scene as read; set-up moved the posed scene back by
+  // the focal plane's depth (CameraFlags::placeFocalPlane), and so must
+  // every pose, animated or not, before its move.
+  const glm::mat4 m = move * glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, -float(p.imagePlaneZ)));
+  poseGeometry(p.scene, *p.still, m);
+  poseAnimations(p.scene, time, job.sequence.clip, m);
   if (p.renderer && !p.renderer->sceneMoved()) p.renderer = makeRenderer(job.backend, p.scene, job.type);
 }
 

@@ -92,7 +92,8 @@ struct PreparedJob {
   bool reorders = false, depthReorders = false;
   ReorderMemory reorder, depthReorder;
   std::optional<PngRows> pngRows;  // EPIs straight into PNG views
-  // A sequence: the scene as it was read; p.scene is posed from it.
+  // A sequence: the scene as it was read (frame 0's pose, before the
+  // focal plane moved it); p.scene is posed from it (poseJob).
   std::shared_ptr<const Scene> still;
   // A sequence's video: each frame's finished quilt, with its file name.
   std::function<void(const Image& quilt, const std::string& name)> quiltOut;

@@ -64,13 +64,17 @@ void expectViewsLike(const fs::path& frame, const fs::path& expected, const fs::
   }
 }
 
+// The focal plane moved off the turntable's axis: every frame, not the
+// first alone, has the scene moved back by it.
+const char* const kFocal = " --focal 0.4";
+
 TEST(Sequence, TurntableFramesAreStillRendersOfTheTurnedScene) {
   const fs::path dir = test::freshDir("sequence_turn");
   const fs::path scene = writeScene(dir, 0);
   const test::CliResult seq =
-      test::runMvr("render " + scene.string() + kShape + " --frames 3 --turntable 90 --out " + (dir / "seq").string());
+      test::runMvr("render " + scene.string() + kShape + kFocal + " --frames 3 --turntable 90 --out " + (dir / "seq").string());
   ASSERT_EQ(seq.status, 0) << seq.err;
-  const test::CliResult still = test::runMvr("render " + scene.string() + kShape + " --out " + (dir / "still").string());
+  const test::CliResult still = test::runMvr("render " + scene.string() + kShape + kFocal + " --out " + (dir / "still").string());
   ASSERT_EQ(still.status, 0) << still.err;
   for (int v = 0; v < 4; ++v) {
     const std::string view = "view_000" + std::to_string(v) + ".png";
@@ -78,7 +82,7 @@ TEST(Sequence, TurntableFramesAreStillRendersOfTheTurnedScene) {
   }
   // Frame 2 of 3 over 90 degrees: turned by 60.
   const fs::path turned = writeScene(dir, 60);
-  ASSERT_EQ(test::runMvr("render " + turned.string() + kShape + " --out " + (dir / "turned").string()).status, 0);
+  ASSERT_EQ(test::runMvr("render " + turned.string() + kShape + kFocal + " --out " + (dir / "turned").string()).status, 0);
   // Not the still: the turn shows.
   expectViewsLike(dir / "seq" / "frame_0002", dir / "turned", dir / "still", dir / "seq" / "frame_0002");
   // Each frame's manifest has its time and turn; sequence.json lists them.
@@ -141,7 +145,8 @@ TEST(Sequence, ResumeKeepsTheCompleteFrames) {
 // (t = 0, 0.5, 1, 1.5 of [0, 2)); frame 3 is a still render of the file
 // posed at 1.5 by hand, through a scene file with its own camera.
 using GltfWriter = std::string (*)(const fs::path&, bool, double);
-void expectFramesArePosedStills(const fs::path& dir, GltfWriter write, const std::string& clip) {
+void expectFramesArePosedStills(const fs::path& dir, GltfWriter write, const std::string& clip,
+                                const std::string& flags = "") {
   fs::create_directories(dir);
   write(dir / "anim.gltf", true, 0.0);
   write(dir / "posed.gltf", false, 1.5);
@@ -149,12 +154,13 @@ void expectFramesArePosedStills(const fs::path& dir, GltfWriter write, const std
   std::ofstream(dir / "anim.json") << R"({"meshes": [{"file": "anim.gltf"}], )" << camera << "}";
   std::ofstream(dir / "posed.json") << R"({"meshes": [{"file": "posed.gltf"}], )" << camera << "}";
   const std::string clipFlag = clip.empty() ? "" : " --clip " + clip;
-  const test::CliResult r = test::runMvr("render " + (dir / "anim.json").string() + kShape + " --fps 2" + clipFlag +
+  const test::CliResult r = test::runMvr("render " + (dir / "anim.json").string() + kShape + flags + " --fps 2" + clipFlag +
                                          " --out " + (dir / "seq").string());
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir / "seq" / "frame_0003" / "manifest.json"));
   EXPECT_FALSE(fs::exists(dir / "seq" / "frame_0004"));
-  ASSERT_EQ(test::runMvr("render " + (dir / "posed.json").string() + kShape + " --out " + (dir / "posed").string()).status, 0);
+  ASSERT_EQ(test::runMvr("render " + (dir / "posed.json").string() + kShape + flags + " --out " + (dir / "posed").string()).status,
+            0);
   // Frame 0 is the rest pose: the animation shows.
   expectViewsLike(dir / "seq" / "frame_0003", dir / "posed", dir / "posed", dir / "seq" / "frame_0000");
 }
@@ -175,6 +181,8 @@ TEST(Sequence, MorphFramesAreStillRendersOfThePosedFile) {
 
 TEST(Sequence, SkinFramesAreStillRendersOfThePosedFile) {
   expectFramesArePosedStills(test::freshDir("sequence_skin"), test::writeSkinnedGltf, "Bend");
+  // With the focal plane off the scene's centre, the skin posed behind it too.
+  expectFramesArePosedStills(test::freshDir("sequence_skin_focal"), test::writeSkinnedGltf, "Bend", " --focal 0.3");
 }
 
 TEST(Sequence, BadValuesAreOneLineErrors) {
