@@ -68,16 +68,18 @@ void CameraFlags::validate() const {
   backgroundColor();
 }
 
-void CameraFlags::viewThroughFileCamera(Scene& scene, int width, int height) const {
-  if (!fileCamera.empty()) viewThrough(scene, fileCamera, width, height);
+glm::mat4 CameraFlags::viewThroughFileCamera(Scene& scene, int width, int height) const {
+  glm::mat4 moved(1.0f);
+  if (!fileCamera.empty()) viewThrough(scene, fileCamera, width, height, &moved);
+  return moved;
 }
 
-double CameraFlags::placeFocalPlane(Scene& scene) const {
+double CameraFlags::placeFocalPlane(Scene& scene, const Bounds* framed) const {
   if (focal.empty()) return 0.0;
-  const double z = focal == "center" ? double(scene.bounds().center().z) : std::strtod(focal.c_str(), nullptr);
-  for (glm::vec3& p : scene.positions) p.z -= float(z);
-  for (Light& light : scene.lights)
-    if (light.type == Light::Type::Point) light.vector.z -= float(z);
+  const double z = focal == "center" ? double((framed ? *framed : scene.bounds()).center().z)
+                                     : std::strtod(focal.c_str(), nullptr);
+  // Its animations move with it: their poses come out behind the plane too.
+  scene.transform(glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, -float(z))));
   return z;
 }
 

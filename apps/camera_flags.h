@@ -38,11 +38,12 @@ struct CameraFlags {
   // The first of these options the command line gave ("--cone"), or "".
   std::string firstGiven() const;
   // With --camera: moves the scene into that camera's view and makes it
-  // the scene's camera.
-  void viewThroughFileCamera(Scene& scene, int width, int height) const;
-  // Moves the scene so that the focal depth lies on z = 0; returns how far
-  // the rig moved along z (0 without --focal).
-  double placeFocalPlane(Scene& scene) const;
+  // the scene's camera; returns the move (identity without --camera).
+  glm::mat4 viewThroughFileCamera(Scene& scene, int width, int height) const;
+  // Moves the scene (Scene::transform) so that the focal depth lies on
+  // z = 0, the centre of `framed` (a sequence's every pose) or of the
+  // scene's bounds; returns how far the rig moved along z (0 without --focal).
+  double placeFocalPlane(Scene& scene, const Bounds* framed = nullptr) const;
   CameraSpec adjust(CameraSpec spec, int width, int height) const;
   // The background to composite over, if any.
   std::optional<glm::vec4> backgroundColor() const;

@@ -67,6 +67,15 @@ void start(RenderJob& job, PreparedJob& p) {
   p.startup.add("scene", sceneSeconds);
 }
 
+// A move set-up gives the scene (into a file's camera, behind the focal
+// plane), given to the still a sequence poses it from as well.
+void moveStill(PreparedJob& p, const glm::mat4& m) {
+  if (!p.still) return;
+  auto moved = std::make_shared<Scene>(*p.still);
+  moved->transform(m);
+  p.still = std::move(moved);
+}
+
 // The set's camera, the one rendered, and the renderer.
 void setUp(RenderJob& job, PreparedJob& p) {
   Stopwatch phase;
@@ -74,9 +83,19 @@ void setUp(RenderJob& job, PreparedJob& p) {
     preloadImageCodec();  // a stream of a textured scene reads images too
   const bool synthesize = job.synthesize();
   if (synthesize && !job.camera.fileCamera.empty()) fail("--camera", "needs a scene (synthesize takes the references' camera)");
-  job.camera.viewThroughFileCamera(p.scene, job.width, job.height);
-  p.imagePlaneZ = job.camera.placeFocalPlane(p.scene);
-  CameraSpec spec = synthesize ? job.references->camera : cameraFor(p.scene, job.width, job.height);
+  // The scene's moves into the rig, given to the still it is posed from too.
+  if (const glm::mat4 m = job.camera.viewThroughFileCamera(p.scene, job.width, job.height); m != glm::mat4(1.0f)) {
+    moveStill(p, m);
+    p.framed.reset();  // the file's camera frames the scene
+  }
+  p.imagePlaneZ = job.camera.placeFocalPlane(p.scene, p.framed ? &*p.framed : nullptr);
+  if (p.imagePlaneZ != 0.0) {
+    moveStill(p, glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, -float(p.imagePlaneZ))));
+    if (p.framed) p.framed->min.z -= float(p.imagePlaneZ), p.framed->max.z -= float(p.imagePlaneZ);
+  }
+  CameraSpec spec = synthesize    ? job.references->camera
+                    : p.framed && !p.scene.camera ? ShearingCamera::frame(*p.framed, job.width, job.height)
+                                                  : cameraFor(p.scene, job.width, job.height);
   if (synthesize && (job.width != job.references->width || job.height != job.references->height))
     spec.planeHeight = 0.0;  // another size: the image plane's height from its aspect
   spec = job.camera.adjust(spec, job.width, job.height);
@@ -147,18 +166,14 @@ FrameChainSpec PreparedJob::chainSpec(const RenderJob& job) const {
 
 void prepareJob(RenderJob& job, PreparedJob& prepared) {
   start(job, prepared);
-  prepared.still = std::make_shared<const Scene>(prepared.scene);  // before the focal plane moves it (poseJob)
+  prepared.still = std::make_shared<const Scene>(prepared.scene);  // live poses the scene
   setUp(job, prepared);
   planMemory(job, prepared);
 }
 
 void poseJob(const RenderJob& job, PreparedJob& p, double time, const glm::mat4& move) {
-  // The still is the scene as read; set-up moved the posed scene back by
-  // the focal plane's depth (CameraFlags::placeFocalPlane), and so must
-  // every pose, animated or not, before its move.
-  const glm::mat4 m = move * glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, -float(p.imagePlaneZ)));
-  poseGeometry(p.scene, *p.still, m);
-  poseAnimations(p.scene, time, job.sequence.clip, m);
+  poseGeometry(p.scene, *p.still, move);
+  poseAnimations(p.scene, time, job.sequence.clip, move);
   if (p.renderer && !p.renderer->sceneMoved()) p.renderer = makeRenderer(job.backend, p.scene, job.type);
 }
 

@@ -92,9 +92,12 @@ struct PreparedJob {
   bool reorders = false, depthReorders = false;
   ReorderMemory reorder, depthReorder;
   std::optional<PngRows> pngRows;  // EPIs straight into PNG views
-  // A sequence: the scene as it was read (frame 0's pose, before the
-  // focal plane moved it); p.scene is posed from it (poseJob).
+  // A sequence: the scene as it was read, moved as set-up moved p.scene
+  // (into a file's camera, behind the focal plane); p.scene is posed from
+  // it (poseJob).
   std::shared_ptr<const Scene> still;
+  // An animated sequence: the bounds of its every pose, which the camera frames.
+  std::optional<Bounds> framed;
   // A sequence's video: each frame's finished quilt, with its file name.
   std::function<void(const Image& quilt, const std::string& name)> quiltOut;
   // ... and its native image (--native), with the file name of its video.

@@ -36,7 +36,7 @@ glm::dmat4 rigid(const glm::mat4& toWorld) {
 
 }  // namespace
 
-CameraSpec viewThrough(Scene& scene, const std::string& which, int width, int height) {
+CameraSpec viewThrough(Scene& scene, const std::string& which, int width, int height, glm::mat4* moved) {
   const FileCamera camera = pick(scene, which);
   const glm::dmat4 view = glm::inverse(rigid(camera.toWorld));
   const Bounds b = scene.bounds();
@@ -45,7 +45,9 @@ CameraSpec viewThrough(Scene& scene, const std::string& which, int width, int he
   const double radius = 0.5 * glm::length(glm::dvec3(b.max - b.min));
   if (!(distance > 1e-6 * std::max(radius, 1e-30)))
     fail("--camera", "the scene's centre is not in front of camera '" + camera.name + "'");
-  scene.transform(glm::mat4(glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, distance)) * view));
+  const glm::mat4 m(glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, distance)) * view);
+  scene.transform(m);
+  if (moved) *moved = m;
   const double aspect = double(width) / height;
   CameraSpec s;
   s.distance = distance;

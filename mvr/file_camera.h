@@ -17,7 +17,8 @@ namespace mvr {
 // tan(yfov / 2), its width by the image's aspect; track and rows as a
 // framed camera's (-+ D / 4; rows by aspect); near and far enclose the
 // bounds. Throws mvr::Error naming "--camera" for no such camera, or a
-// scene not in front of it.
-CameraSpec viewThrough(Scene& scene, const std::string& which, int width, int height);
+// scene not in front of it. `moved`, where given, receives the move the
+// scene was given (Scene::transform), for copies of the scene to follow.
+CameraSpec viewThrough(Scene& scene, const std::string& which, int width, int height, glm::mat4* moved = nullptr);
 
 }  // namespace mvr

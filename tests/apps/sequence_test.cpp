@@ -185,6 +185,32 @@ TEST(Sequence, SkinFramesAreStillRendersOfThePosedFile) {
   expectFramesArePosedStills(test::freshDir("sequence_skin_focal"), test::writeSkinnedGltf, "Bend", " --focal 0.3");
 }
 
+// A bare animated glTF (no camera of its own) is framed on every pose of
+// its clip: the tetrahedron walks 1.5 to the right and grows 1.5 times by
+// t = 1.5, and stays inside every view of every frame, clear of the edges.
+// Framed on frame 0 alone it walked out (its last frame cut at the right).
+TEST(Sequence, ABareClipIsFramedOnEveryPose) {
+  const fs::path dir = test::freshDir("sequence_framed");
+  fs::create_directories(dir);
+  test::writeAnimatedGltf(dir / "walk.gltf", true);
+  const test::CliResult r =
+      test::runMvr("render " + (dir / "walk.gltf").string() + kShape + " --fps 2 --out " + (dir / "seq").string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (int k = 0; k < 4; ++k)
+    for (int v = 0; v < 4; ++v) {
+      const Image view = readImage(viewFile(dir / "seq" / ("frame_000" + std::to_string(k)), v));
+      long covered = 0, onEdge = 0;
+      for (int y = 0; y < view.height; ++y)
+        for (int x = 0; x < view.width; ++x) {
+          const bool in = view.row(y)[x * 4 + 3] != 0;
+          covered += in;
+          onEdge += in && (x == 0 || y == 0 || x == view.width - 1 || y == view.height - 1);
+        }
+      EXPECT_GT(covered, 20) << "frame " << k << " view " << v;
+      EXPECT_EQ(onEdge, 0) << "frame " << k << " view " << v;
+    }
+}
+
 TEST(Sequence, BadValuesAreOneLineErrors) {
   const fs::path dir = test::freshDir("sequence_bad");
   const fs::path scene = writeScene(dir, 0);
