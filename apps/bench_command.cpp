@@ -358,7 +358,7 @@ int runBench(int argc, char** argv) {
                "break-even view count of each back end against svr.",
                "mvr bench");
   std::string scenePath, views, sizes, backends = kDefaultBackends, json, plots, replot, gl = "auto";
-  int teacup = 0, slender = 0, thinDeep = 0;
+  int teacup = 0, slender = 0, thinDeep = 0, knot = 0;
   bool sweep = false;
   Config cfg;
   app.add_option("SCENE", scenePath, "a scene file (default: the bundled scene)");
@@ -369,6 +369,9 @@ int runBench(int argc, char** argv) {
   app.add_option("--thin-deep", thinDeep,
                  "N thin bars before a deep open box (what image-based back ends find hard)")
       ->check(CLI::Range(1, 1000))->type_name("N");
+  app.add_option("--knot", knot,
+                 "a trefoil knot tube at about N triangles (a mesh no back end was tuned on)")
+      ->check(CLI::Range(64, 10000000))->type_name("N");
   app.add_flag("--sweep", sweep,
                "Halle's sweep: teacups of 4K, 16K, 63K, 143K triangles at 160x140, 640x480, "
                "1120x840 for 1 to 1000 views");
@@ -382,9 +385,9 @@ int runBench(int argc, char** argv) {
                  "the image-based back end with L layers, coalescing T pixels, visibility, a budget "
                  "of B source views, K highlight splits, overlap P pixels, outlines sampled S "
                  "columns a pixel, every interval drawn whole, a pass of the mesh per layer, "
-                 "blending none, track or angular; warp[:ACQUIRE][:tT][:aA][:bB][:fF][:gl|:cpu] "
+                 "blending none, track or angular; warp[:ACQUIRE][:tT][:aA][:bB][:fF][:xS][:gl|:cpu] "
                  "is depth-image warping with tau T, penalty A, a budget of B references, flatness F "
-                 "pixels, by GL or on the CPU (default: the CPU where GL renders on the CPU)")
+                 "pixels, outlines sampled S columns a pixel (cpu), by GL or on the CPU (default: the CPU where GL renders on the CPU)")
       ->type_name("LIST")->capture_default_str();
   bool linear = false;
   app.add_flag("--linear", linear, "render 8-bit linear values (default: sRGB-encoded, as mvr render writes)");
@@ -436,6 +439,9 @@ int runBench(int argc, char** argv) {
   } else if (thinDeep > 0) {
     const int n = thinDeep;
     scenes.emplace_back("thin-deep" + std::to_string(n), [n] { return makeThinAndDeepScene(n); });
+  } else if (knot > 0) {
+    const int n = knot;
+    scenes.emplace_back("knot" + std::to_string(n / 1000) + "k", [n] { return makeKnotScene(n); });
   } else if (slender > 0) {
     const int n = slender;
     scenes.emplace_back("slender" + std::to_string(n), [n] { return makeSlenderScene(n); });

@@ -126,10 +126,10 @@ void RenderFlags::addSynthesizeOwn(CLI::App& app) {
                  "RGB-D references: a set mvr render --depth wrote, or the HCI 4D light-field "
                  "layout (parameters.cfg, input_Cam%03d.png, gt_depth_lowres[_Cam%03d].pfm)")
       ->required();
-  // warp's numbers but the source budget: captured references are given,
-  // not chosen.
+  // warp's numbers but the source budget and outline: captured references
+  // are given, not chosen, and have no finer outline.
   for (const NumberOption<WarpOptions>& n : kWarpNumbers)
-    if (std::string(n.flag) != "--budget") addNumber(app, n, warp_);
+    if (std::string(n.flag) != "--budget" && std::string(n.flag) != "--outline-samples") addNumber(app, n, warp_);
   app.add_option("--warp-path", warpPath_,
                  "by GL, the seed's grid mesh (gl), or on the CPU, EPI by EPI, exactly (cpu: the references on "
                  "the rows of views, as their own track puts them); auto (default): cpu where GL renders on "

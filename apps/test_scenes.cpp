@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 namespace mvr::app {
 
@@ -63,6 +64,60 @@ Scene makeThinAndDeepScene(int bars) {
     const glm::vec3 c(0.5f + 0.5f * f);
     addQuad(s, {{{bx - w, -0.8f, z}, {bx + w, -0.8f, z}, {bx + w, 0.8f, z}, {bx - w, 0.8f, z}}}, {c, c, c, c});
   }
+  s.materialIds.assign(s.triangles.size(), 0);
+  s.materials.emplace_back();
+  s.lights.push_back(Light{});
+  return s;
+}
+
+Scene makeKnotScene(int triangles) {
+  constexpr int kAround = 16;
+  constexpr float kPi = 3.14159265358979f, kTube = 0.13f;
+  const int along = std::max(8, triangles / (2 * kAround));
+  auto curve = [&](float t) {  // the (2, 3) torus knot, scaled to a radius of 1
+    const float r = 2.0f + std::cos(3.0f * t);
+    return glm::vec3(r * std::cos(2.0f * t), r * std::sin(2.0f * t), std::sin(3.0f * t)) / 3.0f;
+  };
+  // Ring frames carried along the curve without twisting about it (each
+  // normal made perpendicular to the next tangent), then the angle the
+  // carried frame has turned by when it comes round spread over the
+  // rings, so that the last ring meets the first.
+  const auto n = size_t(along);
+  std::vector<glm::vec3> centre(n), tangent(n), normal(n);
+  for (int i = 0; i < along; ++i) {
+    const float t = 2.0f * kPi * float(i) / float(along), dt = 1e-3f;
+    centre[size_t(i)] = curve(t);
+    tangent[size_t(i)] = glm::normalize(curve(t + dt) - curve(t - dt));
+  }
+  normal[0] = glm::normalize(glm::cross(tangent[0], glm::vec3(0, 0, 1)));
+  for (int i = 1; i < along; ++i) {
+    const glm::vec3 n = normal[size_t(i - 1)], t = tangent[size_t(i)];
+    normal[size_t(i)] = glm::normalize(n - glm::dot(n, t) * t);
+  }
+  const glm::vec3 n0 = normal[0], back = glm::normalize(normal.back() - glm::dot(normal.back(), tangent[0]) * tangent[0]);
+  const float turned = std::atan2(glm::dot(glm::cross(back, n0), tangent[0]), glm::dot(back, n0));
+  Scene s;
+  for (int i = 0; i < along; ++i) {
+    const glm::vec3 t = tangent[size_t(i)], b0 = glm::cross(t, normal[size_t(i)]);
+    const float f = float(i) / float(along), undo = turned * f;
+    const glm::vec3 n = std::cos(undo) * normal[size_t(i)] + std::sin(undo) * b0, b = glm::cross(t, n);
+    const glm::vec3 c(0.55f + 0.35f * std::cos(2.0f * kPi * f), 0.55f + 0.35f * std::cos(2.0f * kPi * (f + 1.0f / 3)),
+                      0.55f + 0.35f * std::cos(2.0f * kPi * (f + 2.0f / 3)));
+    for (int k = 0; k < kAround; ++k) {
+      const float a = 2.0f * kPi * float(k) / float(kAround);
+      const glm::vec3 radial = std::cos(a) * n + std::sin(a) * b;
+      s.positions.push_back(centre[size_t(i)] + kTube * radial);
+      s.normals.push_back(radial);
+      s.colors.push_back(c);
+    }
+  }
+  for (int i = 0; i < along; ++i)
+    for (int k = 0; k < kAround; ++k) {
+      auto at = [&](int ii, int kk) { return unsigned((ii % along) * kAround + kk % kAround); };
+      const unsigned a = at(i, k), b = at(i + 1, k), c = at(i + 1, k + 1), d = at(i, k + 1);
+      s.triangles.push_back({a, b, c});
+      s.triangles.push_back({a, c, d});
+    }
   s.materialIds.assign(s.triangles.size(), 0);
   s.materials.emplace_back();
   s.lights.push_back(Light{});

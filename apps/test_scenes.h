@@ -16,6 +16,11 @@ Scene makeSlenderScene(int count);
 // and the box's rim hide and reveal as the view moves.
 Scene makeThinAndDeepScene(int bars = 12);
 
+// A mesh no back end was tuned on: a trefoil knot tube about 2 units wide
+// at about `triangles` triangles, lit, coloured along its length; it
+// hides and shows itself where it crosses over as the view moves.
+Scene makeKnotScene(int triangles);
+
 // Halle's rule of thumb needs the average height in pixels of the
 // triangles that reach the image, seen from the centre of the track.
 double averagePolygonHeight(const Scene& scene, const ShearingCamera& camera);

@@ -264,10 +264,12 @@ TEST(WarpOptions, BadValuesNameTheOption) {
   EXPECT_NE(message("warp:dual:a-1").find("--penalty"), std::string::npos);
   EXPECT_NE(message("warp:center").find("--acquire"), std::string::npos);
   EXPECT_NE(message("warp:hierarchical:b1").find("--budget"), std::string::npos);
-  EXPECT_NE(message("warp:dual:x3").find("warp option"), std::string::npos);
+  EXPECT_NE(message("warp:dual:q3").find("warp option"), std::string::npos);
+  EXPECT_NE(message("warp:dual:x0").find("--outline-samples"), std::string::npos);
+  EXPECT_NE(message("warp:dual:x17").find("--outline-samples"), std::string::npos);
   EXPECT_NE(message("warp:dual:f-1").find("--flatness"), std::string::npos);
   EXPECT_NE(message("warp:dual:f20").find("--flatness"), std::string::npos);
-  EXPECT_EQ(message("warp:hierarchical:t0.05:a20:b4:f0.5"), "");
+  EXPECT_EQ(message("warp:hierarchical:t0.05:a20:b4:f0.5:x4"), "");
 }
 
 }  // namespace

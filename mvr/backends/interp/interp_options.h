@@ -71,8 +71,9 @@ inline const NumberOption<InterpOptions> kInterpNumbers[] = {
      "interp: join neighbouring pixels whose tracks part by at most 2P pixels over the track (joined, they "
      "share their boundary's end: no cracks); slices at the image's edge widen by P"},
     {"--outline-samples", "x", &InterpOptions::outlineSamples, 1, 16, false, "S",
-     "interp: sample each source's outline at S columns a pixel (its nearest layer drawn once more, S times as "
-     "wide) so that silhouettes end where the surface does, within a sample (1: at the pixel's boundary)"},
+     "interp and warp on the cpu: sample each source's outline at S columns a pixel (its nearest layer drawn once "
+     "more, S times as wide) so that silhouettes end where the surface does, within a sample (1: at the pixel's "
+     "boundary)"},
 };
 inline const FlagOption<InterpOptions> kInterpFlags[] = {
     {"--visibility", "vis", &InterpOptions::visibility, true,

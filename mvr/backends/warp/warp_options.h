@@ -40,6 +40,11 @@ struct WarpOptions {
   // else GL.
   WarpPath path = WarpPath::Auto;
   double holeFraction = 1e-3;
+  // On the CPU, scene sources: columns a pixel each source's outline is
+  // sampled at (InterpOptions::outlineSamples), and silhouette segments
+  // end there instead of at the outermost pixel centre. 1: off. The GL
+  // warp's grid has no place for them.
+  int outlineSamples = 8;
 };
 
 // warp's numbers: flag, key in a bench spec (warp:ACQUIRE:KEY VALUE...),
@@ -54,6 +59,8 @@ inline const NumberOption<WarpOptions> kWarpNumbers[] = {
     {"--flatness", "f", &WarpOptions::flatness, 0, 16, false, "PX",
      "warp by GL: merge a reference's grid cells into one quad where that moves no vertex more than PX pixels "
      "in the farthest view (0: only planes merge)"},
+    {"--outline-samples", "x", &WarpOptions::outlineSamples, 1, 16, false, "S",
+     "interp and warp on the cpu: sample each source's outline at S columns a pixel"},
 };
 
 // Throws mvr::Error naming the option that is out of range; needs no GL.

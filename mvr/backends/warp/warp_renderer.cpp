@@ -38,7 +38,9 @@ class WarpRenderer final : public Renderer {
       : options_(resolved(options, scene || onRows(captured, track))),
         type_(type),
         warp_(options_.path == WarpPath::Cpu ? nullptr : std::make_unique<DepthWarp>(options.tau, options.penalty)),
-        sources_(scene ? makeSourceLayerRenderer(*scene) : nullptr) {
+        sources_(scene ? makeSourceLayerRenderer(*scene, false,
+                                                 options_.path == WarpPath::Cpu ? options_.outlineSamples : 1)
+                       : nullptr) {
     if (!scene && captured.empty()) fail("warp", "no references");
     if (options_.path == WarpPath::Cpu) {
       for (RgbdView& view : captured) capturedViews_.push_back(std::make_shared<const RgbdView>(std::move(view)));
@@ -213,6 +215,11 @@ class WarpRenderer final : public Renderer {
       view.color = std::move(layers[0].color);
       for (size_t k = 0; k < view.depth.values.size(); ++k)
         view.depth.values[k] = cameraDepth(cam.spec(), layers[0].depth[k]);
+      const std::vector<PixelOutline>& outline = layers[0].outline;
+      if (!outline.empty()) view.ends.resize(outline.size());
+      for (size_t k = 0; k < outline.size(); ++k)
+        if (const PixelOutline& o = outline[k]; o.right >= 0.0f)
+          view.ends[k] = {o.left, cameraDepth(cam.spec(), o.leftDepth), o.right, cameraDepth(cam.spec(), o.rightDepth)};
     }
     return view;
   }

@@ -81,7 +81,9 @@ using TypeTag = std::integral_constant<PixelType, T>;
 
 // One reference's scanline as points that move along it: its pixel
 // centres with samples, and where the first or last pixel has one, the
-// image's edge (the GL grid's border ring: x 0 and W, that pixel's values).
+// image's edge (the GL grid's border ring: x 0 and W, that pixel's values),
+// and beside an empty pixel the silhouette inside it, where the source
+// measured one on the pixel's surface (RgbdView::ends).
 struct WarpSpans::Row {
   enum : uint8_t { kNone, kSurface, kSheet };
   std::vector<float> x0, slope, inv, rgb, occ;
@@ -132,8 +134,8 @@ WarpSpans::Row WarpSpans::rowOf(int ref, int j) const {
   const float* color = reinterpret_cast<const float*>(v.color.bytes.data()) + 4 * base;
   Row r;
   r.depth = depth;
-  auto point = [&](float x, int i, bool splat) {
-    const float inv = 1.0f / depth[i];
+  auto point = [&](float x, int i, bool splat, float z) {
+    const float inv = 1.0f / z;
     r.x0.push_back(x);
     r.slope.push_back(float(perUnit_ - focal_ * double(inv)));
     r.inv.push_back(inv);
@@ -143,21 +145,39 @@ WarpSpans::Row WarpSpans::rowOf(int ref, int j) const {
     r.next.push_back(Row::kNone);
     r.far.push_back(0.0f);
   };
+  auto empty = [&](int i) { return i >= 0 && i < w && !(depth[i] > 0.0f); };
   for (int i = 0; i < w; ++i) {
     if (!(depth[i] > 0.0f)) continue;
     if (i == 0) {
-      point(0.0f, 0, false);
+      point(0.0f, 0, false, depth[0]);
       r.next.back() = Row::kSurface;
     }
-    point(float(i) + 0.5f, i, reference.silhouette[base + size_t(i)] != 0);
-    if (i + 1 < w && depth[i + 1] > 0.0f) {
+    // Beside an empty pixel the segment goes on to the silhouette measured
+    // inside the pixel, where the source has one on the same surface.
+    const PixelEnds e = v.ends.empty() ? PixelEnds{} : v.ends[base + size_t(i)];
+    auto onSurface = [&](float z) { return z > 0.0f && std::abs(z - depth[i]) <= tau_ * std::min(z, depth[i]); };
+    const bool openL = empty(i - 1), openR = empty(i + 1);
+    const bool endL = openL && e.right >= 0.0f && onSurface(e.leftZ);
+    const bool endR = openR && e.right >= 0.0f && onSurface(e.rightZ);
+    if (endL) {
+      point(float(i) + e.left, i, false, e.leftZ);
+      r.next.back() = Row::kSurface;
+    }
+    // A silhouette pixel with an open side it has no end on keeps its
+    // footprint; so does one whose empty neighbours lie above or below.
+    const bool silhouette = reference.silhouette[base + size_t(i)] != 0;
+    point(float(i) + 0.5f, i, silhouette && ((openL && !endL) || (openR && !endR) || !(endL || endR)), depth[i]);
+    if (endR) {
+      r.next.back() = Row::kSurface;
+      point(float(i) + e.right, i, false, e.rightZ);
+    } else if (i + 1 < w && depth[i + 1] > 0.0f) {
       const float nearZ = std::min(depth[i], depth[i + 1]), farZ = std::max(depth[i], depth[i + 1]);
       const bool sheet = farZ - nearZ > tau_ * nearZ;  // GridTriangles' jump
       r.next.back() = sheet ? Row::kSheet : Row::kSurface;
       r.far.back() = farZ;
     } else if (i + 1 == w) {
       r.next.back() = Row::kSurface;
-      point(float(w), i, false);
+      point(float(w), i, false, depth[i]);
     }
   }
   return r;

@@ -18,7 +18,12 @@
 // below, and sheets a cell by its three corners); the composite's angles
 // come from atan2 of the point's distance from the track (the eyes lie on
 // one line) and it and the weight's cosine from polynomials within 1e-5
-// and 4e-6 (the GL composite: acos of 3D vectors and cos, in float).
+// and 4e-6 (the GL composite: acos of 3D vectors and cos, in float);
+// and where a source measured its silhouette inside a pixel
+// (RgbdView::ends), the segment ends there, not at the pixel's centre
+// with a pixel-wide footprint: the grid's outline stair-steps by a pixel
+// at every silhouette, which cost warp its last 2-4 dB on unseen meshes
+// (bunny 320x240 x 100, min over views: 29.9 -> 33.4 dB).
 #include <memory>
 #include <vector>
 
