@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "mvr/error.h"
 #include "mvr/file_camera.h"

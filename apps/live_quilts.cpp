@@ -5,6 +5,7 @@
 #include "mvr/error.h"
 #include "mvr/frames/frame_chain.h"
 #include "mvr/scene_animation.h"
+#include "mvr/scene_pose.h"
 
 namespace mvr::app {
 

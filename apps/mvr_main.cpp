@@ -115,9 +115,9 @@ int dispatch(int argc, char** argv) {
   using Command = int (*)(int, char**);
   const std::map<std::string, Command> commands = {
       {"info", runInfo},
-      {"render", [](int c, char** v) { return runRender(c, v); }},
-      {"stream", [](int c, char** v) { return runRender(c, v, RenderCommand::Stream); }},
-      {"synthesize", [](int c, char** v) { return runRender(c, v, RenderCommand::Synthesize); }},
+      {"render", runRender},
+      {"stream", runStream},
+      {"synthesize", runSynthesize},
       {"view", runView},
       {"native", runNative},
       {"live", runLive},

@@ -6,7 +6,9 @@
 
 namespace mvr::app {
 
-int runRender(int argc, char** argv, RenderCommand command) {
+namespace {
+
+int run(int argc, char** argv, RenderCommand command) {
   RenderFlags flags(command);
   CLI::App app(flags.description(), flags.name());
   flags.add(app);
@@ -14,5 +16,11 @@ int runRender(int argc, char** argv, RenderCommand command) {
   RenderJob job = flags.describe(app);
   return runJob(job);
 }
+
+}  // namespace
+
+int runRender(int argc, char** argv) { return run(argc, argv, RenderCommand::Render); }
+int runStream(int argc, char** argv) { return run(argc, argv, RenderCommand::Stream); }
+int runSynthesize(int argc, char** argv) { return run(argc, argv, RenderCommand::Synthesize); }
 
 }  // namespace mvr::app

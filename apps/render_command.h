@@ -5,9 +5,9 @@
 // depth-image warping back end).
 namespace mvr::app {
 
-enum class RenderCommand { Render, Stream, Synthesize };
-
 // argv[1] is the command's name.
-int runRender(int argc, char** argv, RenderCommand command = RenderCommand::Render);
+int runRender(int argc, char** argv);
+int runStream(int argc, char** argv);
+int runSynthesize(int argc, char** argv);
 
 }  // namespace mvr::app

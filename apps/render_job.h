@@ -14,7 +14,6 @@
 #include "apps/job_split.h"
 #include "apps/memory_check.h"
 #include "apps/quilt_layout.h"
-#include "apps/render_command.h"
 #include "apps/sequence_flags.h"
 #include "mvr/backends/warp/warp_renderer.h"
 #include "mvr/frames/frame_chain.h"
@@ -27,6 +26,9 @@
 #include "mvr/timer.h"
 
 namespace mvr::app {
+
+// Which command a job is (apps/render_command.h).
+enum class RenderCommand { Render, Stream, Synthesize };
 
 class MpiSession;
 

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "mvr/error.h"
-#include "mvr/scene.h"
+#include "mvr/bounds.h"
 
 namespace mvr {
 namespace {

@@ -11,9 +11,9 @@
 // zero-to-one depth with reversed Z (near -> 1, far -> 0) for precision.
 #include <glm/glm.hpp>
 
-namespace mvr {
+#include "mvr/bounds.h"
 
-struct Bounds;
+namespace mvr {
 
 // The one bounds table for a set's extent: the camera enforces it, and the
 // command line's options and the stream's reader check against it.

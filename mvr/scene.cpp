@@ -1,5 +1,7 @@
 #include "mvr/scene.h"
 
+#include "mvr/scene_animation.h"
+
 #include <limits>
 
 namespace mvr {

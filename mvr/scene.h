@@ -9,12 +9,13 @@
 
 #include <glm/glm.hpp>
 
+#include "mvr/bounds.h"
 #include "mvr/camera.h"
-#include "mvr/scene_animation.h"
 
 namespace mvr {
 
 struct Image;
+struct SceneAnimation;  // mvr/scene_animation.h: what poses a scene, which it holds
 
 enum class SpecularModel { Phong, BlinnPhong };
 
@@ -55,19 +56,6 @@ struct Light {
   Type type = Type::Directional;
   glm::vec3 vector{0.0f, 0.0f, -1.0f};  // direction light travels, or position
   glm::vec3 color{1.0f};
-};
-
-struct Bounds {
-  glm::vec3 min{0.0f}, max{0.0f};
-  glm::vec3 center() const { return 0.5f * (min + max); }
-  // Bounds of nothing yet: the first point included sets them.
-  static Bounds none() {
-    return {glm::vec3(std::numeric_limits<float>::max()), glm::vec3(std::numeric_limits<float>::lowest())};
-  }
-  void include(const glm::vec3& p) {
-    min = glm::min(min, p);
-    max = glm::max(max, p);
-  }
 };
 
 // A camera a scene file holds (glTF's perspective cameras): it sits at

@@ -7,7 +7,6 @@
 
 #include "mvr/error.h"
 #include "mvr/parallel.h"
-#include "mvr/scene.h"
 
 namespace mvr {
 namespace {
@@ -158,7 +157,7 @@ void morphed(const AnimatedInstance& inst, const std::vector<float>& weights, si
 // One instance posed into the scene's vertices: each vertex's matrix is
 // its node's (rigid) or its joints' blend (skinned), then `after`.
 void poseInstance(const AnimatedInstance& inst, const NodePose& pose, const std::vector<glm::mat4>& joints,
-                  const glm::mat4& after, Scene& scene) {
+                  const glm::mat4& after, std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals) {
   const glm::mat4 rigid = after * pose.world[size_t(inst.node)];
   const glm::mat3 rigidNormals = glm::transpose(glm::inverse(glm::mat3(rigid)));
   const std::vector<float>& weights = pose.weights[size_t(inst.node)];
@@ -181,10 +180,10 @@ void poseInstance(const AnimatedInstance& inst, const NodePose& pose, const std:
         }
         m = after * blend;
       }
-      scene.positions[inst.first + v] = glm::vec3(m * glm::vec4(p, 1.0f));
+      positions[inst.first + v] = glm::vec3(m * glm::vec4(p, 1.0f));
       if (inst.flat) continue;  // its normals come from the posed triangles, below
       const glm::mat3 normalMatrix = skinned ? glm::transpose(glm::inverse(glm::mat3(m))) : rigidNormals;
-      scene.normals[inst.first + v] = unitOr(normalMatrix * n, glm::vec3(0, 0, 1));
+      normals[inst.first + v] = unitOr(normalMatrix * n, glm::vec3(0, 0, 1));
     }
   };
   if (blocks > 1 && (skinned || !inst.morphPositions.empty()))
@@ -194,16 +193,17 @@ void poseInstance(const AnimatedInstance& inst, const NodePose& pose, const std:
   if (!inst.flat) return;
   // A triangle's own normal, from its posed corners (the loader's winding).
   for (size_t v = 0; v + 2 < inst.positions.size(); v += 3) {
-    const glm::vec3 a = scene.positions[inst.first + v], b = scene.positions[inst.first + v + 1],
-                    c = scene.positions[inst.first + v + 2];
+    const glm::vec3 a = positions[inst.first + v], b = positions[inst.first + v + 1],
+                    c = positions[inst.first + v + 2];
     const glm::vec3 n = unitOr(glm::cross(b - a, c - a), glm::vec3(0, 0, 1));
-    for (size_t k = 0; k < 3; ++k) scene.normals[inst.first + v + k] = n;
+    for (size_t k = 0; k < 3; ++k) normals[inst.first + v + k] = n;
   }
 }
 
 }  // namespace
 
-void SceneAnimation::pose(Scene& scene, double t, int clip, const glm::mat4& after) const {
+void SceneAnimation::pose(std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals, double t, int clip,
+                          const glm::mat4& after) const {
   const NodePose nodePose = poseAt(t, clip);
   // Each skin's joint matrices: the joint's world transform times its inverse bind matrix.
   std::vector<std::vector<glm::mat4>> skinJoints(skins.size());
@@ -212,12 +212,12 @@ void SceneAnimation::pose(Scene& scene, double t, int clip, const glm::mat4& aft
       skinJoints[s].push_back(nodePose.world[size_t(skins[s].joints[j])] * skins[s].inverseBind[j]);
   static const std::vector<glm::mat4> none;
   for (const AnimatedInstance& inst : instances) {
-    if (inst.node < 0 || size_t(inst.node) >= nodes.size() || inst.first > scene.positions.size() ||
-        inst.positions.size() > scene.positions.size() - inst.first || inst.skin >= int(skins.size()) ||
+    if (inst.node < 0 || size_t(inst.node) >= nodes.size() || inst.first > positions.size() ||
+        inst.positions.size() > positions.size() - inst.first || normals.size() != positions.size() || inst.skin >= int(skins.size()) ||
         (inst.skin >= 0 && (inst.joints.size() != inst.positions.size() * size_t(std::max(inst.jointSets, 1)) ||
                             inst.jointWeights.size() != inst.joints.size())))
       fail("animation", "a mesh instance outside the scene's vertices");
-    poseInstance(inst, nodePose, inst.skin >= 0 ? skinJoints[size_t(inst.skin)] : none, after, scene);
+    poseInstance(inst, nodePose, inst.skin >= 0 ? skinJoints[size_t(inst.skin)] : none, after, positions, normals);
   }
 }
 
@@ -225,32 +225,6 @@ std::shared_ptr<SceneAnimation> SceneAnimation::offset(uint32_t vertexBase) cons
   auto a = std::make_shared<SceneAnimation>(*this);
   for (AnimatedInstance& inst : a->instances) inst.first += vertexBase;
   return a;
-}
-
-void poseAnimations(Scene& scene, double t, const std::string& clip, const glm::mat4& after) {
-  for (const auto& a : scene.animations) {
-    const int index = clip.empty() ? -1 : a->clipNamed(clip);
-    if (!clip.empty() && index < 0) {
-      a->pose(scene, 0.0, -2, after);  // no clip of this file plays: its rest pose
-      continue;
-    }
-    a->pose(scene, t, index, after);
-  }
-}
-
-double animationLength(const Scene& scene, const std::string& clip) {
-  double d = 0.0;
-  for (const auto& a : scene.animations) {
-    const int index = clip.empty() ? -1 : a->clipNamed(clip);
-    if (clip.empty() || index >= 0) d = std::max(d, a->duration(index));
-  }
-  return d;
-}
-
-bool hasClip(const Scene& scene, const std::string& clip) {
-  for (const auto& a : scene.animations)
-    if (a->clipNamed(clip) >= 0) return true;
-  return false;
 }
 
 }  // namespace mvr

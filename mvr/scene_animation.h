@@ -18,7 +18,6 @@
 
 namespace mvr {
 
-struct Scene;
 
 struct AnimationChannel {
   enum class Path { Translation, Rotation, Scale, Weights };
@@ -98,18 +97,12 @@ struct SceneAnimation {
   int clipNamed(const std::string& name) const;  // -1 when none
   // The nodes at time t with the clip (-1: every clip plays, -2: none).
   NodePose poseAt(double t, int clip) const;
-  // The instances' vertices of `scene` at time t, moved last by `after`.
-  void pose(Scene& scene, double t, int clip, const glm::mat4& after) const;
+  // The instances' vertices of a scene's positions and normals
+  // (Scene::positions, ::normals) at time t, moved last by `after`.
+  void pose(std::vector<glm::vec3>& positions, std::vector<glm::vec3>& normals, double t, int clip,
+            const glm::mat4& after) const;
   // The same animation for a scene appended after `vertexBase` vertices.
   std::shared_ptr<SceneAnimation> offset(uint32_t vertexBase) const;
 };
-
-// Every animation of the scene (one per animated file) at time t, moved
-// last by `after`. clip: the name of the one clip that plays ("": all);
-// a file without it stays at rest.
-void poseAnimations(Scene& scene, double t, const std::string& clip, const glm::mat4& after);
-// The longest of the scene's clips, or of those named `clip`; 0: none.
-double animationLength(const Scene& scene, const std::string& clip);
-bool hasClip(const Scene& scene, const std::string& clip);
 
 }  // namespace mvr

@@ -1,11 +1,13 @@
 #include "mvr/scene_pose.h"
 
 #include <cmath>
+#include <algorithm>
 #include <numbers>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "mvr/error.h"
+#include "mvr/scene_animation.h"
 
 namespace mvr {
 
@@ -25,6 +27,32 @@ void poseGeometry(Scene& scene, const Scene& still, const glm::mat4& m) {
   scene.positions = still.positions;
   scene.normals = still.normals;
   scene.transformGeometry(m);
+}
+
+void poseAnimations(Scene& scene, double t, const std::string& clip, const glm::mat4& after) {
+  for (const auto& a : scene.animations) {
+    const int index = clip.empty() ? -1 : a->clipNamed(clip);
+    if (!clip.empty() && index < 0) {
+      a->pose(scene.positions, scene.normals, 0.0, -2, after);  // no clip of this file plays: its rest pose
+      continue;
+    }
+    a->pose(scene.positions, scene.normals, t, index, after);
+  }
+}
+
+double animationLength(const Scene& scene, const std::string& clip) {
+  double d = 0.0;
+  for (const auto& a : scene.animations) {
+    const int index = clip.empty() ? -1 : a->clipNamed(clip);
+    if (clip.empty() || index >= 0) d = std::max(d, a->duration(index));
+  }
+  return d;
+}
+
+bool hasClip(const Scene& scene, const std::string& clip) {
+  for (const auto& a : scene.animations)
+    if (a->clipNamed(clip) >= 0) return true;
+  return false;
 }
 
 }  // namespace mvr

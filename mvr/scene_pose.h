@@ -4,6 +4,8 @@
 // scene sees it move (Renderer::sceneMoved). Lights and the files' cameras
 // stay where they are in the world: a turntable turns the model under the
 // studio's lights, before a camera that does not move.
+#include <string>
+
 #include <glm/glm.hpp>
 
 #include "mvr/scene.h"
@@ -17,5 +19,13 @@ glm::mat4 turntable(const glm::vec3& pivot, double degrees);
 // scene's positions and normals become still's moved by m. The two have
 // the same vertices (scene began as a copy of still).
 void poseGeometry(Scene& scene, const Scene& still, const glm::mat4& m);
+
+// Every animation of the scene (one per animated file) at time t, moved
+// last by `after`. clip: the name of the one clip that plays ("": all);
+// a file without it stays at rest.
+void poseAnimations(Scene& scene, double t, const std::string& clip, const glm::mat4& after);
+// The longest of the scene's clips, or of those named `clip`; 0: none.
+double animationLength(const Scene& scene, const std::string& clip);
+bool hasClip(const Scene& scene, const std::string& clip);
 
 }  // namespace mvr

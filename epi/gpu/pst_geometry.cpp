@@ -205,7 +205,7 @@ PstGeometry::PstGeometry(PstMode mode, int extraCount, const SceneTexturing* tex
     : mode_(mode), recordStride_(GpuVertices::kRecordHead + extraCount) {
   if (mode == PstMode::Cpu) fail("PstGeometry", "cpu is not a GL mode");
   if (texturing) {
-    sceneVectors_.emplace(recordStride_, GpuVertices::kRecordHead + texturing->uv, texturing->textures);
+    sceneVectors_.emplace(glslLibrary(recordStride_), GpuVertices::kRecordHead + texturing->uv, texturing->textures);
     materials_ = &texturing->materials;
   }
   count_ = gl::linkProgram("pst-count", {{GL_COMPUTE_SHADER, gl::glslHeader() + recordDefine(recordStride_) +

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <string>
 
-#include "epi/gpu/pst_geometry.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
 #include "shading/texture_vector.h"
@@ -112,9 +111,9 @@ uvec4 sliceVector(uint slice) {
 }
 )";
 
-gl::Program compile(const char* name, int recordStride, const char* main) {
+gl::Program compile(const char* name, const std::string& pstLibrary, const char* main) {
   const std::string header = gl::glslHeader({"MAX_LENGTH " + std::to_string(shading::TextureVectors::kMaxLength)});
-  return gl::linkProgram(name, {{GL_COMPUTE_SHADER, header + PstGeometry::glslLibrary(recordStride) +
+  return gl::linkProgram(name, {{GL_COMPUTE_SHADER, header + pstLibrary +
                                                         shading::glslMaterials() + shading::TextureSet::glsl() +
                                                         kLength + main}});
 }
@@ -125,10 +124,10 @@ GLuint groups(size_t items) { return GLuint((items + 63) / 64); }
 
 const char* SceneVectors::glslPull() { return kPull; }
 
-SceneVectors::SceneVectors(int recordStride, int uvAt, const shading::TextureSet& textures)
-    : size_(compile("vector-size", recordStride, kSize)),
-      sample_(compile("vector-sample", recordStride, kSample)),
-      levels_(compile("vector-levels", recordStride, kLevels)) {
+SceneVectors::SceneVectors(const std::string& pstLibrary, int uvAt, const shading::TextureSet& textures)
+    : size_(compile("vector-size", pstLibrary, kSize)),
+      sample_(compile("vector-sample", pstLibrary, kSample)),
+      levels_(compile("vector-levels", pstLibrary, kLevels)) {
   if (textures.empty()) fail("SceneVectors", "the scene has no textures");
   gl::setUniform(sample_, "uUv", uvAt);
   total_ = gl::makeBuffer<uint32_t>(nullptr, 1);

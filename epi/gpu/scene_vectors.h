@@ -14,6 +14,7 @@
 // The texel total comes back to size the texel buffer: one small read per
 // batch, the only sync of the pass.
 #include <cstdint>
+#include <string>
 
 #include "mvr/gl/gl_handles.h"
 #include "mvr/gl/prefix_sum.h"
@@ -29,9 +30,10 @@ class SceneVectors {
   // they are written.
   static constexpr GLuint kBase = 8, kLength = 9, kTexels = 10;
 
-  // recordStride: floats per endpoint record; uvAt: the record index of
-  // u / w (v / w follows). Needs a current GL context.
-  SceneVectors(int recordStride, int uvAt, const shading::TextureSet& textures);
+  // pstLibrary: PstGeometry::glslLibrary, the slice table and endpoint
+  // records its passes read; uvAt: the record index of u / w (v / w
+  // follows). Needs a current GL context.
+  SceneVectors(const std::string& pstLibrary, int uvAt, const shading::TextureSet& textures);
 
   // The batch's slices [firstSlice, firstSlice + sliceCount), their pieces
   // written by PstGeometry's count pass. Expects PstGeometry's storage

@@ -66,7 +66,7 @@ Scene GltfReader::read() {
   if (animation_) {
     readSkins();
     // Skins and morph weights at rest give the shape the file shows.
-    if (!model_.skins.empty() || morphs) animation_->pose(scene_, 0.0, -2, glm::mat4(1.0f));
+    if (!model_.skins.empty() || morphs) animation_->pose(scene_.positions, scene_.normals, 0.0, -2, glm::mat4(1.0f));
     readClips();
   }
   addLights();

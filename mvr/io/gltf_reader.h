@@ -17,6 +17,7 @@
 #include "mvr/io/load_warnings.h"
 #include "mvr/io/point_line_solids.h"
 #include "mvr/scene.h"
+#include "mvr/scene_animation.h"
 
 namespace mvr::gltf {
 

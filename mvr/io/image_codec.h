@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "mvr/image.h"
-#include "mvr/io/image_file.h"
+#include "mvr/io/image_encoding.h"
 
 namespace mvr {
 

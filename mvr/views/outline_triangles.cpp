@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "mvr/parallel.h"
-#include "mvr/views/source_layers.h"
 
 namespace mvr {
 namespace {

@@ -15,6 +15,15 @@
 
 namespace mvr {
 
+// Whether a slicer reads the outline of pixel i of a row of the nearest
+// layer's depths toward dir (-1 left, +1 right): where its neighbour that
+// way lies in the image and is empty (LayerSlicer::outlineEnd; the GPU
+// slicer's GLSL copy is held to it by GpuImageSlicerTest).
+inline bool outlineRead(const float* depthRow, int width, int i, int dir) {
+  const int next = i + dir;
+  return next >= 0 && next < width && depthRow[next] == 0.0f;
+}
+
 // Per pixel of a width x height layer (rows as its depth): 1 where its
 // outline is read, covered (depth != 0) beside an empty pixel.
 std::vector<uint8_t> outlinePixels(const std::vector<float>& depth, int width, int height);

@@ -13,6 +13,7 @@
 #include "mvr/image.h"
 #include "mvr/renderer.h"
 #include "mvr/scene.h"
+#include "mvr/views/outline_triangles.h"
 
 namespace mvr {
 
@@ -28,15 +29,6 @@ namespace mvr {
 struct PixelOutline {
   float left = -1.0f, leftDepth = 0.0f, right = -1.0f, rightDepth = 0.0f;
 };
-
-// Whether a slicer reads the outline of pixel i of a row of the nearest
-// layer's depths toward dir (-1 left, +1 right): where its neighbour that
-// way lies in the image and is empty (LayerSlicer::outlineEnd; the GPU
-// slicer's GLSL copy is held to it by GpuImageSlicerTest).
-inline bool outlineRead(const float* depthRow, int width, int i, int dir) {
-  const int next = i + dir;
-  return next >= 0 && next < width && depthRow[next] == 0.0f;
-}
 
 struct SourceLayer {
   glm::dvec2 eye{0.0};        // camera x, y on the camera plane

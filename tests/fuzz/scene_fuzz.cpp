@@ -17,6 +17,7 @@
 
 #include "mvr/error.h"
 #include "mvr/io/scene_io.h"
+#include "mvr/scene_pose.h"
 
 namespace {
 

@@ -16,6 +16,7 @@
 
 #include "mvr/io/mesh_io.h"
 #include "mvr/scene_animation.h"
+#include "mvr/scene_pose.h"
 #include "tests/support/animated_gltf.h"
 #include "tests/support/file_test.h"
 #include "tests/support/gltf_document.h"

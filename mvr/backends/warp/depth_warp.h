@@ -169,4 +169,10 @@ class DepthWarp {
   Warped warped_[2];
 };
 
+// Per pixel its occlusion label: 1 where a 4-neighbour inside the image
+// has no sample or a depth more than tau of the nearer away; and the
+// silhouette pixels, samples with an empty 8-neighbour. Both warps label
+// with this.
+void labelPixels(const DepthImage& depth, float tau, std::vector<float>& labels, std::vector<uint32_t>& silhouettes);
+
 }  // namespace mvr

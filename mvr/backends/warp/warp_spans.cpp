@@ -14,27 +14,6 @@
 
 namespace mvr {
 
-void labelPixels(const DepthImage& d, float tau, std::vector<float>& labels, std::vector<uint32_t>& silhouettes) {
-  const int w = d.width, h = d.height;
-  labels.assign(size_t(w) * h, 0.0f);
-  auto inside = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h; };
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const float z = d.at(x, y);
-      bool jump = false, edge = false;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          if ((dx == 0 && dy == 0) || !inside(x + dx, y + dy)) continue;
-          const float n = d.at(x + dx, y + dy);
-          const bool empty = !(n > 0.0f);
-          edge = edge || empty;
-          if (dx == 0 || dy == 0) jump = jump || empty || std::abs(n - z) > tau * std::min(z, n);
-        }
-      labels[size_t(y) * w + x] = jump ? 1.0f : 0.0f;
-      if (z > 0.0f && edge) silhouettes.push_back(uint32_t(y * w + x));
-    }
-}
-
 namespace {
 
 constexpr float kPi = 3.14159265358979f;

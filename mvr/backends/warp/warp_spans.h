@@ -33,12 +33,6 @@
 
 namespace mvr {
 
-// Per pixel its occlusion label: 1 where a 4-neighbour inside the image
-// has no sample or a depth more than tau of the nearer away; and the
-// silhouette pixels, samples with an empty 8-neighbour. Both warps label
-// with this.
-void labelPixels(const DepthImage& depth, float tau, std::vector<float>& labels, std::vector<uint32_t>& silhouettes);
-
 class WarpSpans {
  public:
   // One row of views of cam; tau and a as DepthWarp's. cam must outlive this.
