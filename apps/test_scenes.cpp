@@ -82,8 +82,8 @@ Scene makeKnotScene(int triangles) {
   // normal made perpendicular to the next tangent), then the angle the
   // carried frame has turned by when it comes round spread over the
   // rings, so that the last ring meets the first.
-  const auto n = size_t(along);
-  std::vector<glm::vec3> centre(n), tangent(n), normal(n);
+  const auto rings = size_t(along);
+  std::vector<glm::vec3> centre(rings), tangent(rings), normal(rings);
   for (int i = 0; i < along; ++i) {
     const float t = 2.0f * kPi * float(i) / float(along), dt = 1e-3f;
     centre[size_t(i)] = curve(t);

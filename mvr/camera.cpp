@@ -5,7 +5,6 @@
 #include <string>
 
 #include "mvr/error.h"
-#include "mvr/bounds.h"
 
 namespace mvr {
 namespace {

@@ -1,8 +1,8 @@
 #include "mvr/scene.h"
 
-#include "mvr/scene_animation.h"
-
 #include <limits>
+
+#include "mvr/scene_animation.h"
 
 namespace mvr {
 

@@ -18,7 +18,6 @@
 
 namespace mvr {
 
-
 struct AnimationChannel {
   enum class Path { Translation, Rotation, Scale, Weights };
   enum class Interpolation { Linear, Step, CubicSpline };

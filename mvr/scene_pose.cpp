@@ -1,7 +1,7 @@
 #include "mvr/scene_pose.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 
 #include <glm/gtc/matrix_transform.hpp>

@@ -416,7 +416,7 @@ void labelPixels(const DepthImage& d, float tau, std::vector<float>& labels, std
           const float n = d.at(x + dx, y + dy);
           const bool empty = !(n > 0.0f);
           edge = edge || empty;
-          if (dx == 0 || dy == 0) jump = jump || empty || std::abs(n - z) > tau * std::min(z, n);
+          if (dx == 0 || dy == 0) jump = jump || empty || !oneSurface(n, z, tau);
         }
       labels[size_t(y) * w + x] = jump ? 1.0f : 0.0f;
       if (z > 0.0f && edge) silhouettes.push_back(uint32_t(y * w + x));

@@ -50,6 +50,7 @@
 //   colour  = w_i c_i + (1 - w_i) c_j. Where one reference has no sample,
 //   the other alone; where neither, nothing (alpha 0).
 #include <algorithm>
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -168,6 +169,11 @@ class DepthWarp {
   int gridWidth_ = 0, gridHeight_ = 0;
   Warped warped_[2];
 };
+
+// Whether two camera depths lie on one surface: apart by at most tau of
+// the nearer (WarpOptions::tau). Both warps' labels, sheets and silhouette
+// ends test with this.
+inline bool oneSurface(float a, float b, float tau) { return std::abs(a - b) <= tau * std::min(a, b); }
 
 // Per pixel its occlusion label: 1 where a 4-neighbour inside the image
 // has no sample or a depth more than tau of the nearer away; and the

@@ -11,6 +11,7 @@
 #include "mvr/color.h"
 #include "mvr/error.h"
 #include "mvr/parallel.h"
+#include "mvr/views/outline_triangles.h"
 
 namespace mvr {
 
@@ -124,7 +125,6 @@ WarpSpans::Row WarpSpans::rowOf(int ref, int j) const {
     r.next.push_back(Row::kNone);
     r.far.push_back(0.0f);
   };
-  auto empty = [&](int i) { return i >= 0 && i < w && !(depth[i] > 0.0f); };
   for (int i = 0; i < w; ++i) {
     if (!(depth[i] > 0.0f)) continue;
     if (i == 0) {
@@ -134,8 +134,8 @@ WarpSpans::Row WarpSpans::rowOf(int ref, int j) const {
     // Beside an empty pixel the segment goes on to the silhouette measured
     // inside the pixel, where the source has one on the same surface.
     const PixelEnds e = v.ends.empty() ? PixelEnds{} : v.ends[base + size_t(i)];
-    auto onSurface = [&](float z) { return z > 0.0f && std::abs(z - depth[i]) <= tau_ * std::min(z, depth[i]); };
-    const bool openL = empty(i - 1), openR = empty(i + 1);
+    auto onSurface = [&](float z) { return z > 0.0f && oneSurface(z, depth[i], tau_); };
+    const bool openL = outlineRead(depth, w, i, -1), openR = outlineRead(depth, w, i, +1);
     const bool endL = openL && e.right >= 0.0f && onSurface(e.leftZ);
     const bool endR = openR && e.right >= 0.0f && onSurface(e.rightZ);
     if (endL) {
@@ -150,10 +150,9 @@ WarpSpans::Row WarpSpans::rowOf(int ref, int j) const {
       r.next.back() = Row::kSurface;
       point(float(i) + e.right, i, false, e.rightZ);
     } else if (i + 1 < w && depth[i + 1] > 0.0f) {
-      const float nearZ = std::min(depth[i], depth[i + 1]), farZ = std::max(depth[i], depth[i + 1]);
-      const bool sheet = farZ - nearZ > tau_ * nearZ;  // GridTriangles' jump
+      const bool sheet = !oneSurface(depth[i], depth[i + 1], tau_);  // GridTriangles' jump
       r.next.back() = sheet ? Row::kSheet : Row::kSurface;
-      r.far.back() = farZ;
+      r.far.back() = std::max(depth[i], depth[i + 1]);
     } else if (i + 1 == w) {
       r.next.back() = Row::kSurface;
       point(float(w), i, false, depth[i]);
