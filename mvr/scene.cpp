@@ -1,5 +1,6 @@
 #include "mvr/scene.h"
 
+#include <algorithm>
 #include <limits>
 
 #include "mvr/scene_animation.h"
@@ -55,11 +56,14 @@ void Scene::transformGeometry(const glm::mat4& m) {
 void Scene::transform(const glm::mat4& m) {
   transformGeometry(m);
   const bool turns = glm::mat3(m) != glm::mat3(1.0f);
-  for (Light& light : lights)
-    if (light.type == Light::Type::Point)
+  const auto turn = [&](glm::vec3& d) { d = glm::vec3(glm::normalize(glm::dmat3(glm::mat3(m)) * glm::dvec3(d))); };
+  for (Light& light : lights) {
+    if (light.positional())
       light.vector = glm::vec3(m * glm::vec4(light.vector, 1.0f));
     else if (turns)
-      light.vector = glm::vec3(glm::normalize(glm::dmat3(glm::mat3(m)) * glm::dvec3(light.vector)));
+      turn(light.vector);
+    if (light.type == Light::Type::Spot && turns) turn(light.axis);
+  }
   for (FileCamera& c : fileCameras) c.toWorld = m * c.toWorld;
   for (auto& a : animations) {
     auto moved = std::make_shared<SceneAnimation>(*a);
@@ -71,6 +75,20 @@ void Scene::transform(const glm::mat4& m) {
 }  // namespace mvr
 
 namespace mvr {
+
+glm::vec2 coneScaleOffset(const Light& light) {
+  if (light.type != Light::Type::Spot) return {0.0f, 1.0f};
+  // A cone with no falloff band (inner = outer) would divide by zero: a
+  // thousandth of a cosine is a band too narrow to see.
+  const float scale = 1.0f / std::max(light.cosInner - light.cosOuter, 1e-3f);
+  return {scale, -light.cosOuter * scale};
+}
+
+float coneFactor(const Light& light, const glm::vec3& l) {
+  const glm::vec2 c = coneScaleOffset(light);
+  const float t = glm::clamp(glm::dot(light.axis, -l) * c.x + c.y, 0.0f, 1.0f);
+  return t * t;
+}
 
 void computeVertexNormals(Scene& scene) {
   // In double: the cross product of float coordinates of 1e10 has a squared

@@ -52,11 +52,25 @@ inline bool isUnitColor(const glm::vec3& c) {
 inline constexpr int kMaxLights = 8;
 
 struct Light {
-  enum class Type { Directional, Point };
+  enum class Type { Directional, Point, Spot };
   Type type = Type::Directional;
   glm::vec3 vector{0.0f, 0.0f, -1.0f};  // direction light travels, or position
   glm::vec3 color{1.0f};
+  // A spot light's cone (glTF's): full light within cosInner of its axis,
+  // none outside cosOuter, a smooth square falloff between (coneFactor).
+  glm::vec3 axis{0.0f, 0.0f, -1.0f};  // unit, the direction light travels
+  float cosInner = 1.0f, cosOuter = 0.70710678f;
+  bool positional() const { return type != Type::Directional; }
 };
+
+// The share of a light's colour that reaches a surface point from unit
+// direction l (from the point towards the light): 1 for every light but a
+// spot, and for a spot t^2 with t = (cos angle - cosOuter) / (cosInner - cosOuter) in
+// [0, 1], as glTF's KHR_lights_punctual recommends. As scale and offset,
+// t = cos angle * scale + offset, so that GLSL needs no branch: a light
+// that is no spot has (0, 1).
+glm::vec2 coneScaleOffset(const Light& light);
+float coneFactor(const Light& light, const glm::vec3& l);
 
 // A camera a scene file holds (glTF's perspective cameras): it sits at
 // toWorld's origin, looks down its -z with +y up. `--camera` makes one the

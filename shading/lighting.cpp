@@ -24,7 +24,7 @@ std::vector<float> vertexCullFlags(const Scene& scene) {
 }
 
 glm::vec3 towardsLight(const Light& light, const glm::vec3& p) {
-  return light.type == Light::Type::Directional ? -light.vector : glm::normalize(light.vector - p);
+  return light.positional() ? glm::normalize(light.vector - p) : -light.vector;
 }
 
 // Keep in step with the GLSL below.
@@ -32,7 +32,8 @@ glm::vec3 diffuse(const Scene& scene, const glm::vec3& albedo, const glm::vec3& 
                   const glm::vec3& n) {
   glm::vec3 sum = scene.ambient;
   for (const Light& light : scene.lights) {
-    sum += light.color * glm::max(glm::dot(n, towardsLight(light, p)), 0.0f);
+    const glm::vec3 l = towardsLight(light, p);
+    sum += light.color * coneFactor(light, l) * glm::max(glm::dot(n, l), 0.0f);
   }
   return glm::clamp(albedo * sum, 0.0f, 1.0f);
 }
@@ -61,14 +62,25 @@ const std::string& glslLighting() {
 uniform int uLightCount;
 uniform vec4 uLightVector[8];  // w = 0: direction light travels; w = 1: position
 uniform vec3 uLightColor[8];
+uniform vec3 uLightAxis[8];  // a spot's
+uniform vec2 uLightCone[8];  // scale, offset (coneScaleOffset): 0, 1 for no spot
 uniform vec3 uAmbient;
+
+vec3 towardsLight(int i, vec3 p) {
+  return uLightVector[i].w == 0.0 ? -uLightVector[i].xyz : normalize(uLightVector[i].xyz - p);
+}
+
+// uLightColor[i] times coneFactor.
+vec3 lightColor(int i, vec3 l) {
+  float t = clamp(dot(uLightAxis[i], -l) * uLightCone[i].x + uLightCone[i].y, 0.0, 1.0);
+  return uLightColor[i] * (t * t);
+}
 
 vec3 diffuseLight(vec3 albedo, vec3 p, vec3 n) {
   vec3 sum = uAmbient;
   for (int i = 0; i < uLightCount; ++i) {
-    vec3 l = uLightVector[i].w == 0.0 ? -uLightVector[i].xyz
-                                      : normalize(uLightVector[i].xyz - p);
-    sum += uLightColor[i] * max(dot(n, l), 0.0);
+    vec3 l = towardsLight(i, p);
+    sum += lightColor(i, l) * max(dot(n, l), 0.0);
   }
   return clamp(albedo * sum, 0.0, 1.0);
 }
@@ -84,9 +96,10 @@ void setLightUniforms(const gl::Program& program, const Scene& scene) {
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
     const std::string idx = "[" + std::to_string(i) + "]";
-    float w = l.type == Light::Type::Directional ? 0.0f : 1.0f;
-    gl::setUniform(program, ("uLightVector" + idx).c_str(), glm::vec4(l.vector, w));
+    gl::setUniform(program, ("uLightVector" + idx).c_str(), glm::vec4(l.vector, l.positional() ? 1.0f : 0.0f));
     gl::setUniform(program, ("uLightColor" + idx).c_str(), l.color);
+    gl::setUniform(program, ("uLightAxis" + idx).c_str(), l.axis);
+    gl::setUniform(program, ("uLightCone" + idx).c_str(), coneScaleOffset(l));
   }
 }
 

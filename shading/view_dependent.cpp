@@ -31,7 +31,7 @@ glm::vec3 specularLight(const Scene& scene, const Material& m, const glm::vec3& 
     const float s = m.specularModel == SpecularModel::Phong
                         ? glm::dot(glm::reflect(-l, n), v)
                         : glm::dot(n, glm::normalize(l + v));
-    sum += light.color * std::pow(std::max(s, 1e-30f), m.shininess);
+    sum += light.color * coneFactor(light, l) * std::pow(std::max(s, 1e-30f), m.shininess);
   }
   return m.specular * sum;
 }
@@ -61,11 +61,10 @@ vec3 specularLight(int material, vec3 p, vec3 nIn, vec3 eye) {
   vec3 n = nIn / len, v = (eye - p) / dist;
   vec3 sum = vec3(0.0);
   for (int i = 0; i < uLightCount; ++i) {
-    vec3 l = uLightVector[i].w == 0.0 ? -uLightVector[i].xyz
-                                      : normalize(uLightVector[i].xyz - p);
+    vec3 l = towardsLight(i, p);
     if (dot(n, l) <= 0.0) continue;
     float s = m.params.x == 0.0 ? dot(reflect(-l, n), v) : dot(n, normalize(l + v));
-    sum += uLightColor[i] * pow(max(s, 1e-30), m.specular.w);
+    sum += lightColor(i, l) * pow(max(s, 1e-30), m.specular.w);
   }
   return m.specular.rgb * sum;
 }

@@ -32,13 +32,21 @@ void GltfReader::addLights() {
       light.color = glm::clamp(glm::vec3(float(g.color[0]), float(g.color[1]), float(g.color[2])), 0.0f, 1.0f);
     const double intensity = std::isfinite(g.intensity) ? std::max(g.intensity, 0.0) : 0.0;
     double illuminance = intensity;
+    // Directional and spot lights shine down their node's -z.
+    const glm::vec3 minusZ = glm::mat3(world) * glm::vec3(0.0f, 0.0f, -1.0f);
+    const glm::vec3 down = glm::length(minusZ) > 0.0f ? glm::normalize(minusZ) : glm::vec3(0.0f, 0.0f, -1.0f);
     if (g.type == "directional") {
-      const glm::vec3 d = glm::mat3(world) * glm::vec3(0.0f, 0.0f, -1.0f);
-      light.vector = glm::length(d) > 0.0f ? glm::normalize(d) : glm::vec3(0.0f, 0.0f, -1.0f);
+      light.vector = down;
     } else {
-      if (g.type == "spot") warn_("spot lights drawn as point lights (their cones not modelled)");
-      light.type = Light::Type::Point;
+      light.type = g.type == "spot" ? Light::Type::Spot : Light::Type::Point;
       light.vector = glm::vec3(world * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+      if (light.type == Light::Type::Spot) {
+        light.axis = down;
+        const double outer = std::clamp(g.spot.outerConeAngle, 0.0, M_PI / 2);
+        light.cosOuter = float(std::cos(outer));
+        light.cosInner = float(std::cos(std::clamp(g.spot.innerConeAngle, 0.0, outer)));
+      }
+      // A spot's as if the centre were on its axis: it is aimed at what it lights.
       const double d = glm::distance(glm::dvec3(light.vector), glm::dvec3(centre));
       illuminance = intensity / std::max(d * d, 1e-12);
     }

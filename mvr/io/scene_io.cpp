@@ -220,25 +220,45 @@ class SceneReader {
     if (j.size() > size_t(kMaxLights)) bad("lights", "more than " + std::to_string(kMaxLights) + " lights");
     for (size_t i = 0; i < j.size(); ++i) {
       const std::string where = "lights[" + std::to_string(i) + "]";
-      expectObject(j[i], where, {"type", "direction", "position", "color"});
+      expectObject(j[i], where, {"type", "direction", "position", "color", "inner_angle", "outer_angle"});
       Light light;
       std::string type = j[i].value("type", "directional");
       if (type == "directional") {
         light.type = Light::Type::Directional;
-        if (!j[i].contains("direction")) bad(where, "directional light needs \"direction\"");
-        light.vector = vec3(j[i]["direction"], where + ".direction");
-        if (glm::length(light.vector) == 0) bad(where + ".direction", "must not be zero");
-        light.vector = glm::normalize(light.vector);
-      } else if (type == "point") {
-        light.type = Light::Type::Point;
-        if (!j[i].contains("position")) bad(where, "point light needs \"position\"");
+        light.vector = direction(j[i], where, "directional");
+      } else if (type == "point" || type == "spot") {
+        light.type = type == "point" ? Light::Type::Point : Light::Type::Spot;
+        if (!j[i].contains("position")) bad(where, type + " light needs \"position\"");
         light.vector = vec3(j[i]["position"], where + ".position");
       } else {
-        bad(where + ".type", "must be \"directional\" or \"point\"");
+        bad(where + ".type", "must be \"directional\", \"point\" or \"spot\"");
       }
+      if (light.type == Light::Type::Spot) readCone(j[i], where, light);
       if (j[i].contains("color")) light.color = color(j[i]["color"], where + ".color");
       scene.lights.push_back(light);
     }
+  }
+
+  glm::vec3 direction(const Json& j, const std::string& where, const std::string& type) const {
+    if (!j.contains("direction")) bad(where, type + " light needs \"direction\"");
+    const glm::vec3 d = vec3(j["direction"], where + ".direction");
+    if (glm::length(d) == 0) bad(where + ".direction", "must not be zero");
+    return glm::normalize(d);
+  }
+
+  // A spot's cone: half angles off its axis in degrees, glTF's defaults.
+  void readCone(const Json& j, const std::string& where, Light& light) const {
+    light.axis = direction(j, where, "spot");
+    const auto angle = [&](const char* key, double fallback, double lo) {
+      const double a = j.contains(key) ? number(j[key], where + "." + key) : fallback;
+      if (!(a >= lo && a <= 90.0)) bad(where + "." + key, "must be in [" + std::to_string(int(lo)) + ", 90] degrees");
+      return a;
+    };
+    const double outer = angle("outer_angle", 45.0, 0.0);
+    const double inner = angle("inner_angle", 0.0, 0.0);
+    if (inner > outer) bad(where + ".inner_angle", "must not be wider than outer_angle");
+    light.cosOuter = float(std::cos(glm::radians(outer)));
+    light.cosInner = float(std::cos(glm::radians(inner)));
   }
 
   CameraSpec readCamera(const Json& j) const {

@@ -236,6 +236,32 @@ TEST_F(Gltf, PunctualLightsKeepTheirBalance) {
   EXPECT_NEAR(glm::distance(centred.lights[1].vector, glm::vec3(0, 0, 10)), 0.0f, 1e-6f);
 }
 
+// A spot light keeps its cone, its axis down its node's -z (here turned to
+// shine along -y) and is exposed as a point light at its place.
+TEST_F(Gltf, SpotLightsKeepTheirCones) {
+  Document d = triangleDocument();
+  d.json["extensionsUsed"] = {"KHR_lights_punctual"};
+  d.json["extensions"] = {{"KHR_lights_punctual",
+                           {{"lights", Json::array({{{"type", "spot"}, {"intensity", 10},
+                                                     {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.4}}}},
+                                                    {{"type", "spot"}, {"intensity", 10}, {"spot", Json::object()}}})}}}};
+  d.json["nodes"] = Json::array({{{"mesh", 0}},
+                                 {{"rotation", {-0.70710678, 0, 0, 0.70710678}}, {"translation", {0, 5, 0}},
+                                  {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}},
+                                 {{"translation", {0, 0, 50}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}}});
+  const Scene s = loadMesh(d.write(dir_ / "spot.gltf"));
+  ASSERT_EQ(s.lights.size(), 2u);
+  EXPECT_EQ(s.lights[0].type, Light::Type::Spot);
+  EXPECT_NEAR(glm::distance(s.lights[0].vector, glm::vec3(0, 5, 0)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::distance(s.lights[0].axis, glm::vec3(0, -1, 0)), 0.0f, 1e-6f);
+  EXPECT_FLOAT_EQ(s.lights[0].cosInner, std::cos(0.2f));
+  EXPECT_FLOAT_EQ(s.lights[0].cosOuter, std::cos(0.4f));
+  // The defaults, 0 and pi/4; and the near spot has most of the exposure.
+  EXPECT_FLOAT_EQ(s.lights[1].cosInner, 1.0f);
+  EXPECT_NEAR(s.lights[1].cosOuter, std::cos(0.7853981634f), 1e-6f);
+  EXPECT_GT(s.lights[0].color.x, 0.9f);
+}
+
 // A file camera as the centre view: the scene in the camera's frame, the
 // image plane through the scene's centre, the plane's height from yfov.
 TEST_F(Gltf, FileCameraBecomesTheCentreView) {

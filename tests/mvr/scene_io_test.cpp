@@ -319,7 +319,22 @@ TEST_F(SceneIo, NormalsSurviveExtremeScales) {
 
 TEST_F(SceneIo, WrongTypes) {
   expectError(cubeJson(", \"ambient\": [1, 2]"), "ambient: must be an array of 3 numbers");
-  expectError(cubeJson(", \"lights\": [{\"type\": \"spot\"}]"), "lights[0].type");
+  expectError(cubeJson(", \"lights\": [{\"type\": \"area\"}]"), "lights[0].type");
+  expectError(cubeJson(", \"lights\": [{\"type\": \"spot\", \"position\": [0, 0, 3]}]"),
+              "lights[0]: spot light needs \"direction\"");
+  const std::string aimed = "\"type\": \"spot\", \"position\": [0, 0, 3], \"direction\": [0, 0, -1]";
+  expectError(cubeJson(", \"lights\": [{" + aimed + ", \"outer_angle\": 91}]"), "lights[0].outer_angle: must be in [0, 90]");
+  expectError(cubeJson(", \"lights\": [{" + aimed + ", \"inner_angle\": 50}]"), "lights[0].inner_angle: must not be wider");
+}
+
+TEST_F(SceneIo, SpotLightsHaveCones) {
+  const Scene s = loadScene(cubeJson(", \"lights\": [{\"type\": \"spot\", \"position\": [0, 0, 3], "
+                                     "\"direction\": [0, 0, -2], \"inner_angle\": 20, \"outer_angle\": 30}]"));
+  ASSERT_EQ(s.lights.size(), 1u);
+  EXPECT_EQ(s.lights[0].type, Light::Type::Spot);
+  EXPECT_EQ(s.lights[0].axis, glm::vec3(0, 0, -1));
+  EXPECT_FLOAT_EQ(s.lights[0].cosInner, std::cos(glm::radians(20.0f)));
+  EXPECT_FLOAT_EQ(s.lights[0].cosOuter, std::cos(glm::radians(30.0f)));
 }
 
 }  // namespace

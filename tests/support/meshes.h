@@ -8,7 +8,7 @@
 
 namespace mvr::test {
 
-// A UV sphere of radius r at the origin, unlit grey.
+// A UV sphere of radius r at the origin, grey, under an ambient light of 1.
 inline Scene sphereScene(float r, int rings, int segments) {
   Scene s;
   const float pi = glm::pi<float>();
@@ -23,8 +23,10 @@ inline Scene sphereScene(float r, int rings, int segments) {
   for (int i = 0; i < rings; ++i)
     for (int k = 0; k < segments; ++k) {
       const uint32_t a = uint32_t(i * (segments + 1) + k), b = a + 1, c = a + uint32_t(segments + 1), d = c + 1;
-      s.triangles.push_back({a, c, b});
-      s.triangles.push_back({b, c, d});
+      // Counter-clockwise seen from outside: a two-sided material lights a
+      // back face by its flipped normal.
+      s.triangles.push_back({a, b, c});
+      s.triangles.push_back({b, d, c});
     }
   s.materialIds.assign(s.triangles.size(), 0);
   Material m;
