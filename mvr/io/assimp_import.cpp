@@ -6,12 +6,15 @@
 
 #include <cctype>
 #include <cerrno>
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -160,6 +163,53 @@ bool trimLeadingBlanks(std::string& text) {
   return trimmed;
 }
 
+// Each element <tag ...>...</tag> removed from text.
+void eraseElements(std::string& text, const std::string& tag) {
+  for (size_t at = text.find("<" + tag); at != std::string::npos; at = text.find("<" + tag, at)) {
+    const size_t end = text.find("</" + tag + ">", at);
+    if (end == std::string::npos) return;
+    text.erase(at, end + tag.size() + 3 - at);
+  }
+}
+
+// The value of attribute name in the tag that opens at `at`, or "".
+std::string attribute(const std::string& text, size_t at, const std::string& name) {
+  const size_t close = text.find('>', at), key = text.find(" " + name + "=\"", at);
+  if (key == std::string::npos || key > close) return "";
+  const size_t value = key + name.size() + 3, end = text.find('"', value);
+  return end == std::string::npos ? "" : text.substr(value, end - value);
+}
+
+// Collada's controllers (a skin or a morph over a geometry) as the
+// geometry they deform, for a file whose skins assimp cannot read: each
+// <instance_controller url="#C"> becomes <instance_geometry url="#G">, G
+// the source of C's skin or morph, its <skeleton>s dropped, and the
+// controllers removed. Returns whether any instance was replaced.
+bool controllersAsGeometry(std::string& text) {
+  std::map<std::string, std::string> source;  // controller id -> geometry url
+  for (size_t at = text.find("<controller "); at != std::string::npos; at = text.find("<controller ", at + 1)) {
+    const size_t skin = std::min(text.find("<skin ", at), text.find("<morph ", at));
+    if (skin == std::string::npos) continue;
+    std::string url(1, '#');  // built up: GCC 12 warns of "#" + string (-Wrestrict)
+    source[url.append(attribute(text, at, "id"))] = attribute(text, skin, "source");
+  }
+  eraseElements(text, "library_controllers");
+  bool replaced = false;
+  const std::string open = "<instance_controller", close = "</instance_controller>";
+  for (size_t at = text.find(open); at != std::string::npos; at = text.find(open, at)) {
+    const auto geometry = source.find(attribute(text, at, "url"));
+    if (geometry == source.end() || geometry->second.empty()) return false;
+    const size_t tagEnd = text.find('>', at);
+    const bool empty = text[tagEnd - 1] == '/';
+    text.replace(at, tagEnd + 1 - at, "<instance_geometry url=\"" + geometry->second + (empty ? "\"/>" : "\">"));
+    replaced = true;
+  }
+  for (size_t at = text.find(close); at != std::string::npos; at = text.find(close, at))
+    text.replace(at, close.size(), "</instance_geometry>");
+  eraseElements(text, "skeleton");
+  return replaced;
+}
+
 // A binary FBX starts "Kaydara FBX Binary  " and the bytes 0, 0x1a, 0. A
 // file whose zero bytes all became blanks went through a text transfer.
 void checkFbxHeader(const std::string& path) {
@@ -175,7 +225,9 @@ void checkFbxHeader(const std::string& path) {
 // Textures are still found from the file.
 class ReadableCopy {
  public:
-  explicit ReadableCopy(const std::string& path) : path_(path) {
+  // unskinned: a Collada file's controllers as their geometry
+  // (controllersAsGeometry).
+  explicit ReadableCopy(const std::string& path, bool unskinned = false) : path_(path) {
     const bool utf16 = isUtf16(fileStart(path, 2)), collada = lowerExtension(path) == ".dae";
     if (!utf16 && !collada) return;
     std::string text = utf16 ? utf8OfUtf16File(path) : contents(path);
@@ -190,6 +242,9 @@ class ReadableCopy {
       notes_.push_back("UTF-16 text read as UTF-8");
     }
     if (collada && trimLeadingBlanks(text)) notes_.push_back("blanks before number lists dropped for assimp");
+    undeformed_ = collada && unskinned && controllersAsGeometry(text);
+    if (undeformed_)
+      notes_.push_back("assimp failed on its skins and morphs: drawn undeformed, in the pose they bind to, unanimated");
     if (notes_.empty()) return;
     std::string dir = (fs::temp_directory_path() / "mvr-import-XXXXXX").string();
     if (!::mkdtemp(dir.data())) fail(path, "cannot make a folder for its copy");
@@ -208,6 +263,8 @@ class ReadableCopy {
   const std::string& path() const { return path_; }
   // What the copy changed, for the scene's warnings.
   const std::vector<std::string>& notes() const { return notes_; }
+  // Whether the copy has a Collada file's controllers as their geometry.
+  bool undeformed() const { return undeformed_; }
 
  private:
   static std::string contents(const std::string& path) {
@@ -216,6 +273,7 @@ class ReadableCopy {
   }
   std::string path_, dir_;
   std::vector<std::string> notes_;
+  bool undeformed_ = false;
 };
 
 }  // namespace
@@ -229,9 +287,15 @@ Scene importWithAssimp(const std::string& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) fail(path, "no such model file");
   if (lowerExtension(path) == ".fbx") checkFbxHeader(path);
-  const ReadableCopy text(path);
-  const ChildOutput child =
-      run(helperProgram("mvr-import", "MVR_IMPORT", path, "FBX, Collada and 3DS files are read"), text.path());
+  const std::string helper = helperProgram("mvr-import", "MVR_IMPORT", path, "FBX, Collada and 3DS files are read");
+  std::optional<ReadableCopy> text(std::in_place, path);
+  ChildOutput child = run(helper, text->path());
+  // Assimp 5.2's Collada skins can fail it outright (out of memory, a
+  // crash) on files that are well formed: then the meshes they deform.
+  const bool failed = WIFSIGNALED(child.status) || firstLine(child.err) == "std::bad_alloc";
+  if (failed && !child.timedOut && lowerExtension(path) == ".dae") {
+    if (text.emplace(path, true).undeformed()) child = run(helper, text->path());
+  }
   if (child.timedOut) fail(path, "the importer (assimp) took more than " + std::to_string(kTimeoutSeconds) + " s");
   if (WIFSIGNALED(child.status))
     fail(path, "the importer (assimp) failed on this file (signal " + std::to_string(WTERMSIG(child.status)) +
@@ -242,7 +306,7 @@ Scene importWithAssimp(const std::string& path) {
                                                           : firstLine(child.err));
   ImportedModel model = readImportedModel(child.out, path);
   for (std::string& w : model.scene.warnings) w = path + ": " + w;
-  for (const std::string& note : text.notes()) model.scene.warnings.push_back(path + ": " + note);
+  for (const std::string& note : text->notes()) model.scene.warnings.push_back(path + ": " + note);
   resolveTextures(model, path);
   if (model.scene.triangles.empty()) fail(path, "mesh has no triangles");
   return std::move(model.scene);
