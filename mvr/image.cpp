@@ -23,7 +23,7 @@ std::vector<uint8_t> resampleSrgb8(const Image& src, glm::ivec4 rect, int width,
                                    glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx), fy);
       out.setLinear(x, bottomUp ? height - 1 - y : y, c);
     }
-  return std::move(out.bytes);
+  return {out.bytes.begin(), out.bytes.end()};
 }
 
 glm::vec4 Image::pixel(int x, int y) const {

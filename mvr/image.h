@@ -6,6 +6,8 @@
 
 #include <glm/glm.hpp>
 
+#include "mvr/large_pages.h"
+
 namespace mvr {
 
 // U8 and F32 hold linear values; Srgb8 holds sRGB-encoded colour (alpha
@@ -14,10 +16,13 @@ enum class PixelType { U8, Srgb8, F32 };
 
 inline bool isByteType(PixelType t) { return t != PixelType::F32; }
 
+// A frame-sized image's pixels on huge pages (mvr/large_pages.h).
+using ImageBytes = std::vector<uint8_t, LargePageAllocator<uint8_t>>;
+
 struct Image {
   int width = 0, height = 0;
   PixelType type = PixelType::U8;
-  std::vector<uint8_t> bytes;  // width * height * 4 * bytesPerChannel
+  ImageBytes bytes;  // width * height * 4 * bytesPerChannel
 
   Image() = default;
   Image(int w, int h, PixelType t)

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <memory>
 #include <set>
 
@@ -10,6 +11,22 @@
 
 namespace mvr {
 namespace {
+
+// A frame-sized image's pixels start on a 2 MiB boundary (where a huge
+// page can hold them), zeroed; a small one's are ordinary memory. Both
+// copy, grow and free as a vector's.
+TEST(ImagePool, FrameSizedPixelsStartOnAHugePage) {
+  const Image quilt(1200, 1000, PixelType::Srgb8);  // 4.8 MB
+  EXPECT_EQ(reinterpret_cast<uintptr_t>(quilt.bytes.data()) % (uintptr_t(2) << 20), 0u);
+  EXPECT_TRUE(std::all_of(quilt.bytes.begin(), quilt.bytes.end(), [](uint8_t b) { return b == 0; }));
+  Image copy = quilt;
+  copy.bytes.back() = 7;
+  EXPECT_EQ(quilt.bytes.back(), 0);
+  Image small(4, 4, PixelType::U8);
+  small.bytes.resize(size_t(8) << 20, 1);  // grows past the threshold
+  EXPECT_EQ(small.bytes[(size_t(8) << 20) - 1], 1);
+  EXPECT_EQ(small.bytes[0], 0);
+}
 
 TEST(ImagePool, AnImageLetGoIsHandedOutAgainForItsShapeOnly) {
   ImagePool pool;

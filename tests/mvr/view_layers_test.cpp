@@ -33,16 +33,16 @@ class ViewLayers : public test::GlTest {
     for (uint8_t& b : image.bytes) b = uint8_t(random_());
     return image;
   }
-  static std::vector<uint8_t> texels(const gl::Texture& t) {
-    std::vector<uint8_t> bytes(size_t(kWidth) * kViews * kScanlines * 4);
+  static ImageBytes texels(const gl::Texture& t) {
+    ImageBytes bytes(size_t(kWidth) * kViews * kScanlines * 4);
     gl::PixelStorei(GL_PACK_ALIGNMENT, 1);
     gl::GetTextureImage(t.id(), 0, GL_RGBA, GL_UNSIGNED_BYTE, GLsizei(bytes.size()), bytes.data());
     return bytes;
   }
   // An EPI volume's bytes as a view array holds them: layer v, row s is
   // EPI s's row v.
-  static std::vector<uint8_t> asViewArray(const Image& volume) {
-    std::vector<uint8_t> out(volume.bytes.size());
+  static ImageBytes asViewArray(const Image& volume) {
+    ImageBytes out(volume.bytes.size());
     for (int v = 0; v < kViews; ++v)
       for (int s = 0; s < kScanlines; ++s)
         std::memcpy(out.data() + (size_t(v) * kScanlines + s) * volume.rowBytes(), volume.row(s * kViews + v),

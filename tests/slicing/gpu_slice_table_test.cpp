@@ -119,7 +119,7 @@ TEST_F(GpuSliceTableTest, RasterizersFillTheMemoryASinkLends) {
         EXPECT_EQ(lending.handed.at(j).bytes, epi.bytes) << label << " scanline " << j;
       } else {
         EXPECT_FALSE(lending.handed.count(j)) << label << " handed on lent scanline " << j;
-        EXPECT_EQ(lending.lent.at(j), epi.bytes) << label << " scanline " << j;
+        EXPECT_EQ(ImageBytes(lending.lent.at(j).begin(), lending.lent.at(j).end()), epi.bytes) << label << " scanline " << j;
       }
     }
   };
