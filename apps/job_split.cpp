@@ -24,6 +24,18 @@ int launchedRanks() {
   return 1;
 }
 
+int launchedRank() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"})
+    if (const char* v = std::getenv(name)) return std::max(0, std::atoi(v));
+  return -1;
+}
+
+int launchedLocalRanks() {
+  for (const char* name : {"OMPI_COMM_WORLD_LOCAL_SIZE", "MPI_LOCALNRANKS", "PMI_LOCAL_SIZE"})
+    if (const char* v = std::getenv(name)) return std::max(1, std::atoi(v));
+  return 0;
+}
+
 std::vector<double> scanlineCosts(const Scene& scene, const ShearingCamera& camera, int row) {
   const int h = camera.height();
   std::vector<glm::vec2> p(scene.vertexCount());  // the middle view's pixel positions

@@ -16,6 +16,11 @@ namespace mvr::app {
 // process is one of, read from the environment without initialising MPI;
 // 1 when not started by a launcher.
 int launchedRanks();
+// This process's rank as the launcher's environment gives it, -1 where it
+// does not; and how many of the job's ranks share this machine, 0 where
+// the environment does not say.
+int launchedRank();
+int launchedLocalRanks();
 
 // The estimated cost of each scanline's EPIs for an EPI renderer, in
 // pixels of one view's row: the row itself (every EPI row is cleared and

@@ -9,6 +9,7 @@
 #include <string>
 #include <thread>
 
+#include "apps/job_split.h"
 #include "mvr/error.h"
 #include "mvr/parallel.h"
 
@@ -22,25 +23,55 @@ constexpr uint64_t kPiece = uint64_t(1) << 30;
 
 }  // namespace
 
-MpiSession::MpiSession(int& argc, char**& argv) {
-  MPI_Init(&argc, &argv);
-  // Errors come back as codes and are reported as this program's own.
-  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-  MPI_Comm_size(MPI_COMM_WORLD, &ranks_);
+// MPI_Init waits on the launcher (0.3 s of a job on the 2-core VMs here,
+// little of it computing): it runs on a thread of its own, beside the
+// scene's loading and GL's start, and the first call that needs MPI waits
+// for it. That thread is MPI's main thread, so it also finalises; the
+// others call MPI one at a time (MPI_THREAD_SERIALIZED). The rank and the
+// ranks on this machine are the launcher's environment's until then.
+MpiSession::MpiSession(int&, char**&) {
   g_session = this;
+  mpi_ = std::thread([this] {
+    int provided = 0;
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_SERIALIZED, &provided);
+    // Errors come back as codes and are reported as this program's own.
+    MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+    int rank = 0, ranks = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+    std::unique_lock lock(mutex_);
+    mpiRank_ = rank, mpiRanks_ = ranks, initialised_ = true;
+    changed_.notify_all();
+    changed_.wait(lock, [this] { return finishing_; });
+    lock.unlock();
+    MPI_Finalize();
+  });
+  if (const int rank = launchedRank(); rank >= 0) {
+    rank_ = rank, ranks_ = launchedRanks();
+  } else {
+    ready();
+    rank_ = mpiRank_, ranks_ = mpiRanks_;
+  }
   shareTheCores();
+}
+
+void MpiSession::ready() {
+  std::unique_lock lock(mutex_);
+  changed_.wait(lock, [this] { return initialised_; });
 }
 
 // Ranks on one machine divide its cores (unless --threads says otherwise),
 // and so does llvmpipe's rasterizer: K ranks of all-core pools would run K
 // times as many threads as cores.
 void MpiSession::shareTheCores() {
-  MPI_Comm node;
-  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node);
-  int local = 1;
-  MPI_Comm_size(node, &local);
-  MPI_Comm_free(&node);
+  int local = launchedLocalRanks();
+  if (local < 1) {
+    ready();
+    MPI_Comm node;
+    MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node);
+    MPI_Comm_size(node, &local);
+    MPI_Comm_free(&node);
+  }
   // mpirun binds each rank to its cores where it can (then the affinity
   // says how many); unbound ranks divide the machine.
   const int threads = std::max(1, std::min(availableCores(), int(std::thread::hardware_concurrency()) / local));
@@ -49,13 +80,20 @@ void MpiSession::shareTheCores() {
 }
 
 MpiSession::~MpiSession() {
+  ready();
+  {
+    std::lock_guard lock(mutex_);
+    finishing_ = true;
+  }
+  changed_.notify_all();
+  mpi_.join();
   g_session = nullptr;
-  MPI_Finalize();
 }
 
 MpiSession* MpiSession::current() { return g_session; }
 
 bool MpiSession::agree(const std::string& error) {
+  ready();
   const int mine = error.empty() ? ranks_ : rank_;
   int first = ranks_;
   MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
@@ -65,6 +103,7 @@ bool MpiSession::agree(const std::string& error) {
 }
 
 std::vector<std::string> MpiSession::gatherAtRoot(const std::vector<std::string>& mine) {
+  ready();
   std::string joined;
   for (const std::string& s : mine) joined += s + '\n';
   const int length = int(joined.size());
@@ -86,12 +125,16 @@ std::vector<std::string> MpiSession::gatherAtRoot(const std::vector<std::string>
 }
 
 double MpiSession::maxOf(double value) {
+  ready();
   double out = value;
   MPI_Allreduce(&value, &out, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
   return out;
 }
 
-void MpiSession::barrier() { MPI_Barrier(MPI_COMM_WORLD); }
+void MpiSession::barrier() {
+  ready();
+  MPI_Barrier(MPI_COMM_WORLD);
+}
 
 // mpirun bound this rank to its share of the cores; the calling thread
 // (and what it spawns) is bound to all of them again. Where a cpuset
@@ -109,6 +152,7 @@ struct SharedFile::Handle {
 
 SharedFile::SharedFile(const std::string& path, Lifetime lifetime)
     : path_(path), handle_(std::make_unique<Handle>()) {
+  MpiSession::current()->ready();
   const bool scratch = lifetime == Lifetime::Scratch;
   const int rc = MPI_File_open(MPI_COMM_WORLD, path.c_str(),
                                MPI_MODE_CREATE | MPI_MODE_RDWR | (scratch ? MPI_MODE_DELETE_ON_CLOSE : 0),

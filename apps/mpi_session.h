@@ -6,10 +6,13 @@
 // Collective calls must be reached by every rank in the same order, so a
 // rank never leaves a phase by an exception: each phase catches its error
 // and the ranks agree on the outcome (agree) before going on.
+#include <condition_variable>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <span>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace mvr::app {
@@ -26,6 +29,9 @@ class MpiSession {
 
   int rank() const { return rank_; }
   int ranks() const { return ranks_; }
+  // Waits until MPI is initialised (it starts on a thread of its own);
+  // every call below does.
+  void ready();
 
   // Whether the ranks have agreed once (agree): until then an error that
   // reaches main is a set-up error the other ranks are waiting to hear of.
@@ -50,6 +56,11 @@ class MpiSession {
   void shareTheCores();
   int rank_ = 0, ranks_ = 1;
   bool agreedOnce_ = false;
+  std::thread mpi_;  // MPI's main thread: initialises, then finalises
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  int mpiRank_ = 0, mpiRanks_ = 1;  // MPI's, set by its thread
+  bool initialised_ = false, finishing_ = false;
 };
 
 // A phase ended because another rank failed; it printed the error.

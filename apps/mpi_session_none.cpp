@@ -10,6 +10,7 @@ MpiSession::MpiSession(int&, char**&) {
   fail("mpirun", "this mvr was built without MPI (scripts/setup installs Open MPI; rebuild)");
 }
 MpiSession::~MpiSession() = default;
+void MpiSession::ready() {}
 MpiSession* MpiSession::current() { return nullptr; }
 bool MpiSession::agree(const std::string&) { return true; }
 std::vector<std::string> MpiSession::gatherAtRoot(const std::vector<std::string>& mine) { return mine; }
