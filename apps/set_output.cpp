@@ -149,15 +149,16 @@ void renderColor(const RenderJob& job, PreparedJob& p, ImageSetWriter& writer, S
   inPhase(mpi, [&] {
     if (run.split) run.split->assemble();
     if (run.quilt) {
-      writer.putExtra(run.quilt->fileName(job.format, run.quiltAspect), run.quilt->quilt(),
-                      {{"Exif:UserComment", quiltMetadata(job.views * job.rows, run.quilt->columns(),
-                                                          run.quilt->tileRows(), run.quiltAspect)}});
+      // The quilt's and native image's users first: then the writer takes them.
       if (p.quiltOut) p.quiltOut(run.quilt->quilt(), run.quilt->fileName("mp4", run.quiltAspect));
       if (job.native) {
-        const Image native = nativeOf(job, p, *run.quilt);
-        writer.putExtra(nativeName(job, "png"), native, {});
+        Image native = nativeOf(job, p, *run.quilt);
         if (p.nativeOut) p.nativeOut(native, nativeName(job, "mp4"));
+        writer.putExtra(nativeName(job, "png"), std::move(native), {});
       }
+      writer.putExtra(run.quilt->fileName(job.format, run.quiltAspect), run.quilt->takeQuilt(),
+                      {{"Exif:UserComment", quiltMetadata(job.views * job.rows, run.quilt->columns(),
+                                                          run.quilt->tileRows(), run.quiltAspect)}});
     }
     if (mpi) writer.flush();
   });

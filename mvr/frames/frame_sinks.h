@@ -34,6 +34,8 @@ class QuiltSink final : public FrameSink {
   // reordering of an EPI renderer's frames.
   void putEpi(int row, int scanline, const Image& epi) override;
   const Image& quilt() const { return quilt_; }
+  // The finished quilt, handed on without a copy; the sink holds none after.
+  Image takeQuilt() { return std::move(quilt_); }
   // e.g. "quilt_qs8x6a1.33.png" (the _qs{cols}x{rows}a{aspect} convention);
   // aspect: the display's width / height, 0 for the tiles'.
   std::string fileName(const std::string& ext, double aspect = 0.0) const;

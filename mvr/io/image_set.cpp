@@ -64,6 +64,15 @@ void ImageSetWriter::put(const std::string& name, const Image& image,
   });
 }
 
+void ImageSetWriter::putExtra(const std::string& name, Image&& image,
+                              std::vector<std::pair<std::string, std::string>> attributes) {
+  submit(name, [this, image = std::move(image), attributes = std::move(attributes)](const std::string& path) {
+    ImageEncoding encoding = manifest_.encoding();
+    encoding.attributes = attributes;
+    writeImage(image, path, encoding);
+  });
+}
+
 void ImageSetWriter::putDepth(int row, int view, const DepthImage& depth) {
   submit(manifest_.depthName(row, view), [this, depth](const std::string& path) {
     writeDepthImage(depth, path, manifest_.encoding());

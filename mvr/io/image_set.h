@@ -35,6 +35,9 @@ class ImageSetWriter final : public FrameSink {
   // with metadata attributes (ImageEncoding::attributes).
   void putExtra(const std::string& name, const Image& image,
                 std::vector<std::pair<std::string, std::string>> attributes = {});
+  // The same, the image given (no copy of a 45 MB quilt).
+  void putExtra(const std::string& name, Image&& image,
+                std::vector<std::pair<std::string, std::string>> attributes = {});
   // A file of the set encoded elsewhere (mvr/frames/png_views.h): written on
   // the pool like the rest, removed like the rest on failure. afterPart:
   // its first bytes are in its temporary file already (appendToPart on
