@@ -70,10 +70,14 @@ vec3 towardsLight(int i, vec3 p) {
   return uLightVector[i].w == 0.0 ? -uLightVector[i].xyz : normalize(uLightVector[i].xyz - p);
 }
 
-// uLightColor[i] times coneFactor.
+// uLightColor[i] times coneFactor (1 in a scene without spots).
 vec3 lightColor(int i, vec3 l) {
+#ifdef SPOT_LIGHTS
   float t = clamp(dot(uLightAxis[i], -l) * uLightCone[i].x + uLightCone[i].y, 0.0, 1.0);
   return uLightColor[i] * (t * t);
+#else
+  return uLightColor[i];
+#endif
 }
 
 vec3 diffuseLight(vec3 albedo, vec3 p, vec3 n) {

@@ -33,7 +33,8 @@ struct VertexColors {
 };
 VertexColors litVertexColors(const Scene& scene);
 
-// GLSL: uniforms and `vec3 diffuseLight(vec3 albedo, vec3 p, vec3 n)`.
+// GLSL: uniforms and `vec3 diffuseLight(vec3 albedo, vec3 p, vec3 n)`; spot
+// lights need SPOT_LIGHTS defined before it (ShadingPlan::glslDefines).
 const std::string& glslLighting();
 // Sets the uniforms glslLighting() declares; throws if too many lights.
 void setLightUniforms(const gl::Program& program, const Scene& scene);

@@ -11,6 +11,7 @@ ShadingPlan planShading(const Scene& scene) {
     plan.emission |= m.emission != glm::vec3(0.0f);
     plan.mask |= m.masked();
   }
+  for (const Light& l : scene.lights) plan.spots |= l.type == Light::Type::Spot;
   if (plan.texture) {
     plan.uv = plan.extraCount;
     plan.extraCount += 2;
@@ -52,6 +53,7 @@ std::string ShadingPlan::glslDefines() const {
   if (reflection) s += "#define REFLECT\n";
   if (emission) s += "#define EMISSION\n";
   if (mask) s += "#define MASK\n";
+  if (spots) s += "#define SPOT_LIGHTS\n";
   return s;
 }
 

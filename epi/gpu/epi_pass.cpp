@@ -352,6 +352,7 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bo
   if (pass == shading::Pass::Texture && shading.sliceHighlights) header += "#define HIGHLIGHTS\n";
   if (linear()) header += "#define VECTOR\n";
   if (emission()) header += "#define EMISSION\n";
+  if (shading.plan.spots) header += "#define SPOT_LIGHTS\n";
   if (maskDepth) header += "#define MASK_DEPTH\n";
   std::string fragment = header + (exact ? kExactFragment : kSliverFragment) + kAttributeHelpers;
   if (pass == shading::Pass::Diffuse) {
