@@ -4,6 +4,7 @@
 #include <memory>
 #include <optional>
 
+#include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
 #include "apps/depth_pass.h"
@@ -60,7 +61,9 @@ void describe(const RenderJob& job, const PreparedJob& p, const SetRun& run, Man
   m["gl"] = {{"platform", glPlatformName(p.context->platform())},
              {"version", p.context->version()},
              {"renderer", p.context->renderer()}};
-  manifest.setCamera(*p.camera, p.imagePlaneZ);
+  // V already holds the focal plane's move.
+  const glm::dmat4 plane = glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, p.imagePlaneZ));
+  manifest.setCamera(*p.camera, p.imagePlaneZ, plane * glm::dmat4(p.scene.fromFile));
   if (job.aa.active())
     m["antialiasing"] = {{"filter", "box, in linear light, colour weighted by alpha"},
                          {"samples_per_pixel", job.aa.spatial * job.aa.spatial},

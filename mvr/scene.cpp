@@ -55,6 +55,7 @@ void Scene::transformGeometry(const glm::mat4& m) {
 
 void Scene::transform(const glm::mat4& m) {
   transformGeometry(m);
+  fromFile = m * fromFile;
   const bool turns = glm::mat3(m) != glm::mat3(1.0f);
   const auto turn = [&](glm::vec3& d) { d = glm::vec3(glm::normalize(glm::dmat3(glm::mat3(m)) * glm::dvec3(d))); };
   for (Light& light : lights) {

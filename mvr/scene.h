@@ -103,6 +103,10 @@ struct Scene {
   // a time of a sequence. Empty for a still scene.
   std::vector<std::shared_ptr<const SceneAnimation>> animations;
   std::string source;                // file it came from, for manifests
+  // What transform() has moved the scene by since its file (a mesh file
+  // centred on its bounds, a file camera's view, the focal plane): the
+  // file's coordinates to these. The manifest gives it.
+  glm::mat4 fromFile{1.0f};
   // Faces of the files that could not be used (a repeated corner or one
   // naming a vertex that does not exist): dropped, and counted here.
   size_t droppedFaces = 0;

@@ -27,6 +27,7 @@ void poseGeometry(Scene& scene, const Scene& still, const glm::mat4& m) {
   scene.positions = still.positions;
   scene.normals = still.normals;
   scene.transformGeometry(m);
+  scene.fromFile = m * still.fromFile;  // a turntable's turn: the frame's cameras see the file turned
 }
 
 void poseAnimations(Scene& scene, double t, const std::string& clip, const glm::mat4& after) {

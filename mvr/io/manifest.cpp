@@ -62,7 +62,7 @@ std::string Manifest::epiName(int row, int scanline) const {
   return name + "." + format;
 }
 
-void Manifest::setCamera(const ShearingCamera& cam, double imagePlaneZ) {
+void Manifest::setCamera(const ShearingCamera& cam, double imagePlaneZ, const glm::dmat4& fromFile) {
   const CameraSpec& s = cam.spec();
   const double degrees = 180.0 / 3.14159265358979323846;
   info["camera"] = {{"distance", s.distance},
@@ -102,6 +102,14 @@ void Manifest::setCamera(const ShearingCamera& cam, double imagePlaneZ) {
                                     "top-left corner, centre of pixel (i, j) at (i + 0.5, j + 0.5) "
                                     "(subtract 0.5 from K's cx and cy for integer pixel centres)"},
                      {"views", std::move(list)}};
+  if (fromFile != glm::dmat4(1.0)) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (int r = 0; r < 4; ++r) rows.push_back({fromFile[0][r], fromFile[1][r], fromFile[2][r], fromFile[3][r]});
+    info["cameras"]["from_file"] = rows;
+    info["cameras"]["from_file_means"] =
+        "the scene file's coordinates to the ones V and the eyes are in, row by row (a mesh file is centred on "
+        "its bounds, --camera moves the scene into that camera's view): V * from_file takes the file's points";
+  }
 }
 
 nlohmann::json Manifest::toJson() const {

@@ -49,8 +49,10 @@ class Manifest {
   // The camera as the manifest records it (distance, image plane, track,
   // cone and field of view) and every view's K, V and eye. imagePlaneZ:
   // where the rig's image plane lies in the scene's coordinates (render
-  // --focal); V and the eyes are given in those.
-  void setCamera(const ShearingCamera& camera, double imagePlaneZ = 0.0);
+  // --focal); V and the eyes are given in those. fromFile: the scene's
+  // file's coordinates to the scene's (Scene::fromFile without the focal
+  // plane's move), recorded as from_file where it is not the identity.
+  void setCamera(const ShearingCamera& camera, double imagePlaneZ = 0.0, const glm::dmat4& fromFile = glm::dmat4(1.0));
 
   nlohmann::json toJson() const;
   // Throws mvr::Error naming `where` for a missing or impossible field.

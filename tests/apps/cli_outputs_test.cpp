@@ -171,6 +171,38 @@ TEST(Cli, CameraInDisplayTerms) {
   }
 }
 
+// A bare mesh is centred on load and --focal moves it behind the plane:
+// the manifest's from_file takes the file's points to the coordinates V
+// is in, so the file's own centre lands on the middle view's axis at the
+// camera distance (an outside check, scripts/threejs-check, needs it).
+TEST(Cli, ManifestTakesTheFilesCoordinates) {
+  const fs::path d = test::freshDir("cli_from_file"), mesh = test::freshDir("cli_from_file_mesh") / "quad.obj";
+  fs::create_directories(mesh.parent_path());
+  std::ofstream(mesh) << "v 2 1 0\nv 4 1 0\nv 4 3 1\nv 2 3 1\nf 1 2 3\nf 1 3 4\n";
+  test::CliResult r = test::runMvr("render " + mesh.string() + " --views 3 --size 32x24 --focal center --out " + d.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto m = nlohmann::json::parse(std::ifstream(d / "manifest.json"));
+  const nlohmann::json& f = m["cameras"]["from_file"];
+  const nlohmann::json& v = m["cameras"]["views"][1]["V"];
+  const double centre[4] = {3.0, 2.0, 0.5, 1.0};
+  double scene[4] = {0, 0, 0, 0}, camera[4] = {0, 0, 0, 0};
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) scene[r] += f[r][c].get<double>() * centre[c];
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) camera[r] += v[r][c].get<double>() * scene[c];
+  EXPECT_NEAR(scene[0], 0.0, 1e-6);  // centred
+  EXPECT_NEAR(scene[1], 0.0, 1e-6);
+  EXPECT_NEAR(camera[0], 0.0, 1e-6);
+  EXPECT_NEAR(camera[1], 0.0, 1e-6);
+  EXPECT_NEAR(camera[2], m["camera"]["distance"].get<double>(), 1e-6);
+  // A scene file's coordinates are the scene's: no from_file.
+  const fs::path scene_file = mesh.parent_path() / "quad.json";
+  std::ofstream(scene_file) << R"({"meshes": [{"file": "quad.obj"}]})";
+  r = test::runMvr("render " + scene_file.string() + " --views 3 --size 32x24 --out " + d.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(nlohmann::json::parse(std::ifstream(d / "manifest.json"))["cameras"].contains("from_file"));
+}
+
 // A folder holds one set: a smaller render into a folder that held a
 // larger one, with a quilt and depth maps, leaves only its own files.
 TEST(Cli, RerenderingLeavesNoStaleFiles) {
