@@ -23,14 +23,26 @@ constexpr uint64_t kPiece = uint64_t(1) << 30;
 
 }  // namespace
 
-// MPI_Init waits on the launcher (0.3 s of a job on the 2-core VMs here,
-// little of it computing): it runs on a thread of its own, beside the
-// scene's loading and GL's start, and the first call that needs MPI waits
-// for it. That thread is MPI's main thread, so it also finalises; the
-// others call MPI one at a time (MPI_THREAD_SERIALIZED). The rank and the
-// ranks on this machine are the launcher's environment's until then.
+// MPI_Init sets many environment variables, and setenv reallocates the
+// environment under any thread reading it (Mesa's EGL start-up crashed in
+// getenv when MPI started beside it): MPI starts when the first call needs
+// it, with the start-up's threads done. By then every rank has started, so
+// its wait on the launcher is short. It runs on a thread of its own, MPI's
+// main thread, which also finalises; the others call MPI one at a time
+// (MPI_THREAD_SERIALIZED). The rank and the ranks on this machine are the
+// launcher's environment's until then.
 MpiSession::MpiSession(int&, char**&) {
   g_session = this;
+  if (const int rank = launchedRank(); rank >= 0) {
+    rank_ = rank, ranks_ = launchedRanks();
+  } else {
+    ready();
+    rank_ = mpiRank_, ranks_ = mpiRanks_;
+  }
+  shareTheCores();
+}
+
+void MpiSession::start() {
   mpi_ = std::thread([this] {
     int provided = 0;
     MPI_Init_thread(nullptr, nullptr, MPI_THREAD_SERIALIZED, &provided);
@@ -46,16 +58,10 @@ MpiSession::MpiSession(int&, char**&) {
     lock.unlock();
     MPI_Finalize();
   });
-  if (const int rank = launchedRank(); rank >= 0) {
-    rank_ = rank, ranks_ = launchedRanks();
-  } else {
-    ready();
-    rank_ = mpiRank_, ranks_ = mpiRanks_;
-  }
-  shareTheCores();
 }
 
 void MpiSession::ready() {
+  std::call_once(started_, [this] { start(); });
   std::unique_lock lock(mutex_);
   changed_.wait(lock, [this] { return initialised_; });
 }

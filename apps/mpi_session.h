@@ -29,8 +29,9 @@ class MpiSession {
 
   int rank() const { return rank_; }
   int ranks() const { return ranks_; }
-  // Waits until MPI is initialised (it starts on a thread of its own);
-  // every call below does.
+  // Starts MPI if it has not started (on a thread of its own) and waits
+  // until it is initialised; every call below does. Call it where no
+  // other thread reads the environment (MPI_Init writes it).
   void ready();
 
   // Whether the ranks have agreed once (agree): until then an error that
@@ -53,10 +54,12 @@ class MpiSession {
   void takeTheMachine();
 
  private:
+  void start();
   void shareTheCores();
   int rank_ = 0, ranks_ = 1;
   bool agreedOnce_ = false;
   std::thread mpi_;  // MPI's main thread: initialises, then finalises
+  std::once_flag started_;
   std::mutex mutex_;
   std::condition_variable changed_;
   int mpiRank_ = 0, mpiRanks_ = 1;  // MPI's, set by its thread
