@@ -2,6 +2,7 @@
 // mesh's primitives as our triangles at the node's world transform.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -9,6 +10,7 @@
 
 #include "mvr/error.h"
 #include "mvr/io/gltf_reader.h"
+#include "mvr/io/mesh_check.h"
 #include "mvr/io/point_line_solids.h"
 
 namespace mvr::gltf {
@@ -21,6 +23,20 @@ constexpr size_t kMaxTriangles = size_t(1) << 28;
 bool isRead(const std::string& e) {
   return e == "KHR_texture_transform" || e == "KHR_lights_punctual" || e == "KHR_mesh_quantization" ||
          e == "KHR_materials_emissive_strength" || e == "KHR_materials_unlit" || e == "KHR_draco_mesh_compression";
+}
+
+// POSITION's values as the file holds them, checked before a node's
+// matrix turns an infinity into NaNs in the message (checkSceneGeometry
+// checks the world positions after).
+void checkPositions(const Accessor& position, int index, const std::string& path) {
+  for (size_t k = 0; k < position.count(); ++k) {
+    const glm::vec3 v(position.at(k));
+    if (std::abs(v.x) <= kMaxCoordinate && std::abs(v.y) <= kMaxCoordinate && std::abs(v.z) <= kMaxCoordinate) continue;
+    char value[96];
+    std::snprintf(value, sizeof value, "(%g, %g, %g)", v.x, v.y, v.z);
+    fail(path, "POSITION accessor " + std::to_string(index) + " element " + std::to_string(k) + " " + value +
+                   ": coordinates must be finite and within 1e15");
+  }
 }
 
 glm::vec3 unit(glm::vec3 v) {
@@ -198,6 +214,7 @@ void GltfReader::primitive(const tinygltf::Primitive& p, const glm::mat4& world)
     return;
   }
   if (position->components() != 3) fail(path_, "POSITION must be VEC3");
+  checkPositions(*position, p.attributes.at("POSITION"), path_);
   const uint32_t materialId = p.material >= 0 && size_t(p.material) < scene_.materials.size() ? uint32_t(p.material)
                                                                                                : defaultMaterial();
   const int uvSet = materialId < uvSets_.size() ? uvSets_[materialId] : 0;

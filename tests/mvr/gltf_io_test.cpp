@@ -340,6 +340,13 @@ TEST_F(Gltf, BadFilesAreOneLineErrors) {
   past.json["accessors"][0]["count"] = 1000;
   past.json["nodes"] = Json::array({{{"mesh", 0}}});
   expectError(past.write(dir_ / "past.gltf"), "");
+  // An infinity under a node's matrix is named as the file holds it (the
+  // matrix would make NaNs of it; BoxWithInfinites.glb of assimp's files).
+  Document infinite;
+  infinite.positions({-INFINITY, -0.5f, 0.5f, 1, 0, 0, 0, 1, 0});
+  infinite.json["meshes"] = Json::array({{{"primitives", Json::array({{{"attributes", {{"POSITION", 0}}}}})}}});
+  infinite.json["nodes"] = Json::array({{{"mesh", 0}, {"matrix", {1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, 0, 0, 0, 0, 1}}}});
+  expectError(infinite.write(dir_ / "infinite.gltf"), "POSITION accessor 0 element 0 (-inf, -0.5, 0.5)");
   Document empty;
   empty.json["nodes"] = Json::array({{{"name", "nothing"}}});
   expectError(empty.write(dir_ / "empty.gltf"), "glTF scene has no triangles");
