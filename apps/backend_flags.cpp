@@ -104,6 +104,12 @@ BackendOptions BackendFlags::resolve() const {
     if (!acquire_.empty()) o.warp.acquire = parseAcquire(acquire_);
     copyShared(o);
     if (!warpPath_.empty()) o.warp.path = parseName(kWarpPathNames, warpPath_, "--warp-path", "path");
+    // The GL path warps the seed's grid mesh: its silhouettes end at pixel
+    // boundaries, as one sample a pixel does; finer needs the CPU's.
+    for (const CLI::Option* option : interpOptions_)
+      if (o.warp.path == WarpPath::Gl && option->check_name("--outline-samples") && option->count() &&
+          option->as<int>() != 1)
+        fail("--outline-samples", "above 1 needs warp's cpu path: --warp-path gl ends silhouettes at pixel edges");
     validate(o.warp);
   }
   return o;

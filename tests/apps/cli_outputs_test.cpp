@@ -87,6 +87,12 @@ TEST(Cli, WarpsByGlAndOnTheCpu) {
         mvr::compareImages(mvr::readImage((gl / name).string()), mvr::readImage((cpu / name).string()));
     EXPECT_GE(diff.psnr, 40.0) << name;
   }
+  // A finer outline the GL grid cannot draw is an error, not ignored.
+  const test::CliResult e =
+      test::runMvr("render --backend warp --outline-samples 4 --warp-path gl --views 2 --size 16x12 --out " + gl.string());
+  EXPECT_NE(e.status, 0);
+  EXPECT_EQ(std::count(e.err.begin(), e.err.end(), '\n'), 1) << e.err;
+  EXPECT_NE(e.err.find("--outline-samples"), std::string::npos) << e.err;
 }
 
 // RGB-D out, then in: three svr views with depth, synthesized into nine
