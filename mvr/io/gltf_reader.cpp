@@ -60,6 +60,18 @@ glm::mat4 localTransform(const tinygltf::Node& n) {
   return glm::mat4(m);
 }
 
+// What the file lacks, where that is plain: no meshes, meshes without
+// primitives (a "primitives" that is not an array reads as none), or no
+// node of the scene drawing one.
+std::string GltfReader::whyNoTriangles() const {
+  if (model_.meshes.empty()) return ": it has no meshes";
+  if (std::all_of(model_.meshes.begin(), model_.meshes.end(), [](const tinygltf::Mesh& m) { return m.primitives.empty(); }))
+    return ": its meshes have no primitives array";
+  if (std::none_of(model_.nodes.begin(), model_.nodes.end(), [](const tinygltf::Node& n) { return n.mesh >= 0; }))
+    return ": no node draws a mesh";
+  return "";
+}
+
 Scene GltfReader::read() {
   readMaterials();
   for (const tinygltf::Mesh& m : model_.meshes)
@@ -78,7 +90,7 @@ Scene GltfReader::read() {
     addPointLineSolids(scene_, marks_);
     warn_("points and lines drawn as small solids (mvr/io/point_line_solids.h)");
   }
-  if (scene_.triangles.empty()) fail(path_, "glTF scene has no triangles");
+  if (scene_.triangles.empty()) fail(path_, "glTF scene has no triangles" + whyNoTriangles());
   if (animation_) {
     readSkins();
     // Skins and morph weights at rest give the shape the file shows.

@@ -33,6 +33,7 @@ class GltfReader {
   Scene read();
 
  private:
+  std::string whyNoTriangles() const;
   // What moves a primitive's vertices besides its node: morph targets'
   // displacements and skin joints, read once and added per vertex.
   struct Deformation {

@@ -349,7 +349,12 @@ TEST_F(Gltf, BadFilesAreOneLineErrors) {
   expectError(infinite.write(dir_ / "infinite.gltf"), "POSITION accessor 0 element 0 (-inf, -0.5, 0.5)");
   Document empty;
   empty.json["nodes"] = Json::array({{{"name", "nothing"}}});
-  expectError(empty.write(dir_ / "empty.gltf"), "glTF scene has no triangles");
+  expectError(empty.write(dir_ / "empty.gltf"), "glTF scene has no triangles: it has no meshes");
+  // "primitives" not an array (assimp's badArray.gltf) reads as none.
+  Document notArray = triangleDocument();
+  notArray.json["meshes"][0]["primitives"] = {{"attributes", {{"POSITION", 0}}}};
+  notArray.json["nodes"] = Json::array({{{"mesh", 0}}});
+  expectError(notArray.write(dir_ / "not_array.gltf"), "its meshes have no primitives array");
   // A GLB of version 1 goes to assimp, which names its fault; a
   // compressed mesh says so.
   std::ofstream(dir_ / "one.glb", std::ios::binary) << std::string("glTF\x01\0\0\0\x14\0\0\0", 12) << "12345678";
