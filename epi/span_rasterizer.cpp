@@ -193,7 +193,7 @@ class SpanRasterizer final : public EpiRasterizer {
           const float u = std::clamp((x + 0.5f - xa) / width, 0.0f, 1.0f);
           const float z = pstDepth(pst, u);
           if (!(z > dz[x])) continue;
-          if (cutoff > 0.0f && texel(pst, material, u, 1.0f / width).a < cutoff) continue;  // cut out
+          if (cutoff > 0.0f && texel(pst, shading_.textures->materialLayers()[material], u, 1.0f / width).a < cutoff) continue;  // cut out
           dz[x] = z;
           store(epi, x, i, colors.vector ? vectorColor(colors, u, width, i)
                                          : shade(pst, piece.front, material, u, 1.0f / width, float(i)));
@@ -285,10 +285,15 @@ class SpanRasterizer final : public EpiRasterizer {
     glm::vec3 color = pstColor(pst, front, u);
     const shading::ShadingPlan& plan = shading_.plan;
     if (plan.uv >= 0) {
-      // The lit colour carries the emission; the multiply must not dim it.
-      const glm::vec3 t(texel(pst, material, u, du));
+      // The lit colour carries the emission, unless it has a texture; the
+      // multiply must not dim it.
+      const glm::vec3 t(texel(pst, shading_.textures->materialLayers()[material], u, du));
+      const glm::vec3 e = shading_.scene->materials[material].emission;
       color *= t;
-      if (plan.emission) color += shading_.scene->materials[material].emission * (1.0f - t);
+      if (const int glow = shading_.textures->emissionLayers()[material]; glow >= 0)
+        color += e * glm::vec3(texel(pst, glow, u, du));
+      else if (plan.emission)
+        color += e * (1.0f - t);
     }
     if (plan.position < 0) return color;
     const glm::vec3 p = pstExtras<3>(pst, plan.position, u);
@@ -305,10 +310,9 @@ class SpanRasterizer final : public EpiRasterizer {
     return color;
   }
 
-  // The 2D texture at the exact perspective-correct uv; level of detail
+  // A texture layer at the exact perspective-correct uv; level of detail
   // from the horizontal footprint, as the GL direct path.
-  glm::vec4 texel(const Pst& pst, uint32_t material, float u, float du) const {
-    const int layer = shading_.textures->materialLayers()[material];
+  glm::vec4 texel(const Pst& pst, int layer, float u, float du) const {
     if (layer < 0) return glm::vec4(1.0f);
     const int at = shading_.plan.uv;
     const glm::vec2 uv = pstExtras<2>(pst, at, u), next = pstExtras<2>(pst, at, u + du);

@@ -35,6 +35,13 @@ struct Material {
   // Light the surface gives off itself (glTF's emissive): added after the
   // lighting and the texture, and not multiplied by either.
   glm::vec3 emission{0.0f};
+  // Its texels (linear RGB) times `emission`, per texel, on the base
+  // texture's coordinates (glTF's emissiveTexture); empty for none.
+  std::string emissionTexture;
+  std::shared_ptr<const Image> emissionImage;  // as textureImage
+  // Lit by nothing (glTF's KHR_materials_unlit): the surface shows its
+  // diffuse colour times its texture, whatever the lights.
+  bool unlit = false;
   // Cut-out (glTF's alphaMode MASK): where the texture's alpha is below
   // this, the surface is not there at all: neither drawn nor hiding what
   // is behind it. 0: opaque. Only a textured material has a mask.

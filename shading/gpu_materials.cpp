@@ -6,7 +6,7 @@ namespace mvr::shading {
 
 GpuMaterials::GpuMaterials(const Scene& scene, const TextureSet& textures,
                            const EnvironmentSet& environment, bool uploadTextures)
-    : materials_(makeMaterialBuffer(scene, textures.materialSlots(), environment.materialMaps())),
+    : materials_(makeMaterialBuffer(scene, textures, environment.materialMaps())),
       cubeMaps_(environment.uploadCubes()),
       sphereMaps_(environment.uploadSpheres()) {
   if (uploadTextures && !textures.empty()) textures_ = textures.upload();

@@ -38,6 +38,11 @@ glm::vec3 diffuse(const Scene& scene, const glm::vec3& albedo, const glm::vec3& 
   return glm::clamp(albedo * sum, 0.0f, 1.0f);
 }
 
+glm::vec3 surfaceLight(const Scene& scene, const Material& m, const glm::vec3& albedo, const glm::vec3& p,
+                       const glm::vec3& n) {
+  return m.unlit ? albedo : diffuse(scene, albedo, p, n);
+}
+
 VertexColors litVertexColors(const Scene& scene) {
   std::vector<glm::vec3> albedo = vertexAlbedo(scene);
   VertexColors c;
@@ -48,10 +53,12 @@ VertexColors litVertexColors(const Scene& scene) {
   parallelChunks(scene.vertexCount(), 16384, [&](size_t begin, size_t end) {
     for (size_t v = begin; v < end; ++v) {
       // Unclamped sum: interpolated, it equals svr's lit colour plus the
-      // material's emission per pixel.
-      const glm::vec3 e = scene.materials[material[v]].emission;
-      c.front[v] = diffuse(scene, albedo[v], scene.positions[v], scene.normals[v]) + e;
-      c.back[v] = diffuse(scene, albedo[v], scene.positions[v], -scene.normals[v]) + e;
+      // material's emission per pixel. An emission texture's texels are
+      // the texture pass's to add.
+      const Material& m = scene.materials[material[v]];
+      const glm::vec3 e = m.emissionTexture.empty() ? m.emission : glm::vec3(0.0f);
+      c.front[v] = surfaceLight(scene, m, albedo[v], scene.positions[v], scene.normals[v]) + e;
+      c.back[v] = surfaceLight(scene, m, albedo[v], scene.positions[v], -scene.normals[v]) + e;
     }
   });
   return c;
@@ -90,6 +97,14 @@ vec3 diffuseLight(vec3 albedo, vec3 p, vec3 n) {
 }
 )";
   return src;
+}
+
+const char* glslSurfaceLight() {
+  return R"(
+vec3 surfaceLight(int material, vec3 albedo, vec3 p, vec3 n) {
+  return materialUnlit(material) ? albedo : diffuseLight(albedo, p, n);
+}
+)";
 }
 
 void setLightUniforms(const gl::Program& program, const Scene& scene) {

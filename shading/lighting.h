@@ -26,8 +26,13 @@ glm::vec3 towardsLight(const Light& light, const glm::vec3& p);
 glm::vec3 diffuse(const Scene& scene, const glm::vec3& albedo, const glm::vec3& position,
                   const glm::vec3& normal);
 
+// diffuse(), or the albedo itself where the material is unlit.
+glm::vec3 surfaceLight(const Scene& scene, const Material& material, const glm::vec3& albedo,
+                       const glm::vec3& position, const glm::vec3& normal);
+
 // Front and back colours per vertex (back: normal flipped, two-sided),
-// the material's emission included (MVR's diffuse pass).
+// the material's emission included (MVR's diffuse pass) unless it has an
+// emission texture, whose texels the texture pass adds.
 struct VertexColors {
   std::vector<glm::vec3> front, back;
 };
@@ -36,6 +41,9 @@ VertexColors litVertexColors(const Scene& scene);
 // GLSL: uniforms and `vec3 diffuseLight(vec3 albedo, vec3 p, vec3 n)`; spot
 // lights need SPOT_LIGHTS defined before it (ShadingPlan::glslDefines).
 const std::string& glslLighting();
+// GLSL after glslLighting() and glslMaterials(): `vec3 surfaceLight(int
+// material, vec3 albedo, vec3 p, vec3 n)`, as the C++ one.
+const char* glslSurfaceLight();
 // Sets the uniforms glslLighting() declares; throws if too many lights.
 void setLightUniforms(const gl::Program& program, const Scene& scene);
 

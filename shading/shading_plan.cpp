@@ -5,10 +5,11 @@ namespace mvr::shading {
 ShadingPlan planShading(const Scene& scene) {
   ShadingPlan plan;
   for (const Material& m : scene.materials) {
-    plan.texture |= !m.texture.empty();
+    plan.texture |= !m.texture.empty() || !m.emissionTexture.empty();
+    plan.emissionTexture |= !m.emissionTexture.empty();
     plan.specular |= m.specular != glm::vec3(0.0f);
     plan.reflection |= !m.reflectionMap.empty();
-    plan.emission |= m.emission != glm::vec3(0.0f);
+    plan.emission |= m.emission != glm::vec3(0.0f) || !m.emissionTexture.empty();
     plan.mask |= m.masked();
   }
   for (const Light& l : scene.lights) plan.spots |= l.type == Light::Type::Spot;
@@ -52,6 +53,7 @@ std::string ShadingPlan::glslDefines() const {
   }
   if (reflection) s += "#define REFLECT\n";
   if (emission) s += "#define EMISSION\n";
+  if (emissionTexture) s += "#define EMISSION_TEXTURE\n";
   if (mask) s += "#define MASK\n";
   if (spots) s += "#define SPOT_LIGHTS\n";
   return s;

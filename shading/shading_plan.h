@@ -23,6 +23,10 @@ struct ShadingPlan {
   // Some material gives off light. It rides in the lit colours; where a
   // texture pass runs, that pass gives back what its multiply took of it.
   bool emission = false;
+  // Some material's emission has a texture (Material::emissionTexture):
+  // every back end samples it per pixel (EMISSION_TEXTURE), and its
+  // material counts as textured.
+  bool emissionTexture = false;
   // Some material is a cut-out (Material::masked): the pass that writes
   // depth must sample its texture's alpha. MVR's GL passes add a depth
   // pass for it.
@@ -46,8 +50,9 @@ struct ShadingPlan {
   std::vector<Pass> passes() const;
   std::string passNames() const;  // e.g. "diffuse+texture"
   // "#define TEXTURE", "#define VIEW_DEPENDENT" and "#define REFLECT"
-  // lines for the passes after the first, "#define EMISSION" and "#define
-  // MASK": shaders that compute every pass at once.
+  // lines for the passes after the first, "#define EMISSION",
+  // "#define EMISSION_TEXTURE" and "#define MASK": shaders that compute
+  // every pass at once.
   std::string glslDefines() const;
 };
 

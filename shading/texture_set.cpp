@@ -23,20 +23,31 @@ std::shared_ptr<const Image> whiteWithAlphaOf(const Image& image) {
   return white;
 }
 
+std::shared_ptr<const Image> whiteTexel() {
+  auto white = std::make_shared<Image>(1, 1, PixelType::Srgb8);
+  white->setLinear(0, 0, glm::vec4(1.0f));
+  return white;
+}
+
 }  // namespace
 
 TextureSet TextureSet::load(const Scene& scene) {
   TextureSet set;
   std::map<std::string, int> layerOf;
   std::vector<std::shared_ptr<const Image>> images;  // embedded ones shared, not copied
+  auto layer = [&](const std::string& name, const std::shared_ptr<const Image>& embedded) {
+    auto [it, added] = layerOf.emplace(name, int(images.size()));
+    if (added) images.push_back(embedded ? embedded : std::make_shared<const Image>(readImage(name)));
+    return it->second;
+  };
   for (const Material& m : scene.materials) {
-    if (m.texture.empty()) {
+    set.emissionLayer_.push_back(m.emissionTexture.empty() ? -1 : layer(m.emissionTexture, m.emissionImage));
+    if (!m.texture.empty())
+      set.materialLayer_.push_back(layer(m.texture, m.textureImage));
+    else if (!m.emissionTexture.empty())
+      set.materialLayer_.push_back(layer("#white", whiteTexel()));
+    else
       set.materialLayer_.push_back(-1);
-      continue;
-    }
-    auto [it, added] = layerOf.emplace(m.texture, int(images.size()));
-    if (added) images.push_back(m.textureImage ? m.textureImage : std::make_shared<const Image>(readImage(m.texture)));
-    set.materialLayer_.push_back(it->second);
   }
   if (scene.exactColors)  // colours that are data: a texture only cuts them out
     for (auto& image : images) image = whiteWithAlphaOf(*image);
@@ -103,9 +114,9 @@ void TextureSet::group() {
   }
 }
 
-std::vector<glm::ivec2> TextureSet::materialSlots() const {
+std::vector<glm::ivec2> TextureSet::slotsOf(const std::vector<int>& layers) const {
   std::vector<glm::ivec2> slots;
-  for (int layer : materialLayer_)
+  for (int layer : layers)
     slots.push_back(layer < 0 ? glm::ivec2(-1) : glm::ivec2(layers_[size_t(layer)].group, layers_[size_t(layer)].slice));
   return slots;
 }
@@ -177,6 +188,9 @@ vec4 surfaceTexel(int material, vec2 uv) {
   return texel;
 }
 #endif
+#ifdef EMISSION_TEXTURE
+vec3 surfaceGlow(int material, vec2 uv) { return materialGlow(material, uv, dFdx(uv), dFdy(uv)); }
+#endif
 )";
 }
 
@@ -207,6 +221,17 @@ vec4 materialTexelLod(int material, vec2 uv, float lod) {
   return layer < 0.0 ? vec4(1.0) : groupTexelLod(int(uMaterials[material].reflectivity.w), vec3(uv, layer), lod);
 }
 vec2 materialTextureSize(int material) { return groupSize(int(uMaterials[material].reflectivity.w)); }
+vec3 materialGlow(int material, vec2 uv, vec2 dx, vec2 dy) {
+  vec4 g = uMaterials[material].glow;
+  vec3 e = uMaterials[material].emission.rgb;
+  return g.z < 0.0 ? e : e * groupTexelGrad(int(g.y), vec3(uv, g.z), dx, dy).rgb;
+}
+vec3 materialGlowLod(int material, vec2 uv, float lod) {
+  vec4 g = uMaterials[material].glow;
+  vec3 e = uMaterials[material].emission.rgb;
+  return g.z < 0.0 ? e : e * groupTexelLod(int(g.y), vec3(uv, g.z), lod).rgb;
+}
+vec2 emissionTextureSize(int material) { return groupSize(int(uMaterials[material].glow.y)); }
 )";
   }();
   return src;

@@ -29,12 +29,18 @@ class TextureSet {
   static TextureSet load(const Scene& scene);
 
   bool empty() const { return layers_.empty(); }
-  // Per material: its layer, or -1 for none.
+  // Per material: its layer, or -1 for none. A material with an emission
+  // texture and no base texture has a white 1 x 1 one, so that every pass
+  // that draws its emission's texels runs over it.
   const std::vector<int>& materialLayers() const { return materialLayer_; }
+  // Per material: its emission texture's layer, or -1 for none.
+  const std::vector<int>& emissionLayers() const { return emissionLayer_; }
   glm::ivec2 size(int layer) const { return layers_[size_t(layer)].levelSize[0]; }
   int levels(int layer) const { return int(layers_[size_t(layer)].levelSize.size()); }
-  // Per material: its GL group and the layer within it ({-1, -1} for none).
-  std::vector<glm::ivec2> materialSlots() const;
+  // Per material: its GL group and the layer within it ({-1, -1} for none),
+  // of the base texture and of the emission texture.
+  std::vector<glm::ivec2> materialSlots() const { return slotsOf(materialLayer_); }
+  std::vector<glm::ivec2> emissionSlots() const { return slotsOf(emissionLayer_); }
 
   // Trilinear sample of layer at uv, level of detail lod (clamped).
   glm::vec4 sample(int layer, glm::vec2 uv, float lod) const;
@@ -49,12 +55,18 @@ class TextureSet {
   //   vec4 materialTexel(int material, vec2 uv, vec2 dx, vec2 dy)
   //     (by textureGrad; vec4(1) for a material without a texture),
   //   vec4 materialTexelLod(int material, vec2 uv, float lod),
-  //   vec2 materialTextureSize(int material).
+  //   vec2 materialTextureSize(int material),
+  //   vec3 materialGlow(int material, vec2 uv, vec2 dx, vec2 dy) and
+  //   vec3 materialGlowLod(int material, vec2 uv, float lod): the
+  //     emission times its texture's texel (the emission alone without),
+  //   vec2 emissionTextureSize(int material).
   static const std::string& glsl();
   // GLSL after glsl() and glslMaterials() (view_dependent.h): `vec4
   // surfaceTexel(int material, vec2 uv)`, the texel with the screen's
   // gradients, a cut-out's texel below its cut-off discarded (MASK). Call
-  // it before any other discard: the gradients need the whole quad.
+  // it before any other discard: the gradients need the whole quad. With
+  // EMISSION_TEXTURE also `vec3 surfaceGlow(int material, vec2 uv)`, the
+  // emission at uv by the screen's gradients (call it there too).
   static const char* glslSurfaceTexel();
 
  private:
@@ -67,11 +79,12 @@ class TextureSet {
   glm::vec4 bilinear(const Layer& l, int level, glm::vec2 uv) const;
   void group();
   static void addLevels(Layer& layer);
+  std::vector<glm::ivec2> slotsOf(const std::vector<int>& layers) const;
 
   std::vector<Layer> layers_;
   std::vector<glm::ivec2> groupSize_;
   std::vector<int> groupLayers_;
-  std::vector<int> materialLayer_;
+  std::vector<int> materialLayer_, emissionLayer_;
 };
 
 }  // namespace mvr::shading

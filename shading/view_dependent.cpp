@@ -14,6 +14,7 @@ struct GpuMaterial {
   glm::vec4 params;    // model (0 Phong, 1 Blinn-Phong), texture layer, reflection layer, map kind
   glm::vec4 reflectivity;  // rgb, texture group
   glm::vec4 emission;      // rgb, alpha cut-off (0: opaque)
+  glm::vec4 glow;          // unlit (1) or lit (0), emission texture group, layer (-1: none), 0
 };
 
 }  // namespace
@@ -43,9 +44,11 @@ struct Material {
   vec4 params;    // model (0 Phong, 1 Blinn-Phong), texture layer, reflection layer, map kind
   vec4 reflectivity;  // rgb, texture group (TextureSet::glsl)
   vec4 emission;      // rgb, alpha cut-off (0: opaque)
+  vec4 glow;          // unlit (1) or lit (0), emission texture group, layer (-1: none), 0
 };
 layout(std430, binding = 1) readonly buffer Materials { Material uMaterials[]; };
 vec3 materialEmission(int material) { return uMaterials[material].emission.rgb; }
+bool materialUnlit(int material) { return uMaterials[material].glow.x != 0.0; }
 // A cut-out's texel below its cut-off: the surface is not there.
 bool maskedOut(int material, float alpha) { return alpha < uMaterials[material].emission.w; }
 )";
@@ -72,17 +75,20 @@ vec3 specularLight(int material, vec3 p, vec3 nIn, vec3 eye) {
   return src;
 }
 
-gl::Buffer makeMaterialBuffer(const Scene& scene, const std::vector<glm::ivec2>& textureSlots,
+gl::Buffer makeMaterialBuffer(const Scene& scene, const TextureSet& textures,
                               const std::vector<EnvironmentSet::Map>& reflectionMaps) {
   std::vector<GpuMaterial> gpu;
+  const std::vector<glm::ivec2> textureSlots = textures.materialSlots(), emissionSlots = textures.emissionSlots();
   for (size_t i = 0; i < scene.materials.size(); ++i) {
     const Material& m = scene.materials[i];
     const glm::ivec2 slot = i < textureSlots.size() ? textureSlots[i] : glm::ivec2(-1);
+    const glm::ivec2 glow = i < emissionSlots.size() ? emissionSlots[i] : glm::ivec2(-1);
     const EnvironmentSet::Map map = i < reflectionMaps.size() ? reflectionMaps[i] : EnvironmentSet::Map{};
     gpu.push_back({glm::vec4(m.specular, m.shininess),
                    glm::vec4(m.specularModel == SpecularModel::Phong ? 0.0f : 1.0f, float(slot.y),
                              float(map.layer), float(map.kind)),
-                   glm::vec4(m.reflectivity, float(std::max(slot.x, 0))), glm::vec4(m.emission, m.masked() ? m.alphaCutoff : 0.0f)});
+                   glm::vec4(m.reflectivity, float(std::max(slot.x, 0))), glm::vec4(m.emission, m.masked() ? m.alphaCutoff : 0.0f),
+                   glm::vec4(m.unlit ? 1.0f : 0.0f, float(std::max(glow.x, 0)), float(glow.y), 0.0f)});
   }
   return gl::makeBuffer(gpu.data(), gpu.size());
 }

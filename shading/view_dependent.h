@@ -11,6 +11,7 @@
 #include "mvr/gl/gl_handles.h"
 #include "mvr/scene.h"
 #include "shading/environment_set.h"
+#include "shading/texture_set.h"
 
 namespace mvr::shading {
 
@@ -20,7 +21,9 @@ glm::vec3 specularLight(const Scene& scene, const Material& material, const glm:
 
 // GLSL: the Materials storage block (binding 1) that makeMaterialBuffer
 // fills; params.y of a material is its texture layer (-1 for none),
-// reflectivity.w its texture group (TextureSet::glsl samples them).
+// reflectivity.w its texture group, glow.yz its emission texture's
+// (TextureSet::glsl samples them); materialEmission(material) and
+// materialUnlit(material).
 const char* glslMaterials();
 
 // GLSL: glslMaterials() and
@@ -29,9 +32,10 @@ const char* glslMaterials();
 const std::string& glslSpecular();
 
 // The scene's materials as the storage block glslSpecular() declares.
-// Per material: its texture's group and layer (TextureSet::materialSlots;
-// -1 for none) and reflection map.
-gl::Buffer makeMaterialBuffer(const Scene& scene, const std::vector<glm::ivec2>& textureSlots = {},
-                              const std::vector<EnvironmentSet::Map>& reflectionMaps = {});
+// Per material: its texture's and its emission texture's group and layer
+// (TextureSet's slots; -1 for none), whether it is unlit, and its
+// reflection map.
+gl::Buffer makeMaterialBuffer(const Scene& scene, const TextureSet& textures,
+                              const std::vector<EnvironmentSet::Map>& reflectionMaps);
 
 }  // namespace mvr::shading

@@ -239,7 +239,11 @@ void main() {
   // footprint that GLs may filter anisotropically (NVIDIA sampled too
   // sharp a level: 34 dB against svr and the CPU spans' 44).
   oColor = materialTexel(int(vFlat.y), uv, duv, vec2(-duv.y, duv.x));
-  finishTexel();
+#ifdef EMISSION_TEXTURE
+  finishTexel(materialGlow(int(vFlat.y), uv, duv, vec2(-duv.y, duv.x)));
+#else
+  finishTexel(vec3(0.0));
+#endif
 }
 )";
 
@@ -260,6 +264,13 @@ void main() {
   float perPixel = abs(dFdx(u)) * k;
 #endif
   oColor = k == 0.0 ? vec4(1.0) : sampleTextureVector(uVectorTexels, base, k, u, perPixel);
+  vec3 glow = vec3(0.0);
+#ifdef EMISSION_TEXTURE
+  // The emission texture's vector follows the base texture's chain.
+  if (k != 0.0 && hasEmissionTexture(int(vFlat.y)))
+    glow = materialEmission(int(vFlat.y)) *
+           sampleTextureVector(uVectorTexels, base + int(2.0 * k) - 1, k, u, perPixel).rgb;
+#endif
 #ifdef HIGHLIGHTS
   // Split track: the highlight at two knots (rgb, row), linear between.
 #ifdef EXACT
@@ -270,28 +281,31 @@ void main() {
   float t = b.w > a.w ? clamp((gView + 0.5 - a.w) / (b.w - a.w), 0.0, 1.0) : 0.0;
   oColor.rgb += mix(a.rgb, b.rgb, t);
 #endif
-  finishTexel();
+  finishTexel(glow);
 }
 )";
 
-// What the texture pass does with its texel T (in oColor). The cut-outs'
-// depth pass drops the cut texels. The texture pass multiplies the lit
-// colour, which carries the material's emission E; with EMISSION it blends
-// by two sources, colour = colour * T + E (1 - T), so that the emission
-// comes through undimmed.
+// What the texture pass does with its texel T (in oColor) and the
+// emission G of its emission texture. The cut-outs' depth pass drops the
+// cut texels. The texture pass multiplies the lit colour, which carries
+// the material's emission E unless E has a texture; with EMISSION it
+// blends by two sources, colour = colour * T + E (1 - T), so that the
+// emission comes through undimmed, or colour * T + G.
 const char* const kFinishTexel = R"(
 #if defined(MASK_DEPTH)
-void finishTexel() {
+void finishTexel(vec3 glow) {
   if (maskedOut(int(vFlat.y), oColor.a)) discard;
 }
 #elif defined(EMISSION)
 layout(location = 0, index = 1) out vec4 oFactor;
-void finishTexel() {
+bool hasEmissionTexture(int material) { return uMaterials[material].glow.z >= 0.0; }
+void finishTexel(vec3 glow) {
   oFactor = oColor;
-  oColor = vec4(materialEmission(int(vFlat.y)) * (1.0 - oColor.rgb), 0.0);
+  int material = int(vFlat.y);
+  oColor = vec4(hasEmissionTexture(material) ? glow : materialEmission(material) * (1.0 - oColor.rgb), 0.0);
 }
 #else
-void finishTexel() {}
+void finishTexel(vec3 glow) {}
 #endif
 )";
 
@@ -352,6 +366,7 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bo
   if (pass == shading::Pass::Texture && shading.sliceHighlights) header += "#define HIGHLIGHTS\n";
   if (linear()) header += "#define VECTOR\n";
   if (emission()) header += "#define EMISSION\n";
+  if (emission() && shading.plan.emissionTexture) header += "#define EMISSION_TEXTURE\n";
   if (shading.plan.spots) header += "#define SPOT_LIGHTS\n";
   if (maskDepth) header += "#define MASK_DEPTH\n";
   std::string fragment = header + (exact ? kExactFragment : kSliverFragment) + kAttributeHelpers;

@@ -391,6 +391,9 @@ class GlRasterizer final : public EpiRasterizer {
     const float rBottom = pst.pieces[pst.pieceCount - 1].rBottom;
     const float widest = std::max(std::abs(pst.width(0.0f)), std::abs(pst.width(rBottom)));
     const int base = vectors_.add(*shading_.textures, layer, uv0, uv1, pst.e0.invW, pst.e1.invW, widest);
+    // An emission texture's vector right after the chain (EpiPass reads it there).
+    if (const int glow = shading_.textures->emissionLayers()[material]; glow >= 0)
+      vectors_.add(*shading_.textures, glow, uv0, uv1, pst.e0.invW, pst.e1.invW, widest);
     return SliceVector{base, shading::TextureVectors::lengthFor(widest), 0.0f, 1.0f};
   }
 

@@ -19,6 +19,8 @@ uint lengthFor(float width) {
   return k == 1u ? 1u : 1u << uint(findMSB(k - 1u) + 1);
 }
 float textureLayer(uint word) { return uMaterials[word & 0x7FFFFFFFu].params.y; }
+// A slice's chains: its base texture's, then its emission texture's if any.
+uint chainsOf(uint word) { return uMaterials[word & 0x7FFFFFFFu].glow.z >= 0.0 ? 2u : 1u; }
 )";
 
 // The widest p-edge of the pieces drawn, as the CPU's addVector reads it
@@ -41,7 +43,7 @@ void main() {
     float n = uViews, bottom = k1 == 0u ? pstPieces(e0, e1, n, false).bottom.x : n;
     k = lengthFor(max(abs(widthAt(e0, e1, 0.0)), abs(widthAt(e0, e1, bottom))));
   }
-  uBase[i] = k == 0u ? 0u : 2u * k - 1u;
+  uBase[i] = k == 0u ? 0u : chainsOf(word) * (2u * k - 1u);
   uLength[i] = k;
 }
 )";
@@ -70,7 +72,8 @@ void main() {
     uint mid = (lo + hi + 1u) >> 1;
     if (uBase[mid] <= t) lo = mid; else hi = mid - 1u;
   }
-  uint k = uLength[lo], local = t - uBase[lo];
+  uint k = uLength[lo], local = t - uBase[lo], chain = local / (2u * k - 1u);
+  local -= chain * (2u * k - 1u);
   if (local >= k) return;  // a MIP level: the levels pass
   End e0, e1;
   uint word;
@@ -79,12 +82,15 @@ void main() {
   vec2 uv = uvAt(e0, e1, u);
   vec2 duv = uvAt(e0, e1, min(1.0, u + 0.5 / kf)) - uvAt(e0, e1, max(0.0, u - 0.5 / kf));
   int material = int(word & 0x7FFFFFFFu);
-  vec2 size = materialTextureSize(material);
+  vec2 size = chain == 0u ? materialTextureSize(material) : emissionTextureSize(material);
   float texels = length(duv * size);
   float lod = texels > 0.0 ? log2(texels) : 0.0;
   lod = clamp(isnan(lod) ? 0.0 : lod, 0.0, floor(log2(max(size.x, size.y))));
   bool finite = !any(isnan(uv)) && !any(isinf(uv));
-  uTexels[t] = finite ? materialTexelLod(material, uv - floor(uv), lod) : vec4(0.0);
+  vec4 g = uMaterials[material].glow;
+  vec4 texel = chain == 0u ? materialTexelLod(material, uv - floor(uv), lod)
+                           : groupTexelLod(int(g.y), vec3(uv - floor(uv), g.z), lod);
+  uTexels[t] = finite ? texel : vec4(0.0);
 }
 )";
 
@@ -97,9 +103,15 @@ layout(std430, binding = 10) buffer Texels { vec4 uTexels[]; };
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= uSliceCount) return;
-  for (uint len = uLength[i] / 2u, from = uBase[i]; len >= 1u; from += 2u * len, len /= 2u)
-    for (uint j = 0u; j < len; ++j)
-      uTexels[from + 2u * len + j] = 0.5 * (uTexels[from + 2u * j] + uTexels[from + 2u * j + 1u]);
+  uint k = uLength[i];
+  if (k == 0u) return;
+  End e0, e1;
+  uint word;
+  sliceEnds(uFirstSlice + i, e0, e1, word);
+  for (uint c = 0u, chains = chainsOf(word); c < chains; ++c)
+    for (uint len = k / 2u, from = uBase[i] + c * (2u * k - 1u); len >= 1u; from += 2u * len, len /= 2u)
+      for (uint j = 0u; j < len; ++j)
+        uTexels[from + 2u * len + j] = 0.5 * (uTexels[from + 2u * j] + uTexels[from + 2u * j + 1u]);
 }
 )";
 

@@ -6,7 +6,9 @@
 //   size    per slice its level-0 length K (the wider p-edge of its drawn
 //           pieces, in pixels, rounded up to a power of two; 0 for a
 //           culled slice or an untextured material) and its 2K - 1
-//           texels, scanned by a prefix sum into first texels;
+//           texels (twice that where the material's emission has a
+//           texture: its chain follows), scanned by a prefix sum into
+//           first texels;
 //   sample  per level-0 texel the perspective-correct uv at its centre,
 //           sampled from the scene's texture array at the level of its
 //           footprint (as TextureSet::sample, by the GL's sampler);

@@ -1,6 +1,6 @@
-// glTF materials as ours: metallic-roughness, base colour textures with
-// their transforms and texture coordinate sets, alpha masks, emission and
-// KHR_materials_unlit.
+// glTF materials as ours: metallic-roughness, base colour and emission
+// textures with their transforms and texture coordinate sets, alpha masks
+// and KHR_materials_unlit.
 #include <algorithm>
 #include <cmath>
 
@@ -103,13 +103,20 @@ double numberOr(const tinygltf::Value& object, const char* key, int index, doubl
   return n.IsNumber() && std::isfinite(n.GetNumberAsDouble()) ? n.GetNumberAsDouble() : fallback;
 }
 
+// The texture whose coordinates a material's vertices carry: the base
+// colour's, or the emission's where there is no base colour texture.
+const tinygltf::TextureInfo& placedTexture(const tinygltf::Material& g) {
+  const tinygltf::TextureInfo& base = g.pbrMetallicRoughness.baseColorTexture;
+  return base.index < 0 && g.emissiveTexture.index >= 0 ? g.emissiveTexture : base;
+}
+
 void GltfReader::readMaterials() {
   for (size_t i = 0; i < model_.materials.size(); ++i) {
-    const tinygltf::TextureInfo& base = model_.materials[i].pbrMetallicRoughness.baseColorTexture;
+    const tinygltf::TextureInfo& placed = placedTexture(model_.materials[i]);
     hidden_.push_back(false);
+    uvTransforms_.push_back(uvTransformOf(placed));
+    uvSets_.push_back(placed.index >= 0 ? uvSetOf(placed) : 0);
     scene_.materials.push_back(material(i));
-    uvTransforms_.push_back(uvTransformOf(base));
-    uvSets_.push_back(base.index >= 0 ? uvSetOf(base) : 0);
   }
 }
 
@@ -118,7 +125,7 @@ Material GltfReader::material(size_t i) {
   Material m = materialOf(g, i);
   const tinygltf::TextureInfo& t = g.pbrMetallicRoughness.baseColorTexture;
   if (t.index >= 0) {
-    const int source = textureSource(t, "baseColorTexture");
+    const int source = textureSource(t);
     m.textureImage = texelsOf(model_.images[size_t(source)]);
     if (m.textureImage)
       m.texture = path_ + "#image" + std::to_string(source);
@@ -127,24 +134,21 @@ Material GltfReader::material(size_t i) {
   }
   if (g.alphaMode == "BLEND") warn_("alphaMode BLEND drawn opaque");
   if (g.alphaMode == "MASK") mask(g, m);
-  m.emission = emission(g);
+  emission(g, i, m);
   if (g.extensions.count("KHR_materials_unlit")) unlit(g, m);
   return m;
 }
 
-// KHR_materials_unlit: the base colour as it is, lit by nothing. Our
-// emission is that (added after the lighting, not multiplied by it) for
-// an untextured material; a textured one's texels would need an emissive
-// texture, so it stays lit (said once).
+// KHR_materials_unlit: the base colour (times its texture and the vertex
+// colours) as it is, lit by nothing and giving off nothing more.
 void GltfReader::unlit(const tinygltf::Material& g, Material& m) {
-  if (m.textureImage) {
-    warn_("KHR_materials_unlit on a textured material drawn lit");
-    return;
-  }
   const auto& f = g.pbrMetallicRoughness.baseColorFactor;
   const glm::vec3 base = f.size() >= 3 ? glm::vec3(float(f[0]), float(f[1]), float(f[2])) : glm::vec3(1.0f);
-  m.emission = glm::clamp(base, 0.0f, 1.0f);
-  m.diffuse = m.specular = glm::vec3(0.0f);
+  m.unlit = true;
+  m.diffuse = glm::clamp(base, 0.0f, 1.0f);
+  m.specular = m.emission = glm::vec3(0.0f);
+  m.emissionTexture.clear();
+  m.emissionImage.reset();
 }
 
 // alphaMode MASK: alpha is baseColorFactor's times the texture's (COLOR_0's
@@ -162,7 +166,7 @@ void GltfReader::mask(const tinygltf::Material& g, Material& m) {
 }
 
 // The image a texture reference samples, checked.
-int GltfReader::textureSource(const tinygltf::TextureInfo& t, const std::string& slot) {
+int GltfReader::textureSource(const tinygltf::TextureInfo& t) {
   if (t.index < 0 || size_t(t.index) >= model_.textures.size()) fail(path_, "texture " + std::to_string(t.index) + " does not exist");
   const tinygltf::Texture& texture = model_.textures[size_t(t.index)];
   if (texture.sampler >= 0 && size_t(texture.sampler) < model_.samplers.size()) {
@@ -172,29 +176,37 @@ int GltfReader::textureSource(const tinygltf::TextureInfo& t, const std::string&
   }
   if (texture.source < 0 || size_t(texture.source) >= model_.images.size())
     fail(path_, "texture " + std::to_string(t.index) + " has no image");
-  if (slot != "baseColorTexture" && uvSetOf(t) != 0) warn_(slot + " on TEXCOORD_" + std::to_string(uvSetOf(t)) + " read as a mean");
   return texture.source;
 }
 
 // emissiveFactor (linear, times KHR_materials_emissive_strength) and
-// emissiveTexture. We carry one emission colour per material, so a
-// texture's is its mean: right for a uniform glow, an average for a
-// patterned one (said once in the warnings).
-glm::vec3 GltfReader::emission(const tinygltf::Material& g) {
+// emissiveTexture, per texel on the coordinates the vertices carry (the
+// base colour texture's). An emission texture on other coordinates than
+// those would need a second set per vertex: it is drawn as its mean, right
+// for a uniform glow, an average for a patterned one (said once).
+void GltfReader::emission(const tinygltf::Material& g, size_t material, Material& m) {
   glm::vec3 e(0.0f);
   if (g.emissiveFactor.size() == 3)
     e = glm::vec3(float(g.emissiveFactor[0]), float(g.emissiveFactor[1]), float(g.emissiveFactor[2]));
   if (const auto s = g.extensions.find("KHR_materials_emissive_strength"); s != g.extensions.end())
     e *= float(numberOr(s->second, "emissiveStrength", -1, 1.0));
-  if (!(e.x > 0.0f || e.y > 0.0f || e.z > 0.0f)) return glm::vec3(0.0f);  // NaN too
-  if (g.emissiveTexture.index >= 0) {
-    const int source = textureSource(g.emissiveTexture, "emissiveTexture");
-    if (const std::shared_ptr<const Image> image = texelsOf(model_.images[size_t(source)])) {
-      e *= meanLinearColor(*image);
-      warn_("emissiveTexture drawn as its mean colour");
-    }
+  if (!(e.x > 0.0f || e.y > 0.0f || e.z > 0.0f)) return;  // NaN too
+  m.emission = glm::clamp(e, 0.0f, 1.0f);
+  const tinygltf::TextureInfo& t = g.emissiveTexture;
+  if (t.index < 0) return;
+  const int source = textureSource(t);
+  const std::shared_ptr<const Image> image = texelsOf(model_.images[size_t(source)]);
+  if (!image) {
+    warn_("image " + std::to_string(source) + " could not be decoded: emission drawn untextured");
+    return;
   }
-  return glm::clamp(e, 0.0f, 1.0f);
+  if (uvSetOf(t) == uvSets_[material] && uvTransformOf(t) == uvTransforms_[material]) {
+    m.emissionTexture = path_ + "#image" + std::to_string(source);
+    m.emissionImage = image;
+    return;
+  }
+  m.emission = glm::clamp(e * meanLinearColor(*image), 0.0f, 1.0f);
+  warn_("emissiveTexture on other coordinates than baseColorTexture drawn as its mean colour");
 }
 
 }  // namespace mvr::gltf

@@ -64,8 +64,8 @@ class GltfReader {
   void readMaterials();
   Material material(size_t i);
   void mask(const tinygltf::Material& g, Material& m);
-  int textureSource(const tinygltf::TextureInfo& t, const std::string& slot);
-  glm::vec3 emission(const tinygltf::Material& g);
+  int textureSource(const tinygltf::TextureInfo& t);
+  void emission(const tinygltf::Material& g, size_t material, Material& m);
   void unlit(const tinygltf::Material& g, Material& m);
 
   // Lights (gltf_lights.cpp).

@@ -112,7 +112,8 @@ class SceneReader {
   Material readMaterial(const Json& j, const std::string& where) const {
     expectObject(j, where,
                  {"diffuse", "texture", "specular", "shininess", "specular_model",
-                  "reflection_map", "reflectivity", "two_sided", "emission", "alpha_cutoff"});
+                  "reflection_map", "reflectivity", "two_sided", "emission", "emission_texture", "unlit",
+                  "alpha_cutoff"});
     Material m;
     if (j.contains("diffuse")) m.diffuse = color(j["diffuse"], where + ".diffuse");
     if (j.contains("texture")) m.texture = relative(j["texture"], where + ".texture");
@@ -128,7 +129,15 @@ class SceneReader {
     if (j.contains("reflection_map"))
       m.reflectionMap = relative(j["reflection_map"], where + ".reflection_map");
     if (j.contains("reflectivity")) m.reflectivity = color(j["reflectivity"], where + ".reflectivity");
+    if (j.contains("emission_texture")) {
+      m.emissionTexture = relative(j["emission_texture"], where + ".emission_texture");
+      m.emission = glm::vec3(1.0f);  // the texels as they are, unless scaled
+    }
     if (j.contains("emission")) m.emission = color(j["emission"], where + ".emission");
+    if (j.contains("unlit")) {
+      if (!j["unlit"].is_boolean()) bad(where + ".unlit", "must be true or false");
+      m.unlit = j["unlit"].get<bool>();
+    }
     if (j.contains("alpha_cutoff")) {
       m.alphaCutoff = float(number(j["alpha_cutoff"], where + ".alpha_cutoff"));
       if (!(m.alphaCutoff >= 0.0f && m.alphaCutoff <= 1.0f)) bad(where + ".alpha_cutoff", "must be in [0, 1]");

@@ -62,10 +62,16 @@ in vec2 vUv;
 #ifndef COLLECT
 layout(location = 0) out vec4 oAlbedo;  // a = 1 marks covered pixels
 layout(location = 1) out vec4 oNormal;  // w: material index
+#ifdef EMISSION_TEXTURE
+layout(location = 2) out vec4 oGlow;
+#endif
 #endif
 void main() {
 #ifdef TEXTURE
   vec4 texel = surfaceTexel(int(vMaterial), vUv);
+#endif
+#if defined(EMISSION_TEXTURE) && !defined(COLLECT)
+  oGlow = vec4(surfaceGlow(int(vMaterial), vUv), 1.0);
 #endif
   if (!gl_FrontFacing && vCull > 0.5) discard;
 #ifdef PEEL
@@ -127,6 +133,9 @@ const char* const kLightingFragment = R"(
 layout(binding = 0) uniform sampler2D uAlbedo;
 layout(binding = 1) uniform sampler2D uNormal;
 layout(binding = 2) uniform sampler2D uDepth;
+#ifdef EMISSION_TEXTURE
+layout(binding = 3) uniform sampler2D uGlow;
+#endif
 uniform mat4 uInverseViewProj;
 uniform vec2 uSize;
 uniform vec3 uEye;
@@ -140,8 +149,10 @@ void main() {
   vec4 world = uInverseViewProj * ndc;
   vec4 normal = texelFetch(uNormal, px, 0);
   vec3 n = normalize(normal.xyz), p = world.xyz / world.w;
-  vec3 c = diffuseLight(albedo.rgb, p, n);
-#ifdef EMISSION
+  vec3 c = surfaceLight(int(normal.w + 0.5), albedo.rgb, p, n);
+#ifdef EMISSION_TEXTURE
+  c += texelFetch(uGlow, px, 0).rgb;
+#elif defined(EMISSION)
   c += materialEmission(int(normal.w + 0.5));
 #endif
 #if defined(VIEW_DEPENDENT) && !defined(SEPARATE_HIGHLIGHTS)
@@ -158,16 +169,23 @@ void main() {
 
 }  // namespace
 
-GBuffer::GBuffer(int w, int h, bool exactAlbedo)
+GBuffer::GBuffer(int w, int h, bool exactAlbedo, bool glow)
     : width_(w), height_(h), albedo_(GL_TEXTURE_2D), normal_(GL_TEXTURE_2D), depth_(GL_TEXTURE_2D),
-      fbo_(gl::Framebuffer::create()) {
+      glow_(glow ? gl::Texture(GL_TEXTURE_2D) : gl::Texture()), fbo_(gl::Framebuffer::create()) {
   albedo_.storage2D(exactAlbedo ? GL_RGBA32F : GL_RGBA8, w, h);
   normal_.storage2D(GL_RGBA16F, w, h);
   depth_.storage2D(GL_DEPTH_COMPONENT32F, w, h);
   fbo_.attach(GL_COLOR_ATTACHMENT0, albedo_.id(), 0);
   fbo_.attach(GL_COLOR_ATTACHMENT1, normal_.id(), 0);
   fbo_.attach(GL_DEPTH_ATTACHMENT, depth_.id(), 0);
-  fbo_.drawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1});
+  if (glow) {
+    // Emission is in [0, 1] (Material), but float keeps the sum exact.
+    glow_.storage2D(GL_RGBA16F, w, h);
+    fbo_.attach(GL_COLOR_ATTACHMENT2, glow_.id(), 0);
+    fbo_.drawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2});
+  } else {
+    fbo_.drawBuffers({GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1});
+  }
   if (!fbo_.complete())
     fail("GL", "G-buffer is incomplete");
 }
@@ -190,6 +208,7 @@ void GBuffer::bindForWriting() const {
   if (colour_) {
     gl::ClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 0, zero);
     gl::ClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 1, zero);
+    if (glow_.id()) gl::ClearNamedFramebufferfv(fbo_.id(), GL_COLOR, 2, zero);
   }
   gl::ClearNamedFramebufferfi(fbo_.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
 }
@@ -203,7 +222,8 @@ DeferredPipeline::DeferredPipeline(const Scene& scene, bool separateHighlights)
           {{GL_VERTEX_SHADER, gl::glslHeader() + gl::kFullScreenTriangleVertex},
            {GL_FRAGMENT_SHADER, header() + (separateHighlights ? "#define SEPARATE_HIGHLIGHTS\n" : "") +
                                     shading::glslLighting() + shading::glslSpecular() +
-                                    shading::glslEnvironment() + kLightingFragment}})),
+                                    shading::glslSurfaceLight() + shading::glslEnvironment() +
+                                    kLightingFragment}})),
       emptyVao_(gl::VertexArray::create()),
       materials_(scene, shading::TextureSet::load(scene), shading::EnvironmentSet::load(scene)),
       exactAlbedo_(scene.exactColors) {
@@ -247,6 +267,7 @@ void DeferredPipeline::geometry(const glm::dmat4& viewProj, const GBuffer& gbuff
 }
 
 bool DeferredPipeline::collect(const glm::dmat4& viewProj) {
+  if (plan_.emissionTexture) return false;
   if (!collect_.id())
     collect_ = geometryProgram("deferred-geometry-collect", std::string("#define COLLECT\n") + FragmentLists::glsl());
   for (;;) {

@@ -18,11 +18,12 @@
 namespace mvr {
 
 // A G-buffer: albedo (a = 1 marks covered pixels), normal (w: material
-// index) and depth.
+// index), depth and, for a scene with emission textures, the emission.
 class GBuffer {
  public:
-  // exactAlbedo: albedo in float (Scene::exactColors), else 8 bits.
-  GBuffer(int width, int height, bool exactAlbedo = false);
+  // exactAlbedo: albedo in float (Scene::exactColors), else 8 bits. glow:
+  // a target for the emission per pixel (ShadingPlan::emissionTexture).
+  GBuffer(int width, int height, bool exactAlbedo = false, bool glow = false);
   // Depth alone (a coverage pass: no colour is written or kept).
   static GBuffer depthOnly(int width, int height);
   void bindForWriting() const;  // sets the viewport, as RenderTarget::bind
@@ -32,6 +33,7 @@ class GBuffer {
     albedo_.bind(0);
     normal_.bind(1);
     depth_.bind(2);
+    if (glow_.id()) glow_.bind(3);
   }
 
  private:
@@ -39,7 +41,7 @@ class GBuffer {
   GBuffer(int width, int height, DepthOnly);
 
   int width_, height_;
-  gl::Texture albedo_, normal_, depth_;
+  gl::Texture albedo_, normal_, depth_, glow_;
   gl::Framebuffer fbo_;
   bool colour_ = true;
 };
@@ -59,7 +61,9 @@ class DeferredPipeline {
   // positions and normals are all.
   void sceneMoved(const Scene& scene) { buffers_.move(scene); }
   // The G-buffers this pipeline fills.
-  GBuffer makeGBuffer(int width, int height) const { return GBuffer(width, height, exactAlbedo_); }
+  GBuffer makeGBuffer(int width, int height) const {
+    return GBuffer(width, height, exactAlbedo_, plan_.emissionTexture);
+  }
   // previous: the G-buffer of the layer in front (depth peeling), or null.
   void geometry(const glm::dmat4& viewProj, const GBuffer& gbuffer, const GBuffer* previous,
                 const glm::vec4& peel = glm::vec4(0.0f));
@@ -69,7 +73,8 @@ class DeferredPipeline {
   // pipeline's fragment lists, so that resolve() gives each depth-peeled
   // layer without drawing the mesh again. Always drawn (drawOnlyIf does
   // not apply). False when the lists would need more than their memory
-  // limit (FragmentLists::setMaxBytes): draw each layer with geometry().
+  // limit (FragmentLists::setMaxBytes), or the scene has emission textures
+  // (the lists keep no emission): draw each layer with geometry().
   bool collect(const glm::dmat4& viewProj);
   // The layer geometry(viewProj, gbuffer, previous, peel) would draw, from
   // the lists of the last collect() of the same view: the same pixels,

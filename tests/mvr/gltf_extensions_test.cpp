@@ -139,22 +139,39 @@ TEST_F(GltfExtensions, TextureReadsTheCoordinateSetItNames) {
   }
 }
 
-// KHR_materials_unlit: the base colour given off as it is, nothing lit; a
-// file using an extension we do not read says so once, by name.
+// KHR_materials_unlit: the base colour (times its texture) as it is,
+// nothing lit, nothing given off; a file using an extension we do not
+// read says so once, by name.
 TEST_F(GltfExtensions, UnlitIsItsBaseColourAndUnreadExtensionsAreNamed) {
   Document d;
   const int p = d.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  const int uv = d.accessor(std::vector<float>{0, 1, 1, 1, 1, 0}, 5126, "VEC2", 3);
+  test::writeRedPng(dir_ / "red.png", 2);
+  d.json["images"] = Json::array({{{"uri", "red.png"}}});
+  d.json["textures"] = Json::array({{{"source", 0}}});
   d.json["extensionsUsed"] = {"KHR_materials_unlit", "KHR_materials_clearcoat"};
-  d.json["materials"] = Json::array({{{"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.4, 0.6, 1}}, {"metallicFactor", 0}, {"roughnessFactor", 0.2}}},
-                                      {"extensions", {{"KHR_materials_unlit", Json::object()}}}}});
-  d.json["meshes"] = Json::array({{{"primitives", Json::array({{{"attributes", {{"POSITION", p}}}, {"material", 0}}})}}});
+  const Json unlit = {{"KHR_materials_unlit", Json::object()}};
+  d.json["materials"] = Json::array(
+      {{{"pbrMetallicRoughness", {{"baseColorFactor", {0.2, 0.4, 0.6, 1}}, {"metallicFactor", 0}, {"roughnessFactor", 0.2}}},
+        {"emissiveFactor", {1, 1, 1}},
+        {"extensions", unlit}},
+       {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}, {"extensions", unlit}}});
+  d.json["meshes"] = Json::array({{{"primitives", Json::array({{{"attributes", {{"POSITION", p}}}, {"material", 0}},
+                                                               {{"attributes", {{"POSITION", p}, {"TEXCOORD_0", uv}}},
+                                                                {"material", 1}}})}}});
   d.json["nodes"] = Json::array({{{"mesh", 0}}});
   const Scene s = loadMesh(d.write(dir_ / "unlit.gltf"));
-  ASSERT_FALSE(s.materials.empty());
+  ASSERT_EQ(s.materials.size(), 2u);
   const Material& m = s.materials[0];
-  EXPECT_NEAR(glm::distance(m.emission, glm::vec3(0.2f, 0.4f, 0.6f)), 0.0f, 1e-6f);
-  EXPECT_EQ(m.diffuse, glm::vec3(0.0f));
+  EXPECT_TRUE(m.unlit);
+  EXPECT_NEAR(glm::distance(m.diffuse, glm::vec3(0.2f, 0.4f, 0.6f)), 0.0f, 1e-6f);
+  EXPECT_EQ(m.emission, glm::vec3(0.0f));
   EXPECT_EQ(m.specular, glm::vec3(0.0f));
+  const Material& textured = s.materials[1];
+  EXPECT_TRUE(textured.unlit);
+  EXPECT_TRUE(textured.textureImage);
+  EXPECT_EQ(textured.diffuse, glm::vec3(1.0f));
+  EXPECT_EQ(textured.specular, glm::vec3(0.0f));
   int named = 0;
   for (const std::string& w : s.warnings) {
     EXPECT_EQ(w.find("KHR_materials_unlit"), std::string::npos) << w;

@@ -137,11 +137,15 @@ TEST_F(Gltf, MaterialsVertexColoursAndTexture) {
   ASSERT_TRUE(textured.textureImage);
   EXPECT_EQ(textured.textureImage->width, 4);
   EXPECT_EQ(textured.textureImage->pixel(1, 2), glm::vec4(200, 40, 20, 255) / 255.0f);
-  // emissiveTexture: its mean colour (linear) times the factor.
-  const glm::vec3 mean(linearOfSrgb8(200), linearOfSrgb8(40), linearOfSrgb8(20));
-  EXPECT_NEAR(glm::distance(textured.emission, mean * glm::vec3(1, 0.5f, 1)), 0.0f, 1e-5f);
-  EXPECT_TRUE(std::any_of(s.warnings.begin(), s.warnings.end(), [](const std::string& w) {
-    return w.find("emissiveTexture drawn as its mean colour") != std::string::npos;
+  // emissiveTexture on the base colour's coordinates: per texel, the
+  // factor kept to scale them.
+  EXPECT_EQ(textured.emission, glm::vec3(1, 0.5f, 1));
+  ASSERT_TRUE(textured.emissionImage);
+  EXPECT_EQ(textured.emissionImage->pixel(1, 2), glm::vec4(200, 40, 20, 255) / 255.0f);
+  EXPECT_EQ(textured.emissionTexture, textured.texture);
+  EXPECT_TRUE(shiny.emissionTexture.empty());
+  EXPECT_TRUE(std::none_of(s.warnings.begin(), s.warnings.end(), [](const std::string& w) {
+    return w.find("emissiveTexture") != std::string::npos;
   })) << ::testing::PrintToString(s.warnings);
   // Vertex colours and uv (v flipped: glTF's runs down the image); no
   // normals, so flat ones, each triangle its own three corners.
@@ -150,6 +154,39 @@ TEST_F(Gltf, MaterialsVertexColoursAndTexture) {
   EXPECT_EQ(s.colors[6], glm::vec3(1, 1, 1));  // none given
   EXPECT_EQ(s.uvs[0], glm::vec2(0, 0));
   EXPECT_EQ(s.uvs[2], glm::vec2(1, 1));
+}
+
+// An emissiveTexture on other coordinates than the base colour's (here
+// TEXCOORD_1) would need a second set per vertex: it is drawn as its mean
+// colour (linear) times the factor, said once. Without a base colour
+// texture, the emission's own coordinates are the ones the vertices carry.
+TEST_F(Gltf, EmissionOnOtherCoordinatesIsItsMean) {
+  Document d;
+  const int p = d.positions({-1, -1, 0, 1, -1, 0, 1, 1, 0});
+  const int uv = d.accessor(std::vector<float>{0, 1, 1, 1, 1, 0}, 5126, "VEC2", 3);
+  writeRedPng(dir_ / "red.png", 4);
+  d.json["images"] = Json::array({{{"uri", "red.png"}}});
+  d.json["textures"] = Json::array({{{"source", 0}}});
+  d.json["materials"] = Json::array(
+      {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+        {"emissiveFactor", {1, 0.5, 1}},
+        {"emissiveTexture", {{"index", 0}, {"texCoord", 1}}}},
+       {{"emissiveFactor", {1, 1, 1}}, {"emissiveTexture", {{"index", 0}, {"texCoord", 1}}}}});
+  const Json attributes = {{"POSITION", p}, {"TEXCOORD_0", uv}, {"TEXCOORD_1", uv}};
+  d.json["meshes"] = Json::array({{{"primitives", Json::array({{{"attributes", attributes}, {"material", 0}},
+                                                               {{"attributes", attributes}, {"material", 1}}})}}});
+  d.json["nodes"] = Json::array({{{"mesh", 0}}});
+  const Scene s = loadMesh(d.write(dir_ / "emission.gltf"));
+  ASSERT_EQ(s.materials.size(), 2u);
+  const glm::vec3 mean(linearOfSrgb8(200), linearOfSrgb8(40), linearOfSrgb8(20));
+  EXPECT_NEAR(glm::distance(s.materials[0].emission, mean * glm::vec3(1, 0.5f, 1)), 0.0f, 1e-5f);
+  EXPECT_TRUE(s.materials[0].emissionTexture.empty());
+  EXPECT_EQ(std::count_if(s.warnings.begin(), s.warnings.end(), [](const std::string& w) {
+              return w.find("emissiveTexture on other coordinates than baseColorTexture drawn as its mean colour") !=
+                     std::string::npos;
+            }), 1) << ::testing::PrintToString(s.warnings);
+  EXPECT_FALSE(s.materials[1].emissionTexture.empty());  // its own TEXCOORD_1
+  EXPECT_EQ(s.materials[1].emission, glm::vec3(1.0f));
 }
 
 // A quad textured by a glTF image (external PNG, one colour), lit head

@@ -60,8 +60,8 @@ void main() {
   vEye = uEye;
 #endif
   gl_Position = viewProj * vec4(aPosition, 1.0);
-  vFront = diffuseLight(aAlbedo, aPosition, aNormal);
-  vBack = diffuseLight(aAlbedo, aPosition, -aNormal);
+  vFront = surfaceLight(int(aMaterial), aAlbedo, aPosition, aNormal);
+  vBack = surfaceLight(int(aMaterial), aAlbedo, aPosition, -aNormal);
   vCull = aCull;
   vPosition = aPosition;
   vNormal = aNormal;
@@ -92,13 +92,18 @@ void main() {
 #ifdef TEXTURE
   vec4 texel = surfaceTexel(int(vMaterial), vUv);
 #endif
+#ifdef EMISSION_TEXTURE
+  vec3 glow = surfaceGlow(int(vMaterial), vUv);
+#elif defined(EMISSION)
+  vec3 glow = materialEmission(int(vMaterial));
+#endif
   if (!gl_FrontFacing && vCull > 0.5) discard;
   vec3 c = gl_FrontFacing ? vFront : vBack;
 #ifdef TEXTURE
   c *= texel.rgb;
 #endif
 #ifdef EMISSION
-  c += materialEmission(int(vMaterial));
+  c += glow;
 #endif
 #ifdef VIEW_DEPENDENT
   c += specularLight(int(vMaterial), vPosition, gl_FrontFacing ? vNormal : -vNormal, vEye);
@@ -163,7 +168,8 @@ std::string vertexSource(const Scene& scene, std::initializer_list<std::string_v
   // #extension must precede every declaration.
   for (std::string_view d : defines)
     if (d == "VS_LAYER") header += "#extension GL_ARB_shader_viewport_layer_array : require\n";
-  return header + planDefines(scene) + kSceneVertexInputs + shading::glslLighting() + kSvrVertex;
+  return header + planDefines(scene) + kSceneVertexInputs + shading::glslLighting() + shading::glslMaterials() +
+         shading::glslSurfaceLight() + kSvrVertex;
 }
 
 // renames: the geometry shader's outputs when it routes layers.
