@@ -93,10 +93,25 @@ glm::vec3 unitColor(const tinyobj::real_t (&c)[3], const std::string& what, Load
   return glm::clamp(v, 0.0f, 1.0f);
 }
 
+// A texture map an MTL names, found beside it (or "" with a warning).
+// `without`: how the surface is drawn then.
+std::string mapFile(const fs::path& folder, const std::string& name, const tinyobj::texture_option_t& o,
+                    const std::string& key, const char* without, LoadWarnings& warn) {
+  std::string how;
+  bool backslashes = false;
+  const std::string file = findFile(folder, name, how, backslashes);
+  if (file.empty()) warn(key + " '" + name + "' not found: " + without);
+  if (!how.empty()) warn(key + " '" + name + "' read " + how);
+  if (backslashes) warn("backslashes in file names read as slashes");
+  if (o.scale[0] != 1 || o.scale[1] != 1 || o.origin_offset[0] != 0 || o.origin_offset[1] != 0)
+    warn(key + " options -s and -o not read");
+  return file;
+}
+
 // One MTL material as ours: Kd the diffuse colour (map_Kd multiplies it,
 // as the MTL format says), Ks and Ns the Blinn-Phong highlight, Ke the
-// emission. What an MTL says that our model has no place for is named in
-// a warning.
+// emission (map_Ke multiplies it). What an MTL says that our model has no
+// place for is named in a warning.
 Material materialOf(const tinyobj::material_t& t, const fs::path& folder, LoadWarnings& warn) {
   Material m;
   m.name = t.name;
@@ -105,26 +120,19 @@ Material materialOf(const tinyobj::material_t& t, const fs::path& folder, LoadWa
   m.diffuse = unitColor(t.diffuse, of + "Kd", warn);
   m.specular = unitColor(t.specular, of + "Ks", warn);
   m.shininess = std::isfinite(t.shininess) ? std::clamp(float(t.shininess), 1.0f, 1e4f) : 1.0f;
-  if (!t.diffuse_texname.empty()) {
-    std::string how;
-    bool backslashes = false;
-    m.texture = findFile(folder, t.diffuse_texname, how, backslashes);
-    if (m.texture.empty()) warn(of + "map_Kd '" + t.diffuse_texname + "' not found: drawn untextured");
-    if (!how.empty()) warn(of + "map_Kd '" + t.diffuse_texname + "' read " + how);
-    if (backslashes) warn("backslashes in file names read as slashes");
-    const auto& o = t.diffuse_texopt;
-    if (o.scale[0] != 1 || o.scale[1] != 1 || o.origin_offset[0] != 0 || o.origin_offset[1] != 0)
-      warn(of + "map_Kd options -s and -o not read");
-  }
+  if (!t.diffuse_texname.empty()) m.texture = mapFile(folder, t.diffuse_texname, t.diffuse_texopt, of + "map_Kd", "drawn untextured", warn);
   if (t.dissolve < 1.0f) warn(of + "transparency (d, Tr) drawn opaque");
   m.emission = unitColor(t.emission, of + "Ke", warn);
+  if (!t.emissive_texname.empty() && m.emission != glm::vec3(0.0f))
+    m.emissionTexture = mapFile(folder, t.emissive_texname, t.emissive_texopt, of + "map_Ke",
+                                "its emission drawn untextured", warn);
   std::vector<std::string> unread;
   auto note = [&](const std::string& map, const char* key) {
     if (!map.empty()) unread.push_back(key);
   };
   note(t.specular_texname, "map_Ks"), note(t.specular_highlight_texname, "map_Ns");
   note(t.bump_texname, "bump"), note(t.normal_texname, "norm"), note(t.displacement_texname, "disp");
-  note(t.alpha_texname, "map_d"), note(t.reflection_texname, "refl"), note(t.emissive_texname, "map_Ke");
+  note(t.alpha_texname, "map_d"), note(t.reflection_texname, "refl");
   for (const auto& [key, value] : t.unknown_parameter) unread.push_back(key.substr(0, 24));
   if (!unread.empty()) {
     std::string list;

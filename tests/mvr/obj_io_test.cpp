@@ -1,6 +1,6 @@
 // OBJ files with their MTL materials, written by the tests
-// (mvr/io/obj_io.h): usemtl groups and the mapping of Kd, Ks, Ns and
-// map_Kd; paths written on Windows; statements not read, named once;
+// (mvr/io/obj_io.h): usemtl groups and the mapping of Kd, Ks, Ns, Ke,
+// map_Kd and map_Ke; paths written on Windows; statements not read, named once;
 // polygons, texture seams and vertex colours; a textured quad whose
 // colour proves the texture came through, MVR against SVR.
 #include <algorithm>
@@ -39,7 +39,7 @@ TEST_F(Obj, UsemtlGroupsAndTheirMaterials) {
   fs::create_directories(dir_ / "mats" / "tex");
   test::writeRedPng(dir_ / "mats" / "tex" / "red.png", 4);
   write("mats/lib.mtl",
-        "newmtl plain\nKd 0.5 0.25 1\nKs 0 0 0\nNs 10\n"
+        "newmtl plain\nKd 0.5 0.25 1\nKs 0 0 0\nNs 10\nKe 1 0.5 0.5\nmap_Ke tex/red.png\n"
         "newmtl shiny\nKd 1 1 1\nKs 0.5 0.5 0.5\nNs 250\nmap_Kd TEX\\Red.PNG\nPr 0.5\nfoo 1\n");
   const std::string obj = write("m.obj", std::string("mtllib mats/lib.mtl\n") + kSquare +
                                              "f 1/1/1 2/2/1 3/3/1\n"  // before any usemtl: the default
@@ -56,6 +56,8 @@ TEST_F(Obj, UsemtlGroupsAndTheirMaterials) {
   EXPECT_EQ(plain.diffuse, glm::vec3(0.5f, 0.25f, 1.0f));
   EXPECT_EQ(plain.specular, glm::vec3(0.0f));
   EXPECT_TRUE(plain.texture.empty());
+  EXPECT_EQ(plain.emission, glm::vec3(1.0f, 0.5f, 0.5f));  // Ke, scaling map_Ke's texels
+  EXPECT_EQ(fs::path(plain.emissionTexture), dir_ / "mats" / "tex" / "red.png");
   const Material& shiny = s.materials[2];
   EXPECT_EQ(shiny.specular, glm::vec3(0.5f));
   EXPECT_EQ(shiny.shininess, 250.0f);
