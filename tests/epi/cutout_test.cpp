@@ -15,6 +15,7 @@
 #include "mvr/depth.h"
 #include "mvr/io/image_file.h"
 #include "mvr/io/scene_io.h"
+#include "tests/support/meshes.h"
 #include "tests/support/render_helpers.h"
 
 namespace mvr {
@@ -23,17 +24,7 @@ namespace {
 constexpr glm::vec3 kRed(0.9f, 0.1f, 0.1f), kGreen(0.2f, 0.8f, 0.2f);
 
 void addQuad(Scene& s, float half, float z, uint32_t material) {
-  const auto base = uint32_t(s.positions.size());
-  for (int c = 0; c < 4; ++c) {
-    const glm::vec2 corner(float(c & 1), float(c >> 1));
-    s.positions.emplace_back((2.0f * corner.x - 1.0f) * half, (2.0f * corner.y - 1.0f) * half, z);
-    s.normals.emplace_back(0.0f, 0.0f, 1.0f);
-    s.colors.emplace_back(1.0f);
-    s.uvs.push_back(corner);
-  }
-  s.triangles.push_back({base, base + 1, base + 3});
-  s.triangles.push_back({base, base + 3, base + 2});
-  s.materialIds.insert(s.materialIds.end(), 2, material);
+  test::addQuad(s, glm::vec3(-half, -half, z), glm::vec2(2.0f * half), material);
 }
 
 Scene cutOutScene() {

@@ -12,6 +12,7 @@
 #include "mvr/io/scene_io.h"
 #include "shading/shading_plan.h"
 #include "shading/texture_set.h"
+#include "tests/support/meshes.h"
 #include "tests/support/render_helpers.h"
 
 namespace mvr {
@@ -56,19 +57,7 @@ Scene glowingQuads() {
   constant.diffuse = glm::vec3(0.5f);
   constant.emission = glm::vec3(0.1f, 0.2f, 0.3f);
   s.materials = {textured, plain, unlit, constant};
-  for (uint32_t q = 0; q < 4; ++q) {
-    const auto base = uint32_t(s.positions.size());
-    for (int c = 0; c < 4; ++c) {
-      const glm::vec2 corner(float(c & 1), float(c >> 1));
-      s.positions.emplace_back(float(q) * 1.2f + corner.x, corner.y, 0.0f);
-      s.normals.emplace_back(0.0f, 0.0f, 1.0f);
-      s.colors.emplace_back(1.0f);
-      s.uvs.push_back(corner);
-    }
-    s.triangles.push_back({base, base + 1, base + 3});
-    s.triangles.push_back({base, base + 3, base + 2});
-    s.materialIds.insert(s.materialIds.end(), 2, q);
-  }
+  for (uint32_t q = 0; q < 4; ++q) test::addQuad(s, glm::vec3(float(q) * 1.2f, 0.0f, 0.0f), glm::vec2(1.0f), q);
   s.lights = {Light{Light::Type::Directional, glm::vec3(0, 0, -1), glm::vec3(0.5f)}};
   s.ambient = glm::vec3(0.0f);
   return s;

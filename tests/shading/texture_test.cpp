@@ -19,6 +19,7 @@
 #include "shading/shading_plan.h"
 #include "shading/texture_set.h"
 #include "shading/texture_vector.h"
+#include "tests/support/meshes.h"
 #include "tests/support/render_helpers.h"
 
 namespace mvr {
@@ -143,17 +144,7 @@ Scene quadsOfNineSizes() {
     m.texture = (dir / ("size" + std::to_string(q) + ".png")).string();
     writeImage(img, m.texture);
     s.materials.push_back(m);
-    const auto base = uint32_t(s.positions.size());
-    for (int c = 0; c < 4; ++c) {
-      const glm::vec2 corner(float(c & 1), float(c >> 1));
-      s.positions.emplace_back(float(q) * 1.2f + corner.x, corner.y, 0.0f);
-      s.normals.emplace_back(0.0f, 0.0f, 1.0f);
-      s.colors.emplace_back(1.0f);
-      s.uvs.push_back(corner);
-    }
-    s.triangles.push_back({base, base + 1, base + 3});
-    s.triangles.push_back({base, base + 3, base + 2});
-    s.materialIds.insert(s.materialIds.end(), 2, uint32_t(q));
+    test::addQuad(s, glm::vec3(float(q) * 1.2f, 0.0f, 0.0f), glm::vec2(1.0f), uint32_t(q));
   }
   s.lights = {Light{Light::Type::Directional, glm::vec3(0, 0, -1), glm::vec3(1.0f)}};
   s.ambient = glm::vec3(0.0f);

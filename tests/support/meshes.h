@@ -8,6 +8,22 @@
 
 namespace mvr::test {
 
+// Appends a quad facing +z, its lower left corner at `low`, `size` wide
+// and high, white, uv 0 to 1 across it, as two triangles of `material`.
+inline void addQuad(Scene& s, glm::vec3 low, glm::vec2 size, uint32_t material) {
+  const auto base = uint32_t(s.positions.size());
+  for (int c = 0; c < 4; ++c) {
+    const glm::vec2 corner(float(c & 1), float(c >> 1));
+    s.positions.push_back(low + glm::vec3(corner * size, 0.0f));
+    s.normals.emplace_back(0.0f, 0.0f, 1.0f);
+    s.colors.emplace_back(1.0f);
+    s.uvs.push_back(corner);
+  }
+  s.triangles.push_back({base, base + 1, base + 3});
+  s.triangles.push_back({base, base + 3, base + 2});
+  s.materialIds.insert(s.materialIds.end(), 2, material);
+}
+
 // A UV sphere of radius r at the origin, grey, under an ambient light of 1.
 inline Scene sphereScene(float r, int rings, int segments) {
   Scene s;
