@@ -17,14 +17,17 @@ extern "C" {
 #include <libswscale/swscale.h>
 }
 
+#include <sched.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace {
@@ -79,6 +82,11 @@ class Encoder {
     // and 3.7 s here (the PNG quilts alone: 2.1 s). crf holds the quality;
     // the file is larger.
     av_opt_set(codec_->priv_data, "preset", "superfast", 0);
+    // x264's own choice (1.5 threads a core) by the machine's cores, not by
+    // those this process is bound to: the thread count shapes the bytes,
+    // and a rank of an MPI job, bound to its share, must write one
+    // process's file (x264 is deterministic for a given count).
+    codec_->thread_count = std::max(1, int(std::thread::hardware_concurrency()) * 3 / 2);
     if (const int e = avcodec_open2(codec_, codec, nullptr); e < 0) die("cannot open the H.264 encoder: " + averror(e));
     if (avcodec_parameters_from_context(stream_->codecpar, codec_) < 0) die("cannot describe the video stream");
     stream_->time_base = codec_->time_base;
@@ -159,6 +167,17 @@ long number(const char* text, const char* what, long lo, long hi) {
 
 }  // namespace
 
+// The encoder is one serial job beside the renderers: started by a rank
+// that mpirun bound to its share of the cores, it may still run on any,
+// as the cores the other ranks leave idle. Where a cpuset forbids it, it
+// keeps the cores it has.
+static void takeEveryCore() {
+  cpu_set_t all;
+  CPU_ZERO(&all);
+  for (int c = 0; c < int(std::thread::hardware_concurrency()) && c < CPU_SETSIZE; ++c) CPU_SET(c, &all);
+  sched_setaffinity(0, sizeof all, &all);
+}
+
 int main(int argc, char** argv) {
   if (argc != 7 && argc != 8)
     die("usage: mvr-encode OUT WIDTH HEIGHT FPS CRF FRAMES [yuv420p|yuv444p] (frames of RGBA8 on stdin)");
@@ -174,6 +193,7 @@ int main(int argc, char** argv) {
   const long frames = number(argv[6], "frames", 1, 1000000);
   if (yuv == AV_PIX_FMT_YUV420P && (w % 2 || h % 2)) die("yuv420p needs an even width and height, not " + std::to_string(w) + "x" + std::to_string(h));
   av_log_set_level(AV_LOG_ERROR);
+  takeEveryCore();
   const std::string part = out + ".part";
   {
     Encoder encoder(part, w, h, fps, crf, yuv);

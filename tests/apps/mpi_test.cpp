@@ -166,6 +166,7 @@ TEST(MpiSequence, RanksShareTheFramesOfTheSingleProcessSequence) {
       EXPECT_EQ(imagesIn(dir / frame), expected) << frame << ", " << what;
     }
     EXPECT_TRUE(contentsOf(dir / video) == contentsOf(single / video)) << what;
+    EXPECT_FALSE(fs::exists(dir / ".video")) << what;  // the frames handed to rank 0's encoder
     EXPECT_EQ(nlohmann::json::parse(std::ifstream(dir / "sequence.json")),
               nlohmann::json::parse(std::ifstream(single / "sequence.json")))
         << what;
