@@ -7,6 +7,8 @@
 // falls where each path's texture filter puts alpha 0.5; interp and warp,
 // which fill views from a few rendered ones, >= 22 dB), and in depth maps:
 // the cut half has the green quad's depth.
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -28,7 +30,7 @@ void addQuad(Scene& s, float half, float z, uint32_t material) {
 }
 
 Scene cutOutScene() {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "mvr_cutout_test";
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("mvr_cutout_test_" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   Image half(8, 8, PixelType::Srgb8);
   for (int y = 0; y < 8; ++y)

@@ -4,6 +4,8 @@
 // and an unlit material's lit diffuse is its albedo, whatever the lights.
 // Each quad's halves glow differently, so that the emission texture's mean
 // (what was drawn before) misses both by far.
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -23,7 +25,7 @@ namespace fs = std::filesystem;
 // An 8 x 8 sRGB texture, its left half `left` and right half `right`
 // (linear colours); returns its path.
 std::string halvesPng(const std::string& name, glm::vec3 left, glm::vec3 right) {
-  const fs::path dir = fs::temp_directory_path() / "mvr_emission_test";
+  const fs::path dir = fs::temp_directory_path() / ("mvr_emission_test_" + std::to_string(getpid()));
   fs::create_directories(dir);
   Image img(8, 8, PixelType::Srgb8);
   for (int y = 0; y < 8; ++y)

@@ -7,6 +7,8 @@
 //               GL filters with fixed-point weights, C++ with floats
 //  strip, quad  PSNR >= 35 dB: R interpolated linearly across slivers
 //  deferred     PSNR >= 30 dB: reflects the per-pixel normal instead
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -28,7 +30,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string tempPath(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / "mvr_reflection_test";
+  const fs::path dir = fs::temp_directory_path() / ("mvr_reflection_test_" + std::to_string(getpid()));
   fs::create_directories(dir);
   return (dir / name).string();
 }

@@ -8,6 +8,8 @@
 //                1-D per view), which blurs the checker's one-texel lines.
 // Minification must not shimmer: the vector path's per-view PSNR varies by
 // under 3 dB across the track.
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -30,7 +32,7 @@ namespace fs = std::filesystem;
 // A scene with one material textured by a w x h image made by fill(x, y).
 template <class Fill>
 Scene texturedScene(const std::string& name, int w, int h, Fill fill) {
-  const fs::path dir = fs::temp_directory_path() / "mvr_texture_test";
+  const fs::path dir = fs::temp_directory_path() / ("mvr_texture_test_" + std::to_string(getpid()));
   fs::create_directories(dir);
   Image img(w, h, PixelType::U8);
   for (int y = 0; y < h; ++y)
@@ -130,7 +132,7 @@ TEST(TextureVectors, PerspectiveIsCorrectedAtExtraction) {
 // (nine sizes: one more than the GL groups), lit head on.
 Scene quadsOfNineSizes() {
   static const glm::ivec2 kSizes[9] = {{32, 32}, {16, 4}, {8, 8}, {2, 4}, {16, 16}, {4, 4}, {8, 2}, {4, 2}, {2, 2}};
-  const fs::path dir = fs::temp_directory_path() / "mvr_texture_test";
+  const fs::path dir = fs::temp_directory_path() / ("mvr_texture_test_" + std::to_string(getpid()));
   fs::create_directories(dir);
   Scene s;
   for (int q = 0; q < 9; ++q) {
