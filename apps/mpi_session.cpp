@@ -1,7 +1,6 @@
 #include "apps/mpi_session.h"
 
 #include <mpi.h>
-#include <sched.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -140,16 +139,6 @@ double MpiSession::maxOf(double value) {
 void MpiSession::barrier() {
   ready();
   MPI_Barrier(MPI_COMM_WORLD);
-}
-
-// mpirun bound this rank to its share of the cores; the calling thread
-// (and what it spawns) is bound to all of them again. Where a cpuset
-// forbids it the call fails and the rank keeps its share.
-void MpiSession::takeTheMachine() {
-  cpu_set_t all;
-  CPU_ZERO(&all);
-  for (int c = 0; c < int(std::thread::hardware_concurrency()) && c < CPU_SETSIZE; ++c) CPU_SET(c, &all);
-  sched_setaffinity(0, sizeof all, &all);
 }
 
 struct SharedFile::Handle {

@@ -47,11 +47,6 @@ class MpiSession {
   // Collective: the largest of every rank's value, on every rank.
   double maxOf(double value);
   void barrier();
-  // Once the other ranks are done (a sequence's frames), this rank's work
-  // may use every core of its machine: what it starts from then (the
-  // video's encoder) sees them all, as one process's would, so it makes
-  // the same bytes.
-  void takeTheMachine();
 
  private:
   void start();

@@ -16,7 +16,6 @@ bool MpiSession::agree(const std::string&) { return true; }
 std::vector<std::string> MpiSession::gatherAtRoot(const std::vector<std::string>& mine) { return mine; }
 double MpiSession::maxOf(double value) { return value; }
 void MpiSession::barrier() {}
-void MpiSession::takeTheMachine() {}
 
 struct SharedFile::Handle {};
 SharedFile::SharedFile(const std::string& path, Lifetime) { fail(path, "a shared scratch file needs MPI"); }

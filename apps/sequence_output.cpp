@@ -339,10 +339,7 @@ int writeSequence(const RenderJob& job, PreparedJob& p) {
     rendered = 0;
     for (const std::string& n : share->gatherAtRoot({std::to_string(progress.rendered())})) rendered += std::stoi(n);
     if (rank != 0) return 0;
-    if (ranked) {
-      share->takeTheMachine();
-      ranked->feed(true);
-    }
+    if (ranked) ranked->feed(true);
   }
   if (video) video->finish();
   if (nativeVideo) nativeVideo->finish();

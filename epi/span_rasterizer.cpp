@@ -187,13 +187,14 @@ class SpanRasterizer final : public EpiRasterizer {
                           type_ != PixelType::F32;
     if ((colors.vector && !oneTexel) || plan.uv >= 0 || plan.position >= 0 || !paths_.fastDiffuse) {
       const float cutoff = plan.mask && !colors.vector ? alphaCutoff(material) : 0.0f;
+      const int cutLayer = cutoff > 0.0f ? shading_.textures->materialLayers()[material] : -1;
       auto run = [&](int i, int x0, int x1, float xa, float width) {
         float* dz = depth.data() + size_t(i) * w;
         for (int x = x0; x < x1; ++x) {
           const float u = std::clamp((x + 0.5f - xa) / width, 0.0f, 1.0f);
           const float z = pstDepth(pst, u);
           if (!(z > dz[x])) continue;
-          if (cutoff > 0.0f && texel(pst, shading_.textures->materialLayers()[material], u, 1.0f / width).a < cutoff) continue;  // cut out
+          if (cutoff > 0.0f && texel(pst, cutLayer, u, 1.0f / width).a < cutoff) continue;  // cut out
           dz[x] = z;
           store(epi, x, i, colors.vector ? vectorColor(colors, u, width, i)
                                          : shade(pst, piece.front, material, u, 1.0f / width, float(i)));

@@ -224,12 +224,11 @@ vec2 materialTextureSize(int material) { return groupSize(int(uMaterials[materia
 vec3 materialGlow(int material, vec2 uv, vec2 dx, vec2 dy) {
   vec4 g = uMaterials[material].glow;
   vec3 e = uMaterials[material].emission.rgb;
-  return g.z < 0.0 ? e : e * groupTexelGrad(int(g.y), vec3(uv, g.z), dx, dy).rgb;
+  return hasEmissionTexture(material) ? e * groupTexelGrad(int(g.y), vec3(uv, g.z), dx, dy).rgb : e;
 }
-vec3 materialGlowLod(int material, vec2 uv, float lod) {
+vec4 emissionTexelLod(int material, vec2 uv, float lod) {
   vec4 g = uMaterials[material].glow;
-  vec3 e = uMaterials[material].emission.rgb;
-  return g.z < 0.0 ? e : e * groupTexelLod(int(g.y), vec3(uv, g.z), lod).rgb;
+  return hasEmissionTexture(material) ? groupTexelLod(int(g.y), vec3(uv, g.z), lod) : vec4(1.0);
 }
 vec2 emissionTextureSize(int material) { return groupSize(int(uMaterials[material].glow.y)); }
 )";

@@ -56,9 +56,10 @@ class TextureSet {
   //     (by textureGrad; vec4(1) for a material without a texture),
   //   vec4 materialTexelLod(int material, vec2 uv, float lod),
   //   vec2 materialTextureSize(int material),
-  //   vec3 materialGlow(int material, vec2 uv, vec2 dx, vec2 dy) and
-  //   vec3 materialGlowLod(int material, vec2 uv, float lod): the
+  //   vec3 materialGlow(int material, vec2 uv, vec2 dx, vec2 dy): the
   //     emission times its texture's texel (the emission alone without),
+  //   vec4 emissionTexelLod(int material, vec2 uv, float lod): the
+  //     emission texture's texel (vec4(1) without),
   //   vec2 emissionTextureSize(int material).
   static const std::string& glsl();
   // GLSL after glsl() and glslMaterials() (view_dependent.h): `vec4

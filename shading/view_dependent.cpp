@@ -49,6 +49,7 @@ struct Material {
 layout(std430, binding = 1) readonly buffer Materials { Material uMaterials[]; };
 vec3 materialEmission(int material) { return uMaterials[material].emission.rgb; }
 bool materialUnlit(int material) { return uMaterials[material].glow.x != 0.0; }
+bool hasEmissionTexture(int material) { return uMaterials[material].glow.z >= 0.0; }
 // A cut-out's texel below its cut-off: the surface is not there.
 bool maskedOut(int material, float alpha) { return alpha < uMaterials[material].emission.w; }
 )";

@@ -23,7 +23,7 @@ glm::vec3 specularLight(const Scene& scene, const Material& material, const glm:
 // fills; params.y of a material is its texture layer (-1 for none),
 // reflectivity.w its texture group, glow.yz its emission texture's
 // (TextureSet::glsl samples them); materialEmission(material) and
-// materialUnlit(material).
+// materialUnlit(material) and hasEmissionTexture(material).
 const char* glslMaterials();
 
 // GLSL: glslMaterials() and

@@ -298,7 +298,6 @@ void finishTexel(vec3 glow) {
 }
 #elif defined(EMISSION)
 layout(location = 0, index = 1) out vec4 oFactor;
-bool hasEmissionTexture(int material) { return uMaterials[material].glow.z >= 0.0; }
 void finishTexel(vec3 glow) {
   oFactor = oColor;
   int material = int(vFlat.y);

@@ -20,7 +20,7 @@ uint lengthFor(float width) {
 }
 float textureLayer(uint word) { return uMaterials[word & 0x7FFFFFFFu].params.y; }
 // A slice's chains: its base texture's, then its emission texture's if any.
-uint chainsOf(uint word) { return uMaterials[word & 0x7FFFFFFFu].glow.z >= 0.0 ? 2u : 1u; }
+uint chainsOf(uint word) { return hasEmissionTexture(int(word & 0x7FFFFFFFu)) ? 2u : 1u; }
 )";
 
 // The widest p-edge of the pieces drawn, as the CPU's addVector reads it
@@ -87,9 +87,8 @@ void main() {
   float lod = texels > 0.0 ? log2(texels) : 0.0;
   lod = clamp(isnan(lod) ? 0.0 : lod, 0.0, floor(log2(max(size.x, size.y))));
   bool finite = !any(isnan(uv)) && !any(isinf(uv));
-  vec4 g = uMaterials[material].glow;
   vec4 texel = chain == 0u ? materialTexelLod(material, uv - floor(uv), lod)
-                           : groupTexelLod(int(g.y), vec3(uv - floor(uv), g.z), lod);
+                           : emissionTexelLod(material, uv - floor(uv), lod);
   uTexels[t] = finite ? texel : vec4(0.0);
 }
 )";

@@ -120,7 +120,8 @@ Material materialOf(const tinyobj::material_t& t, const fs::path& folder, LoadWa
   m.diffuse = unitColor(t.diffuse, of + "Kd", warn);
   m.specular = unitColor(t.specular, of + "Ks", warn);
   m.shininess = std::isfinite(t.shininess) ? std::clamp(float(t.shininess), 1.0f, 1e4f) : 1.0f;
-  if (!t.diffuse_texname.empty()) m.texture = mapFile(folder, t.diffuse_texname, t.diffuse_texopt, of + "map_Kd", "drawn untextured", warn);
+  if (!t.diffuse_texname.empty())
+    m.texture = mapFile(folder, t.diffuse_texname, t.diffuse_texopt, of + "map_Kd", "drawn untextured", warn);
   if (t.dissolve < 1.0f) warn(of + "transparency (d, Tr) drawn opaque");
   m.emission = unitColor(t.emission, of + "Ke", warn);
   if (!t.emissive_texname.empty() && m.emission != glm::vec3(0.0f))
