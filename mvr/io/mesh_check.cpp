@@ -190,7 +190,16 @@ void checkPlyAsciiElement(const std::string& path, long line, const std::string&
   }
 }
 
-void checkPly(const std::string& path, std::vector<long>* bareLines) {
+// OpenMesh reads the header word by word and stops only at "end_header":
+// within an obj_info line these words would be read as statements.
+bool holdsHeaderKeyword(const std::string& text) {
+  std::istringstream words(text);
+  for (std::string word; words >> word;)
+    if (word == "element" || word == "property" || word == "end_header") return true;
+  return false;
+}
+
+void checkPly(const std::string& path, PlyCommentLines* comments) {
   constexpr size_t kMaxHeader = 1 << 16;
   std::ifstream in(path, std::ios::binary);
   struct Element {
@@ -215,6 +224,8 @@ void checkPly(const std::string& path, std::vector<long>* bareLines) {
       if (key != "ply") fail(path, "not a PLY file (no 'ply' on the first line)");
       continue;
     }
+    // OpenMesh takes the second line's words as the format, whatever they are.
+    if (line == 2 && key != "format") failAt(path, line, "the PLY format line must follow 'ply', not '" + key + "'");
     // OpenMesh reads the header word by word, not line by line: a line with
     // more words than its keyword takes would be read differently there
     // (an element count taken from the next line's words: gigabytes).
@@ -233,9 +244,10 @@ void checkPly(const std::string& path, std::vector<long>* bareLines) {
       words >> format >> version;
       if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
         failAt(path, line, "unknown PLY format '" + format + "'");
-      // OpenMesh's probe reads the version as a number and spins on anything else.
-      double number = 0.0;
-      if (!parseWhole(version, number))
+      // OpenMesh's probe reads the version as a float and spins on anything
+      // else: "nan", "inf" or 1e39 as well as junk.
+      float number = 0.0f;
+      if (!parseWhole(version, number) || !std::isfinite(number))
         failAt(path, line, "bad PLY version '" + version + "'");
     } else if (key == "element") {
       Element e;
@@ -262,9 +274,12 @@ void checkPly(const std::string& path, std::vector<long>* bareLines) {
       }
     } else if (key == "end_header") {
       ended = true;
+    } else if (key == "obj_info" && holdsHeaderKeyword(text)) {
+      if (!comments) failAt(path, line, "PLY obj_info line holds a header keyword");
+      comments->info.push_back(line);
     } else if (key != "comment" && key != "obj_info" && !key.empty()) {
-      if (!bareLines) failAt(path, line, "unknown PLY header keyword '" + key + "'");
-      bareLines->push_back(line);
+      if (!comments) failAt(path, line, "unknown PLY header keyword '" + key + "'");
+      comments->bare.push_back(line);
     }
   }
   if (!ended) fail(path, "PLY header has no end_header (file cut short)");
@@ -401,10 +416,10 @@ std::string lowerCase(std::string s) {
 
 std::string lowerExtension(const std::string& path) { return lowerCase(std::filesystem::path(path).extension().string()); }
 
-void checkMeshFile(const std::string& path, std::vector<long>* bareLines) {
+void checkMeshFile(const std::string& path, PlyCommentLines* comments) {
   const std::string ext = lowerExtension(path);
   if (ext == ".obj") checkObjFile(path, nullptr);
-  if (ext == ".ply") checkPly(path, bareLines);
+  if (ext == ".ply") checkPly(path, comments);
   if (ext == ".off") checkOff(path);
 }
 

@@ -29,16 +29,23 @@ inline constexpr double kMaxOutlier = 1e6;
 // non-zero area. Throws mvr::Error naming the vertex.
 void checkSceneGeometry(const Scene& scene, const std::string& where);
 
+// The PLY header lines OpenMesh would misread, to be handed to it as
+// comments (by their line numbers). OpenMesh reads the header word by word:
+// a line that starts with no keyword (old Blender wrote "Created by
+// Blender3D ..." bare; a defect worth a warning) stops it, and the words
+// of an obj_info line (free text) that are header keywords it obeys.
+struct PlyCommentLines {
+  std::vector<long> bare, info;
+};
+
 // OBJ: every v/vt/vn reference of every face in range of the elements
 // defined before it (negative indices count back), at least three corners
 // per face. PLY: a complete header (ply, one format line, elements with
 // counts, properties of known types, end_header), and data long enough for
 // every element (binary: at least each element's fixed bytes; ASCII: a
 // line per element). OFF: its vertex and face counts within what the data
-// after them can hold. STL passes. Throws mvr::Error. A PLY header line
-// that starts with no keyword (old Blender wrote "Created by Blender3D
-// ..." bare) is taken as a comment: its line number goes to bareLines.
-void checkMeshFile(const std::string& path, std::vector<long>* bareLines = nullptr);
+// after them can hold. STL passes. Throws mvr::Error.
+void checkMeshFile(const std::string& path, PlyCommentLines* comments = nullptr);
 
 // What an OBJ file says that is not drawn: statements other than v, vt,
 // vn, f, g, o, s, usemtl and mtllib (keyword and first line, the first few

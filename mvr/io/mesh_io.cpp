@@ -14,6 +14,7 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -92,16 +93,16 @@ void silenceOpenMesh() {
   omout().disable();
 }
 
-// The file with "comment " put before each of the header lines bareLines
-// names, for OpenMesh, which stops at a line it has no keyword for. Held in
-// memory: only old files have such lines.
-std::string withCommentedLines(const std::string& path, const std::vector<long>& bareLines) {
+// The file with "comment " put before each of the header lines `lines`
+// names (ascending), for OpenMesh. Held in memory: only odd files have such
+// lines.
+std::string withCommentedLines(const std::string& path, const std::vector<long>& lines) {
   std::ifstream in(path, std::ios::binary);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   size_t at = 0;
   long line = 1;
-  for (long bare : bareLines) {
-    for (; line < bare; ++line) at = text.find('\n', at) + 1;
+  for (long commented : lines) {
+    for (; line < commented; ++line) at = text.find('\n', at) + 1;
     text.insert(at, "comment ");
   }
   return text;
@@ -130,18 +131,22 @@ Scene loadMesh(const std::string& path) {
   silenceOpenMesh();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) fail(path, "no such mesh file");
-  std::vector<long> bareLines;
-  checkMeshFile(path, &bareLines);  // OpenMesh trusts its input; this does not
+  PlyCommentLines comments;
+  checkMeshFile(path, &comments);  // OpenMesh trusts its input; this does not
+  const std::vector<long>& bareLines = comments.bare;
+  std::vector<long> commented = bareLines;
+  commented.insert(commented.end(), comments.info.begin(), comments.info.end());
+  std::sort(commented.begin(), commented.end());
   ReadMesh mesh;
   OpenMesh::IO::Options opt = OpenMesh::IO::Options::VertexNormal |
                               OpenMesh::IO::Options::VertexColor |
                               OpenMesh::IO::Options::VertexTexCoord;
   CheckedImporter importer(mesh);
   bool read = false;
-  if (bareLines.empty()) {
+  if (commented.empty()) {
     read = OpenMesh::IO::IOManager().read(path, importer, opt);
   } else {
-    std::istringstream text(withCommentedLines(path, bareLines));
+    std::istringstream text(withCommentedLines(path, commented));
     read = OpenMesh::IO::IOManager().read(text, ".ply", importer, opt);
   }
   if (!read) fail(path, "cannot read mesh (unsupported format or broken file)");

@@ -46,7 +46,8 @@ TEST_F(SceneIo, BareMeshIsCentredAndLit) {
 TEST_F(SceneIo, MissingFile) { expectError((dir_ / "nothing.obj").string(), "no such mesh file"); }
 
 TEST_F(SceneIo, UnreadableMesh) {
-  expectError(write("junk.ply", "ply\ngarbage\n"), "junk.ply: PLY header has no end_header");
+  expectError(write("junk.ply", "ply\ngarbage\n"), "junk.ply:2: the PLY format line must follow 'ply'");
+  expectError(write("junk.ply", "ply\nformat ascii 1.0\n"), "junk.ply: PLY header has no end_header");
   expectError(write("junk.xyz", "garbage\n"), "not a model format mvr reads ('.xyz'): it reads glTF");
 }
 
@@ -106,6 +107,23 @@ TEST_F(SceneIo, BrokenPlyHeadersAndCutData) {
   std::string version = ascii;
   version.replace(version.find("1.0"), 3, "\x1b" "1.0");
   expectError(write("version.ply", version), "version.ply:2: bad PLY version");
+  // ... and on one a float does not hold (found by fuzzing, as the two below).
+  for (const char* number : {"nan", "inf", "1e39"}) {
+    std::string v = ascii;
+    v.replace(v.find("1.0"), 3, number);
+    expectError(write("version.ply", v), "version.ply:2: bad PLY version '" + std::string(number) + "'");
+  }
+  // It reads the second line as the format whatever it says ...
+  expectError(write("late.ply", "ply\ncomment ascii nan\n" + ascii.substr(4)),
+              "late.ply:2: the PLY format line must follow 'ply', not 'comment'");
+  // ... and obeys the header keywords within an obj_info line: handed to it
+  // as a comment, the line changes nothing, and no warning is due.
+  const size_t info = ascii.find("element");
+  const Scene objInfo = loadScene(write("info.ply", ascii.substr(0, info) + "obj_info element end_header\n" +
+                                                        ascii.substr(info) + "3 0 2 1\n"));
+  EXPECT_EQ(objInfo.positions, bare.positions);
+  EXPECT_EQ(objInfo.triangles.size(), 2u);
+  EXPECT_TRUE(objInfo.warnings.empty());
   std::string words = ascii;
   words.replace(words.find("property float z"), 16, "property float z element face 9");
   expectError(write("words.ply", words), "words.ply:6: PLY header line 'property' has 6 words, expected 3");
