@@ -2,6 +2,7 @@
 // (mvr/io/assimp_import.h): a Collada file the test writes (a node's
 // transform, two materials, a texture beside it), and the ways it fails,
 // each one line: assimp's message, a crash, no importer, another format.
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -65,6 +66,7 @@ class Assimp : public test::FileTest {
  protected:
   void TearDown() override {
     unsetenv("MVR_IMPORT");
+    unsetenv("MVR_IMPORT_SECONDS");
     FileTest::TearDown();
   }
   void expectError(const std::string& path, const std::string& what) {
@@ -139,6 +141,14 @@ TEST_F(Assimp, FailuresAreOneLine) {
   expectError(write("quad.dae", kCollada), "the importer (assimp) failed on this file (signal 11)");
   setenv("MVR_IMPORT", (dir_ / "none").c_str(), 1);
   expectError((dir_ / "quad.dae").string(), "cannot start");
+  // One that hangs is killed at the time limit (MVR_IMPORT_SECONDS here).
+  const std::string hang = write("hang.sh", "#!/bin/sh\nexec sleep 60\n");
+  fs::permissions(hang, fs::perms::owner_all);
+  setenv("MVR_IMPORT", hang.c_str(), 1);
+  setenv("MVR_IMPORT_SECONDS", "1", 1);
+  const auto start = std::chrono::steady_clock::now();
+  expectError((dir_ / "quad.dae").string(), "the importer (assimp) took more than 1 s");
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10));
 }
 
 // The quad deformed by a skin of one joint (its own node, weight 1): a
