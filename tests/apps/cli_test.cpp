@@ -58,10 +58,10 @@ TEST(Cli, EveryBaselineWritesItsSet) {
 
 TEST(Cli, CompareReportsIdenticalAndRejectsMismatch) {
   fs::path a = test::freshDir("cli_cmp_a"), b = test::freshDir("cli_cmp_b"), c = test::freshDir("cli_cmp_c");
-  ASSERT_EQ(test::runMvr("render --views 2 --size 40x30 --out " + a.string()).status, 0);
-  ASSERT_EQ(test::runMvr("render --views 2 --size 40x30 --out " + b.string()).status, 0);
-  ASSERT_EQ(test::runMvr("render --views 2 --size 42x30 --out " + c.string()).status, 0);
-  EXPECT_EQ(test::runMvr("compare " + a.string() + " " + b.string()).status, 0);
+  ASSERT_TRUE(test::succeeded(test::runMvr("render --views 2 --size 40x30 --out " + a.string())));
+  ASSERT_TRUE(test::succeeded(test::runMvr("render --views 2 --size 40x30 --out " + b.string())));
+  ASSERT_TRUE(test::succeeded(test::runMvr("render --views 2 --size 42x30 --out " + c.string())));
+  EXPECT_TRUE(test::succeeded(test::runMvr("compare " + a.string() + " " + b.string())));
   test::CliResult mismatch = test::runMvr("compare " + a.string() + " " + c.string());
   EXPECT_NE(mismatch.status, 0);
   EXPECT_NE(mismatch.err.find("size mismatch"), std::string::npos) << mismatch.err;
@@ -308,8 +308,8 @@ TEST(Cli, BenchPlotsAgainFromItsJson) {
   const fs::path d = test::freshDir("cli_replot");
   fs::create_directories(d);
   const fs::path json = d / "bench.json";
-  ASSERT_EQ(test::runMvr("bench --views 1,4 --size 40x30 --backends svr,mvr:quad,interp:center:c1 --json " +
-                json.string()).status, 0);
+  ASSERT_TRUE(test::succeeded(
+      test::runMvr("bench --views 1,4 --size 40x30 --backends svr,mvr:quad,interp:center:c1 --json " + json.string())));
   const test::CliResult r = test::runMvr("bench --replot " + json.string() + " --plots " + (d / "plots").string());
   EXPECT_EQ(r.status, 0) << r.err;
   for (const char* plot : {"time_per_view_40x30.gp", "backends_40x30.gp", "psnr_vs_time_40x30.gp"})

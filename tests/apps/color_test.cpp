@@ -116,8 +116,8 @@ TEST(ColorEncoding, TexturesAreDecodedFromSrgb) {
 
 TEST(ColorEncoding, ExrIsLinear) {
   const fs::path out = test::freshDir("color_exr");
-  ASSERT_EQ(test::runMvr("render " + planeScene(false).string() +
-                         " --format exr --views 2 --size 40x30 --out " + out.string()).status, 0);
+  ASSERT_TRUE(test::succeeded(test::runMvr("render " + planeScene(false).string() +
+                         " --format exr --views 2 --size 40x30 --out " + out.string())));
   const Image img = readImage((out / "view_0000.exr").string());
   EXPECT_NEAR(img.pixel(20, 15).g, 0.2f, 1e-5f);
   EXPECT_EQ(Manifest::read(out.string()).colorEncoding(), "linear");

@@ -55,7 +55,7 @@ TEST(MemoryBudget, MvrViewsThroughScratchAreByteIdentical) {
     for (const std::string rows : {"1", "2"}) {  // two rows reuse the scratch file
       fs::remove_all(memory), fs::remove_all(scratch);
       const std::string job = "render --backend mvr --pst cpu --bits " + bits + " --rows " + rows + kJob;
-      ASSERT_EQ(test::runMvr(job + " --out " + memory.string()).status, 0);
+      ASSERT_TRUE(test::succeeded(test::runMvr(job + " --out " + memory.string())));
       const auto r = test::runMvr(job + " --memory " + (bits == "8" ? "48K" : "190K") + " --out " + scratch.string());
       ASSERT_EQ(r.status, 0) << r.err;
       expectSameFiles(memory, scratch);
@@ -70,7 +70,7 @@ TEST(MemoryBudget, SvrEpisThroughScratchAreByteIdentical) {
   const fs::path memory = test::freshDir("budget_epi_mem"), scratch = test::freshDir("budget_epi_scratch");
   // A float volume, written as 16-bit PNG (EXR files carry their time of writing).
   const std::string job = "render --backend svr --order epi --bits 16" + kJob;
-  ASSERT_EQ(test::runMvr(job + " --out " + memory.string()).status, 0);
+  ASSERT_TRUE(test::succeeded(test::runMvr(job + " --out " + memory.string())));
   const auto r = test::runMvr(job + " --memory 100K --out " + scratch.string());
   ASSERT_EQ(r.status, 0) << r.err;
   expectSameFiles(memory, scratch);
@@ -81,7 +81,7 @@ TEST(MemoryBudget, StreamAndConsumerThroughScratchAreByteIdentical) {
   const fs::path dir = test::freshDir("budget_stream");
   fs::create_directories(dir);
   const std::string job = "stream --backend svr" + kJob;
-  ASSERT_EQ(test::runMvr(job + " --to " + (dir / "memory.epis").string()).status, 0);
+  ASSERT_TRUE(test::succeeded(test::runMvr(job + " --to " + (dir / "memory.epis").string())));
   auto r = test::runMvr(job + " --memory 48K --scratch " + dir.string() + " --to " +
                         (dir / "scratch.epis").string());
   ASSERT_EQ(r.status, 0) << r.err;

@@ -56,7 +56,7 @@ TEST_P(MpiRender, OneTwoAndThreeRanksWriteTheSingleProcessSet) {
   if (const size_t at = args.find("{assets}"); at != std::string::npos)
     args.replace(at, 8, test::writeAssetScene(test::freshDir("mpi_asset_scene")));
   const fs::path single = test::freshDir(std::string("mpi_single_") + GetParam().name);
-  ASSERT_EQ(test::runMvr("render " + args + " --out " + single.string()).status, 0);
+  ASSERT_TRUE(test::succeeded(test::runMvr("render " + args + " --out " + single.string())));
   const auto expected = imagesIn(single);
   ASSERT_GE(expected.size(), 7u);
   for (int ranks : {1, 2, 3}) {
@@ -119,7 +119,7 @@ TEST_P(MpiStream, RanksWriteTheSingleProcessStream) {
   const fs::path dir = test::freshDir(std::string("mpi_stream_") + GetParam().name);
   fs::create_directories(dir);
   const std::string single = (dir / "single.epi").string();
-  ASSERT_EQ(test::runMvr("render " + args + " --stream " + single).status, 0);
+  ASSERT_TRUE(test::succeeded(test::runMvr("render " + args + " --stream " + single)));
   const std::string expected = contentsOf(single);
   ASSERT_GT(expected.size(), 144u);
   for (int ranks : {1, 2, 3}) {
@@ -156,7 +156,7 @@ TEST(MpiSequence, RanksShareTheFramesOfTheSingleProcessSequence) {
                            "/teacup_4k.ply --frames 5 --turntable 90 --quilt portrait --quilt-only --size 42x56 "
                            "--focal center --video --out ";
   const fs::path single = test::freshDir("mpi_seq_single");
-  ASSERT_EQ(test::runMvr(args + single.string()).status, 0);
+  ASSERT_TRUE(test::succeeded(test::runMvr(args + single.string())));
   const std::string video = "quilt_qs8x6a0.75.mp4";
   const auto sameAsSingle = [&](const fs::path& dir, const std::string& what) {
     for (int k = 0; k < 5; ++k) {

@@ -43,7 +43,7 @@ std::string bytesOf(const fs::path& p) {
 TEST(Native, GlAndCpuMappingsWriteTheSameImage) {
   const fs::path dir = test::freshDir("native_command");
   const fs::path calibration = writeCalibration(dir);
-  ASSERT_EQ(test::runMvr("render" + kShape + " --quilt-only --out " + (dir / "set").string()).status, 0);
+  ASSERT_TRUE(test::succeeded(test::runMvr("render" + kShape + " --quilt-only --out " + (dir / "set").string())));
   const std::string quilt = (dir / "set" / "quilt_qs2x2a1.50.png").string();
   for (const char* mapping : {"gl", "cpu"}) {
     const test::CliResult r = test::runMvr("native " + quilt + " --calibration " + calibration.string() + " --mapping " +
@@ -70,7 +70,7 @@ TEST(Native, SequenceWritesEachFramesNativeImageAndVideo) {
   test::CliResult r = test::runMvr("render" + kShape + frames + " --video --native " + calibration.string() +
                                    " --out " + (dir / "with").string());
   ASSERT_EQ(r.status, 0) << r.err;
-  ASSERT_EQ(test::runMvr("render" + kShape + frames + " --out " + (dir / "without").string()).status, 0);
+  ASSERT_TRUE(test::succeeded(test::runMvr("render" + kShape + frames + " --out " + (dir / "without").string())));
   for (int k = 0; k < 3; ++k) {
     const fs::path frame = dir / "with" / ("frame_000" + std::to_string(k));
     ASSERT_TRUE(fs::exists(frame / "native_96x64.png")) << frame;
@@ -93,7 +93,7 @@ TEST(Native, SequenceWritesEachFramesNativeImageAndVideo) {
 TEST(Native, BadInputsAreOneLineErrors) {
   const fs::path dir = test::freshDir("native_bad");
   const fs::path calibration = writeCalibration(dir);
-  ASSERT_EQ(test::runMvr("render" + kShape + " --quilt-only --out " + (dir / "set").string()).status, 0);
+  ASSERT_TRUE(test::succeeded(test::runMvr("render" + kShape + " --quilt-only --out " + (dir / "set").string())));
   const std::string quilt = (dir / "set" / "quilt_qs2x2a1.50.png").string();
   fs::copy_file(quilt, dir / "odd_qs5x3a1.00.png");
   std::ofstream(dir / "no_dpi.json") << R"({"pitch": 50, "slope": -5, "center": 0, "screenW": 96, "screenH": 64, "invView": 1})";

@@ -82,7 +82,8 @@ TEST(Sequence, TurntableFramesAreStillRendersOfTheTurnedScene) {
   }
   // Frame 2 of 3 over 90 degrees: turned by 60.
   const fs::path turned = writeScene(dir, 60);
-  ASSERT_EQ(test::runMvr("render " + turned.string() + kShape + kFocal + " --out " + (dir / "turned").string()).status, 0);
+  const std::string turnedOut = (dir / "turned").string();
+  ASSERT_TRUE(test::succeeded(test::runMvr("render " + turned.string() + kShape + kFocal + " --out " + turnedOut)));
   // Not the still: the turn shows.
   expectViewsLike(dir / "seq" / "frame_0002", dir / "turned", dir / "still", dir / "seq" / "frame_0002");
   // Each frame's manifest has its time and turn; sequence.json lists them.
@@ -123,7 +124,7 @@ TEST(Sequence, ResumeKeepsTheCompleteFrames) {
   const fs::path scene = writeScene(dir, 0);
   const std::string args = "render " + scene.string() + kShape + " --time 0:0.1 --turntable 45 --quilt 2x2 --video --out " +
                            (dir / "seq").string();
-  ASSERT_EQ(test::runMvr(args).status, 0);  // [0, 0.1) at 30 frames/s: 3 frames
+  ASSERT_TRUE(test::succeeded(test::runMvr(args)));  // [0, 0.1) at 30 frames/s: 3 frames
   ASSERT_TRUE(fs::exists(dir / "seq" / "frame_0002" / "manifest.json"));
   EXPECT_FALSE(fs::exists(dir / "seq" / "frame_0003"));
   const std::string frame1 = bytesOf(dir / "seq" / "frame_0001" / "view_0002.png");

@@ -29,7 +29,7 @@ test::CliResult streamToConsumer(const std::string& args, const std::filesystem:
 
 TEST(Stream, PipeProducerToConsumer) {
   auto ref = test::freshDir("stream_ref"), got = test::freshDir("stream_pipe");
-  ASSERT_EQ(test::runMvr("render" + kArgs + " --out " + ref.string()).status, 0);
+  ASSERT_TRUE(test::succeeded(test::runMvr("render" + kArgs + " --out " + ref.string())));
   auto r = streamToConsumer(kArgs + " --queue 2", got);
   ASSERT_EQ(r.status, 0) << r.err;
   expectSameSet(ref, got);
@@ -40,7 +40,7 @@ TEST(Stream, PipeProducerToConsumer) {
 TEST(Stream, ConsumerManifestHasTheRenderCameras) {
   auto ref = test::freshDir("stream_cam_ref"), got = test::freshDir("stream_cam_got");
   const std::string args = kArgs + " --cone 30 --focal center";
-  ASSERT_EQ(test::runMvr("render" + args + " --out " + ref.string()).status, 0);
+  ASSERT_TRUE(test::succeeded(test::runMvr("render" + args + " --out " + ref.string())));
   auto r = streamToConsumer(args, got);
   ASSERT_EQ(r.status, 0) << r.err;
   const auto a = nlohmann::json::parse(std::ifstream(ref / "manifest.json"));
@@ -59,7 +59,7 @@ TEST(Stream, ConsumerManifestHasTheRenderCameras) {
 TEST(Stream, SequenceFramesEqualTheRenderedSequence) {
   auto ref = test::freshDir("stream_seq_ref"), got = test::freshDir("stream_seq_got");
   const std::string args = kArgs + " --frames 3 --fps 4 --turntable 60";
-  ASSERT_EQ(test::runMvr("render" + args + " --out " + ref.string()).status, 0);
+  ASSERT_TRUE(test::succeeded(test::runMvr("render" + args + " --out " + ref.string())));
   auto r = streamToConsumer(args, got);
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* frame : {"frame_0000", "frame_0001", "frame_0002"}) expectSameSet(ref / frame, got / frame);
@@ -81,7 +81,7 @@ TEST(Stream, UnixSocketProducerToListeningConsumer) {
   auto ref = test::freshDir("sock_ref"), got = test::freshDir("sock_got");
   const std::string sock = (std::filesystem::temp_directory_path() /
                             ("mvr_test_" + std::to_string(getpid()) + ".sock")).string();
-  ASSERT_EQ(test::runMvr("render" + kArgs + " --out " + ref.string()).status, 0);
+  ASSERT_TRUE(test::succeeded(test::runMvr("render" + kArgs + " --out " + ref.string())));
   // The consumer listens; the producer retries until the socket exists.
   auto r = test::shell(test::consumeBinary() + " --from unix:" + sock + " --out " + got.string() +
                        " & for i in $(seq 50); do [ -S " + sock + " ] && break; sleep 0.1; done; " +
@@ -96,8 +96,8 @@ TEST(Stream, NamedPipeIsWrittenInPlace) {
   auto ref = test::freshDir("fifo_ref"), got = test::freshDir("fifo_got"), dir = test::freshDir("fifo");
   std::filesystem::create_directories(dir);
   const std::string fifo = (dir / "epis").string();
-  ASSERT_EQ(test::shell("mkfifo " + fifo).status, 0);
-  ASSERT_EQ(test::runMvr("render" + kArgs + " --out " + ref.string()).status, 0);
+  ASSERT_TRUE(test::succeeded(test::shell("mkfifo " + fifo)));
+  ASSERT_TRUE(test::succeeded(test::runMvr("render" + kArgs + " --out " + ref.string())));
   auto r = test::shell("timeout 60 " + test::consumeBinary() + " --from " + fifo + " --out " + got.string() + " & " +
                        test::mvrBinary() + " stream" + kArgs + " --to " + fifo + " && wait $!");
   ASSERT_EQ(r.status, 0) << r.err;
@@ -110,7 +110,7 @@ TEST(Stream, FileStreamAndTruncationIsReported) {
   auto file = test::freshDir("stream_file");
   std::filesystem::create_directories(file);
   const std::string path = (file / "set.epis").string();
-  ASSERT_EQ(test::runMvr("stream" + kArgs + " --to " + path).status, 0);
+  ASSERT_TRUE(test::succeeded(test::runMvr("stream" + kArgs + " --to " + path)));
   EXPECT_FALSE(std::filesystem::exists(path + ".part"));
   const auto size = std::filesystem::file_size(path);
   EXPECT_EQ(size, 144u + 40u * (8u + 56u * 6u * 4u));  // the header with the camera

@@ -30,7 +30,7 @@ bool haveXvfb() { return std::system("command -v xvfb-run >/dev/null 2>&1") == 0
 TEST(Viewer, ScreenshotShowsTheViewAndItsEpi) {
   if (!haveXvfb()) GTEST_SKIP() << "no xvfb-run";
   auto set = test::freshDir("viewer_set");
-  ASSERT_EQ(test::runMvr("render --views 7 --size 64x48 --out " + set.string()).status, 0);
+  ASSERT_TRUE(test::succeeded(test::runMvr("render --views 7 --size 64x48 --out " + set.string())));
   const std::string shot = (set / "shot.png").string();
   auto r = test::shell("xvfb-run -a " + test::mvrBinary() + " view " + set.string() +
                        " --view 3 --scanline 30 --screenshot " + shot);
@@ -81,7 +81,7 @@ TEST(Viewer, RendersASceneWithTheCameraOptionsAsRenderDoes) {
 TEST(Viewer, OpensAQuiltOnTheMiddleOfTheObject) {
   if (!haveXvfb()) GTEST_SKIP() << "no xvfb-run";
   auto set = test::freshDir("viewer_quilt");
-  ASSERT_EQ(test::runMvr("render --views 6 --size 32x24 --quilt 3x2 --out " + set.string()).status, 0);
+  ASSERT_TRUE(test::succeeded(test::runMvr("render --views 6 --size 32x24 --quilt 3x2 --out " + set.string())));
   const std::string shot = (set / "shot.png").string();
   auto r = test::shell("xvfb-run -a " + test::mvrBinary() + " view " + (set / "quilt_qs3x2a1.33.png").string() +
                        " --screenshot " + shot);
@@ -123,8 +123,9 @@ TEST(Viewer, OpensASetWrittenAsAQuiltOnly) {
   for (const Case& c : {Case{"--views 6 --quilt 3x2", "view_%04d.png", 6},
                         Case{"--views 4 --rows 2 --quilt auto", "view_r000_c%04d.png", 4}}) {
     const auto full = test::freshDir("viewer_quilt_full"), only = test::freshDir("viewer_quilt_only");
-    ASSERT_EQ(test::runMvr("render --size 32x24 " + c.shape + " --out " + full.string()).status, 0);
-    ASSERT_EQ(test::runMvr("render --size 32x24 " + c.shape + " --quilt-only --out " + only.string()).status, 0);
+    ASSERT_TRUE(test::succeeded(test::runMvr("render --size 32x24 " + c.shape + " --out " + full.string())));
+    ASSERT_TRUE(
+        test::succeeded(test::runMvr("render --size 32x24 " + c.shape + " --quilt-only --out " + only.string())));
     ASSERT_FALSE(std::filesystem::exists(only / "view_0000.png"));
     const std::string shot = (only / "shot.png").string();
     auto r = test::shell("xvfb-run -a " + test::mvrBinary() + " view " + only.string() +
@@ -147,7 +148,7 @@ TEST(Viewer, OpensASetWrittenAsAQuiltOnly) {
 
 TEST(Viewer, StartsOutsideTheSetAreErrors) {
   auto set = test::freshDir("viewer_clamp");
-  ASSERT_EQ(test::runMvr("render --views 4 --size 32x24 --out " + set.string()).status, 0);
+  ASSERT_TRUE(test::succeeded(test::runMvr("render --views 4 --size 32x24 --out " + set.string())));
   for (const char* bad : {"--view 4", "--scanline 24"}) {
     auto r = test::runMvr("view " + set.string() + " " + bad + " --screenshot " + (set / "x.png").string());
     EXPECT_NE(r.status, 0) << bad;

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <string>
 
+#include <gtest/gtest.h>
+
 namespace mvr::test {
 
 struct CliResult {
@@ -28,6 +30,14 @@ inline CliResult shell(const std::string& commandLine) {
   std::stringstream ss;
   ss << std::ifstream(errFile).rdbuf();
   return {WEXITSTATUS(rc), ss.str()};
+}
+
+// A run that exited 0, or a failure that shows the run's exit status and
+// stderr: a sanitizer's report, or the LeakSanitizer tracer's crash at exit
+// that scripts/sanitize looks for in the log to rerun without leak checks.
+inline ::testing::AssertionResult succeeded(const CliResult& r) {
+  if (r.status == 0) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "exit status " << r.status << ", stderr:\n" << r.err;
 }
 
 // The programs under test: MVR_TEST_MVR and MVR_TEST_CONSUME from the
