@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <string_view>
@@ -415,6 +416,12 @@ std::string lowerCase(std::string s) {
 }
 
 std::string lowerExtension(const std::string& path) { return lowerCase(std::filesystem::path(path).extension().string()); }
+
+std::vector<long> PlyCommentLines::all() const {
+  std::vector<long> lines;
+  std::merge(bare.begin(), bare.end(), info.begin(), info.end(), std::back_inserter(lines));
+  return lines;
+}
 
 void checkMeshFile(const std::string& path, PlyCommentLines* comments) {
   const std::string ext = lowerExtension(path);

@@ -35,7 +35,9 @@ void checkSceneGeometry(const Scene& scene, const std::string& where);
 // Blender3D ..." bare; a defect worth a warning) stops it, and the words
 // of an obj_info line (free text) that are header keywords it obeys.
 struct PlyCommentLines {
-  std::vector<long> bare, info;
+  std::vector<long> bare, info;  // each ascending, as the header is read
+  // Both, ascending.
+  std::vector<long> all() const;
 };
 
 // OBJ: every v/vt/vn reference of every face in range of the elements

@@ -14,7 +14,6 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 
-#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -134,9 +133,7 @@ Scene loadMesh(const std::string& path) {
   PlyCommentLines comments;
   checkMeshFile(path, &comments);  // OpenMesh trusts its input; this does not
   const std::vector<long>& bareLines = comments.bare;
-  std::vector<long> commented = bareLines;
-  commented.insert(commented.end(), comments.info.begin(), comments.info.end());
-  std::sort(commented.begin(), commented.end());
+  const std::vector<long> commented = comments.all();
   ReadMesh mesh;
   OpenMesh::IO::Options opt = OpenMesh::IO::Options::VertexNormal |
                               OpenMesh::IO::Options::VertexColor |
