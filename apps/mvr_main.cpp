@@ -11,17 +11,17 @@
 
 #include <nlohmann/json.hpp>
 
-#include "apps/cli.h"
-#include "apps/bench_command.h"
-#include "apps/job_split.h"
-#include "apps/mpi_session.h"
-#include "apps/live_command.h"
-#include "apps/native_command.h"
-#include "apps/render_command.h"
-#include "apps/viewer.h"
+#include "apps/cli/cli.h"
+#include "apps/bench/bench_command.h"
+#include "apps/cli/job_split.h"
+#include "apps/render/mpi_session.h"
+#include "apps/live/live_command.h"
+#include "apps/native/native_command.h"
+#include "apps/render/render_command.h"
+#include "apps/viewer/viewer.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_context.h"
-#include "mvr/io/compare.h"
+#include "mvr/images/compare.h"
 
 namespace mvr::app {
 namespace {
@@ -162,7 +162,7 @@ int reportError(const std::string& message, int code) {
 
 int main(int argc, char** argv) {
   // Under mpirun the image-set commands split the job over the ranks
-  // (apps/job_split.h); nothing else starts MPI.
+  // (apps/cli/job_split.h); nothing else starts MPI.
   std::optional<mvr::app::MpiSession> mpi;
   const bool renders = argc > 1 && (std::string(argv[1]) == "render" || std::string(argv[1]) == "synthesize" ||
                                     std::string(argv[1]) == "stream");

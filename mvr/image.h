@@ -1,5 +1,5 @@
 #pragma once
-// RGBA images, 8-bit or float, rows top first (file IO: mvr/io/image_file.h).
+// RGBA images, 8-bit or float, rows top first (file IO: mvr/images/image_file.h).
 #include <cstdint>
 #include <string>
 #include <vector>

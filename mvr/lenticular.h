@@ -26,7 +26,7 @@
 namespace mvr {
 
 // A lenticular display's calibration, as Looking Glass devices carry it
-// (visual.json; read by mvr/io/panel_calibration.h): the lens pitch and
+// (visual.json; read by mvr/images/panel_calibration.h): the lens pitch and
 // slope, the phase at the panel's origin, the panel's size and density,
 // and the flags for how views run.
 struct PanelCalibration {

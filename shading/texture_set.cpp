@@ -7,7 +7,7 @@
 
 #include "mvr/error.h"
 #include "mvr/image.h"
-#include "mvr/io/image_file.h"
+#include "mvr/images/image_file.h"
 
 namespace mvr::shading {
 namespace {

@@ -1,7 +1,7 @@
 #include "mvr/frames/frame_chain.h"
 
 #include "mvr/frames/png_views.h"
-#include "mvr/io/image_set.h"
+#include "mvr/images/image_set.h"
 
 namespace mvr {
 

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "mvr/error.h"
-#include "mvr/io/atomic_file.h"
+#include "mvr/files/atomic_file.h"
 #include "mvr/parallel.h"
 
 namespace mvr {

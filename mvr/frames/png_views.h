@@ -1,7 +1,7 @@
 #pragma once
 // A row of views written as PNG files straight from its EPIs: view i's
 // file row j is EPI j's row i, so each arriving EPI hands one row to every
-// view's encoder (mvr/io/png_encoder.h), and each file is written as soon
+// view's encoder (mvr/images/png_encoder.h), and each file is written as soon
 // as its last row is in. Where EpisToViews (mvr/frames/volume.h) first fills the
 // whole W x H x N volume (memory, its zero-fill and a copy of every pixel)
 // and encodes after the last EPI, this encodes while the EPIs come and
@@ -31,8 +31,8 @@
 #include <tbb/task_group.h>
 
 #include "mvr/image_pool.h"
-#include "mvr/io/image_set.h"
-#include "mvr/io/png_encoder.h"
+#include "mvr/images/image_set.h"
+#include "mvr/images/png_encoder.h"
 
 namespace mvr {
 

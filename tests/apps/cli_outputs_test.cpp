@@ -12,9 +12,9 @@
 #include <sstream>
 #include <vector>
 #include <nlohmann/json.hpp>
-#include "mvr/io/compare.h"
-#include "mvr/io/image_file.h"
-#include "mvr/io/manifest.h"
+#include "mvr/images/compare.h"
+#include "mvr/images/image_file.h"
+#include "mvr/images/manifest.h"
 #include "tests/support/asset_scene.h"
 #include "tests/support/cli.h"
 #include "tests/support/gl_fixture.h"

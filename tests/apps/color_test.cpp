@@ -9,8 +9,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "mvr/io/image_file.h"
-#include "mvr/io/manifest.h"
+#include "mvr/images/image_file.h"
+#include "mvr/images/manifest.h"
 #include "tests/support/cli.h"
 #include "tests/support/gl_fixture.h"
 

@@ -12,8 +12,8 @@
 #include <regex>
 #include <string>
 
-#include "mvr/io/compare.h"
-#include "mvr/io/image_file.h"
+#include "mvr/images/compare.h"
+#include "mvr/images/image_file.h"
 #include "tests/support/cli.h"
 #include "tests/support/gl_fixture.h"
 

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mvr/io/image_file.h"
+#include "mvr/images/image_file.h"
 #include "tests/support/asset_scene.h"
 #include "tests/support/cli.h"
 #include "tests/support/gl_fixture.h"

@@ -6,8 +6,8 @@
 #include <filesystem>
 
 #include "mvr/image.h"
-#include "mvr/io/compare.h"
-#include "mvr/io/image_file.h"
+#include "mvr/images/compare.h"
+#include "mvr/images/image_file.h"
 #include "tests/support/cli.h"
 #include "tests/support/gl_fixture.h"
 

@@ -6,7 +6,7 @@
 
 #include "mvr/backends/backend.h"
 #include "mvr/frames/supersampling.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/scene_io.h"
 #include "tests/support/render_helpers.h"
 
 namespace mvr {

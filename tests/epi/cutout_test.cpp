@@ -15,8 +15,8 @@
 
 #include "mvr/backends/backend.h"
 #include "mvr/depth.h"
-#include "mvr/io/image_file.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/images/image_file.h"
+#include "mvr/assets/scene_io.h"
 #include "tests/support/meshes.h"
 #include "tests/support/render_helpers.h"
 

@@ -7,7 +7,7 @@
 #include "mvr/frames/epi_stream.h"
 #include "mvr/frames/stream_queue.h"
 #include "mvr/error.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/scene_io.h"
 #include "tests/support/render_helpers.h"
 
 namespace mvr {

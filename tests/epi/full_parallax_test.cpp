@@ -2,7 +2,7 @@
 // per-vertex step; MVR grids agree with SVR grids view by view.
 #include <gtest/gtest.h>
 
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/scene_io.h"
 #include "slicing/extreme_vertices.h"
 #include "tests/support/render_helpers.h"
 

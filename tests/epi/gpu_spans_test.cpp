@@ -15,7 +15,7 @@
 #include "mvr/backends/backend.h"
 #include "mvr/error.h"
 #include "mvr/gl/gl_api.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/scene_io.h"
 #include "tests/support/render_helpers.h"
 
 namespace mvr {

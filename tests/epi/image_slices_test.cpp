@@ -6,11 +6,11 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include "apps/cli.h"
-#include "apps/test_scenes.h"
+#include "apps/cli/cli.h"
+#include "apps/scenes/test_scenes.h"
 #include "mvr/backends/interp/interp_renderer.h"
 #include "mvr/error.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/scene_io.h"
 #include "mvr/views/fragment_lists.h"
 #include "mvr/views/source_layers.h"
 #include "slicing/image_slices.h"

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "mvr/gl/readback_ring.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/scene_io.h"
 #include "tests/support/render_helpers.h"
 
 namespace mvr {

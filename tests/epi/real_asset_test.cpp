@@ -12,7 +12,7 @@
 #include <filesystem>
 
 #include "mvr/backends/backend.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/scene_io.h"
 #include "tests/support/asset_scene.h"
 #include "tests/support/cli.h"
 #include "tests/support/render_helpers.h"

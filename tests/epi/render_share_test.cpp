@@ -3,9 +3,9 @@
 // whole render does: what lets processes of a split job write one set.
 #include <gtest/gtest.h>
 
-#include "apps/job_split.h"
+#include "apps/cli/job_split.h"
 #include "mvr/backends/backend.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/scene_io.h"
 #include "tests/support/render_helpers.h"
 
 namespace mvr {

@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "mvr/backends/backend.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/scene_io.h"
 #include "mvr/scene_pose.h"
 #include "tests/support/render_helpers.h"
 

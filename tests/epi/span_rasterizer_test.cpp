@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "epi/epi_rasterizer.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/scene_io.h"
 #include "mvr/views/source_layers.h"
 #include "shading/lighting.h"
 #include "slicing/extreme_vertices.h"

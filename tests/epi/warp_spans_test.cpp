@@ -8,7 +8,7 @@
 #include "mvr/backends/backend.h"
 #include "mvr/backends/warp/depth_warp.h"
 #include "mvr/backends/warp/warp_spans.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/scene_io.h"
 #include "tests/support/render_helpers.h"
 
 namespace mvr {

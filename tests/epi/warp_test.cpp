@@ -9,11 +9,11 @@
 
 #include <glm/gtc/constants.hpp>
 
-#include "apps/cli.h"
+#include "apps/cli/cli.h"
 #include "mvr/backends/backend.h"
 #include "mvr/backends/warp/depth_warp.h"
 #include "mvr/depth.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/scene_io.h"
 #include "tests/support/render_helpers.h"
 
 namespace mvr {

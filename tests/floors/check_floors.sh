@@ -9,16 +9,20 @@ cd "${1:-$(dirname "$0")/../..}"
 # lists them apart where they must not).
 declare -A floor=(
   [mvr]=0
-  [mvr/gl]=1 [mvr/io]=1
-  [mvr/frames]=2
-  [shading]=3
-  [mvr/views]=4
-  [slicing]=5 [slicing/gpu]=5
-  [epi]=6 [epi/gpu]=6
-  [mvr/backends/mvr]=7 [mvr/backends/interp]=7 [mvr/backends/warp]=7
-  [mvr/backends/svr]=7 [mvr/backends/deferred]=7
-  [mvr/backends]=8
-  [apps]=9
+  [mvr/gl]=1 [mvr/files]=1
+  [mvr/images]=2
+  [mvr/assets]=3 [mvr/frames]=3
+  [shading]=4
+  [mvr/views]=5
+  [slicing]=6 [slicing/gpu]=6
+  [epi]=7 [epi/gpu]=7
+  [mvr/backends/mvr]=8 [mvr/backends/interp]=8 [mvr/backends/warp]=8
+  [mvr/backends/svr]=8 [mvr/backends/deferred]=8
+  [mvr/backends]=9
+  [apps/cli]=10 [apps/scenes]=10
+  [apps/render]=11 [apps/bench]=11 [apps/native]=11 [apps/viewer]=11 [apps/helpers]=11
+  [apps/live]=12
+  [apps]=13
 )
 bad=0
 while IFS= read -r file; do

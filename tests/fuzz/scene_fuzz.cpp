@@ -16,7 +16,7 @@
 #include <string>
 
 #include "mvr/error.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/scene_io.h"
 #include "mvr/scene_pose.h"
 
 namespace {

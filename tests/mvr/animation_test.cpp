@@ -13,8 +13,8 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "mvr/error.h"
-#include "mvr/io/mesh_io.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/mesh_io.h"
+#include "mvr/assets/scene_io.h"
 #include "mvr/scene_animation.h"
 #include "mvr/scene_pose.h"
 #include "tests/support/file_test.h"

@@ -1,5 +1,5 @@
 // FBX, Collada and 3DS through mvr-import in a child process
-// (mvr/io/assimp_import.h): a Collada file the test writes (a node's
+// (mvr/assets/assimp_import.h): a Collada file the test writes (a node's
 // transform, two materials, a texture beside it), and the ways it fails,
 // each one line: assimp's message, a crash, no importer, another format.
 #include <chrono>
@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "mvr/error.h"
-#include "mvr/io/mesh_io.h"
+#include "mvr/assets/mesh_io.h"
 #include "tests/support/file_test.h"
 #include "tests/support/solid_png.h"
 

@@ -8,8 +8,8 @@
 #include <filesystem>
 
 #include "mvr/error.h"
-#include "mvr/io/compare.h"
-#include "mvr/io/image_set.h"
+#include "mvr/images/compare.h"
+#include "mvr/images/image_set.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,4 +1,4 @@
-// Our depth EXR encoder (mvr/io/exr_depth.h) read back through OpenImageIO
+// Our depth EXR encoder (mvr/images/exr_depth.h) read back through OpenImageIO
 // (OpenEXR's own reader): the same floats, bit for bit, as the maps it was
 // given and as OpenImageIO's encoder wrote; the codec the file says; ZIP
 // chunks that shrink where depth is flat and stay raw where noise does not
@@ -11,10 +11,10 @@
 #include <limits>
 
 #include "mvr/error.h"
-#include "mvr/io/atomic_file.h"
-#include "mvr/io/exr_depth.h"
-#include "mvr/io/image_codec.h"
-#include "mvr/io/image_file.h"
+#include "mvr/files/atomic_file.h"
+#include "mvr/images/exr_depth.h"
+#include "mvr/images/image_codec.h"
+#include "mvr/images/image_file.h"
 #include "tests/support/cli.h"
 
 namespace mvr {

@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "mvr/io/mesh_io.h"
+#include "mvr/assets/mesh_io.h"
 #include "mvr/scene_animation.h"
 #include "mvr/scene_pose.h"
 #include "tests/support/animated_gltf.h"

@@ -1,4 +1,4 @@
-// glTF 2.0 files the tests write (mvr/io/gltf_io.h): the node hierarchy
+// glTF 2.0 files the tests write (mvr/assets/gltf_io.h): the node hierarchy
 // and instancing, primitive modes and index types, flat normals where a
 // file has none, materials and their mapping, vertex colours, a texture
 // whose texels come through, and bad files as one-line errors.
@@ -16,9 +16,9 @@
 #include "mvr/error.h"
 #include "mvr/file_camera.h"
 #include "mvr/image.h"
-#include "mvr/io/image_file.h"
-#include "mvr/io/mesh_io.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/images/image_file.h"
+#include "mvr/assets/mesh_io.h"
+#include "mvr/assets/scene_io.h"
 #include "tests/support/file_test.h"
 #include "tests/support/gltf_document.h"
 #include "tests/support/render_helpers.h"

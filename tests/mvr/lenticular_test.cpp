@@ -13,7 +13,7 @@
 
 #include "mvr/error.h"
 #include "mvr/gl/lenticular_pass.h"
-#include "mvr/io/panel_calibration.h"
+#include "mvr/images/panel_calibration.h"
 #include "mvr/lenticular.h"
 #include "tests/support/file_test.h"
 #include "tests/support/gl_fixture.h"

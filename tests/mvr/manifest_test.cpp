@@ -7,7 +7,7 @@
 
 #include "mvr/camera.h"
 #include "mvr/error.h"
-#include "mvr/io/manifest.h"
+#include "mvr/images/manifest.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,5 +1,5 @@
 // OBJ files with their MTL materials, written by the tests
-// (mvr/io/obj_io.h): usemtl groups and the mapping of Kd, Ks, Ns, Ke,
+// (mvr/assets/obj_io.h): usemtl groups and the mapping of Kd, Ks, Ns, Ke,
 // map_Kd and map_Ke; paths written on Windows; statements not read, named once;
 // polygons, texture seams and vertex colours; a textured quad whose
 // colour proves the texture came through, MVR against SVR.
@@ -11,8 +11,8 @@
 #include <gtest/gtest.h>
 
 #include "mvr/error.h"
-#include "mvr/io/mesh_io.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/mesh_io.h"
+#include "mvr/assets/scene_io.h"
 #include "tests/support/file_test.h"
 #include "tests/support/render_helpers.h"
 #include "tests/support/solid_png.h"

@@ -1,4 +1,4 @@
-// Our PNG encoder (mvr/io/png_encoder.h) against OpenImageIO, which wrote
+// Our PNG encoder (mvr/images/png_encoder.h) against OpenImageIO, which wrote
 // every PNG before it and still reads them: the same pixels, the same tags
 // and text, at every level and bit depth, for byte and float images.
 #include <gtest/gtest.h>
@@ -11,10 +11,10 @@
 
 #include "mvr/color.h"
 #include "mvr/error.h"
-#include "mvr/io/adler32.h"
-#include "mvr/io/image_codec.h"
-#include "mvr/io/image_file.h"
-#include "mvr/io/png_encoder.h"
+#include "mvr/images/adler32.h"
+#include "mvr/images/image_codec.h"
+#include "mvr/images/image_file.h"
+#include "mvr/images/png_encoder.h"
 #include "tests/support/cli.h"
 
 namespace mvr {

@@ -1,4 +1,4 @@
-// Points and lines drawn as small solids (mvr/io/point_line_solids.h):
+// Points and lines drawn as small solids (mvr/assets/point_line_solids.h):
 // their shapes, sizes and windings by hand, and the loaders that use them
 // (OBJ `p` and `l`, a bare OBJ or PLY point cloud, glTF's point and line
 // modes).
@@ -8,8 +8,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "mvr/io/mesh_io.h"
-#include "mvr/io/point_line_solids.h"
+#include "mvr/assets/mesh_io.h"
+#include "mvr/assets/point_line_solids.h"
 #include "tests/support/file_test.h"
 #include "tests/support/gltf_document.h"
 

@@ -1,4 +1,4 @@
-// RGB-D sets in (mvr/io/rgbd_set.h): a set mvr render --depth wrote, the
+// RGB-D sets in (mvr/images/rgbd_set.h): a set mvr render --depth wrote, the
 // HCI 4D light-field layout on a small generated fixture, and bad input.
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "mvr/error.h"
-#include "mvr/io/rgbd_set.h"
+#include "mvr/images/rgbd_set.h"
 #include "tests/support/cli.h"
 
 namespace mvr {

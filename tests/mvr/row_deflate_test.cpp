@@ -1,4 +1,4 @@
-// The row coder (mvr/io/row_deflate.h) against zlib's inflate: whatever it
+// The row coder (mvr/images/row_deflate.h) against zlib's inflate: whatever it
 // is fed, the blocks it writes must inflate to the bytes it was given.
 // Each case aims at one part of the format: runs at the longest match,
 // literals with no match, Huffman codes that must be cut to 15 bits,
@@ -10,7 +10,7 @@
 #include <cstring>
 #include <vector>
 
-#include "mvr/io/row_deflate.h"
+#include "mvr/images/row_deflate.h"
 
 namespace mvr {
 namespace {

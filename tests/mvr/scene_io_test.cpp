@@ -5,7 +5,7 @@
 #include <fstream>
 
 #include "mvr/error.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/scene_io.h"
 #include "tests/support/file_test.h"
 #include "tests/support/gl_fixture.h"
 

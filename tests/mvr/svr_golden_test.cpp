@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "mvr/backends/svr/svr_renderer.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/scene_io.h"
 #include "tests/support/capture_sink.h"
 #include "tests/support/gl_fixture.h"
 

@@ -15,11 +15,11 @@
 #include <fstream>
 #include <random>
 
-#include "apps/sky.h"
+#include "apps/scenes/sky.h"
 #include "mvr/color.h"
 #include "mvr/error.h"
-#include "mvr/io/image_file.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/images/image_file.h"
+#include "mvr/assets/scene_io.h"
 #include "shading/environment_set.h"
 #include "shading/shading_plan.h"
 #include "tests/support/render_helpers.h"

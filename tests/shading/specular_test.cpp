@@ -6,7 +6,7 @@
 //  svr-layered  identical to svr.
 #include <gtest/gtest.h>
 
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/scene_io.h"
 #include "shading/shading_plan.h"
 #include "shading/view_dependent.h"
 #include "tests/support/render_helpers.h"

@@ -16,8 +16,8 @@
 #include <fstream>
 
 #include "mvr/error.h"
-#include "mvr/io/image_file.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/images/image_file.h"
+#include "mvr/assets/scene_io.h"
 #include "shading/shading_plan.h"
 #include "shading/texture_set.h"
 #include "shading/texture_vector.h"

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/scene_io.h"
 #include "mvr/views/outline_triangles.h"
 #include "mvr/views/source_layers.h"
 #include "slicing/gpu/gpu_image_slicer.h"

@@ -9,7 +9,7 @@
 
 #include "epi/epi_rasterizer.h"
 #include "mvr/gl/readback_ring.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/scene_io.h"
 #include "shading/lighting.h"
 #include "slicing/extreme_vertices.h"
 #include "slicing/gpu/gpu_slice_table.h"

@@ -9,7 +9,7 @@
 #include <cstring>
 
 #include "mvr/backends/mvr/mvr_renderer.h"
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/scene_io.h"
 #include "shading/lighting.h"
 #include "slicing/extreme_vertices.h"
 #include "slicing/gpu/gpu_slicer.h"

@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "mvr/io/scene_io.h"
+#include "mvr/assets/scene_io.h"
 #include "shading/lighting.h"
 #include "slicing/extreme_vertices.h"
 #include "slicing/gpu/gpu_slicer.h"

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "mvr/image.h"
-#include "mvr/io/image_file.h"
+#include "mvr/images/image_file.h"
 #include "tests/support/gltf_document.h"
 #include "tests/support/solid_png.h"
 

@@ -12,8 +12,8 @@
 #include "mvr/backends/mvr/mvr_renderer.h"
 #include "mvr/backends/svr/svr_renderer.h"
 #include "mvr/frames/volume.h"
-#include "mvr/io/compare.h"
-#include "mvr/io/image_file.h"
+#include "mvr/images/compare.h"
+#include "mvr/images/image_file.h"
 #include "tests/support/capture_sink.h"
 #include "tests/support/gl_fixture.h"
 

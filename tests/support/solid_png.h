@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "mvr/image.h"
-#include "mvr/io/image_file.h"
+#include "mvr/images/image_file.h"
 
 namespace mvr::test {
 
