@@ -36,9 +36,9 @@ TEST(Cli, DepthMapsBesideEveryView) {
   const fs::path mvr = test::freshDir("cli_depth_mvr"), svr = test::freshDir("cli_depth_svr");
   const std::string common = " --views 3 --rows 2 --size 40x30 --depth --out ";
   test::CliResult r = test::runMvr("render --backend mvr --pst cpu" + common + mvr.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   r = test::runMvr("render --backend svr" + common + svr.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   const auto m = nlohmann::json::parse(std::ifstream(mvr / "manifest.json"));
   EXPECT_EQ(m["depth"]["files"], "depth_r%03d_c%04d.exr");
   EXPECT_EQ(m["depth"]["channel"], "Z");
@@ -77,7 +77,7 @@ TEST(Cli, WarpsByGlAndOnTheCpu) {
   for (const auto& [path, dir] : {std::pair{"gl", gl}, std::pair{"cpu", cpu}}) {
     const test::CliResult r = test::runMvr(std::string("render --backend warp --outline-samples 1 --warp-path ") +
                                            path + " --views 5 --size 96x72 --out " + dir.string());
-    ASSERT_EQ(r.status, 0) << r.err;
+    ASSERT_TRUE(test::succeeded(r));
     test::expectSet(dir, 5, "warp");
   }
   for (int view = 0; view < 5; ++view) {
@@ -90,7 +90,7 @@ TEST(Cli, WarpsByGlAndOnTheCpu) {
   // A finer outline the GL grid cannot draw is an error, not ignored.
   const test::CliResult e =
       test::runMvr("render --backend warp --outline-samples 4 --warp-path gl --views 2 --size 16x12 --out " + gl.string());
-  EXPECT_NE(e.status, 0);
+  EXPECT_TRUE(test::failed(e));
   EXPECT_EQ(std::count(e.err.begin(), e.err.end(), '\n'), 1) << e.err;
   EXPECT_NE(e.err.find("--outline-samples"), std::string::npos) << e.err;
 }
@@ -101,11 +101,11 @@ TEST(Cli, WarpsByGlAndOnTheCpu) {
 TEST(Cli, SynthesizesATrackFromRgbdReferences) {
   const fs::path refs = test::freshDir("cli_syn_refs"), out = test::freshDir("cli_syn_out"), svr = test::freshDir("cli_syn_svr");
   test::CliResult r = test::runMvr("render --backend svr --views 3 --size 128x96 --depth --out " + refs.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   r = test::runMvr("synthesize --from " + refs.string() + " --views 9 --quilt auto --out " + out.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   r = test::runMvr("render --backend svr --views 9 --size 128x96 --out " + svr.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   test::expectSet(out, 9, "warp");
   const auto m = nlohmann::json::parse(std::ifstream(out / "manifest.json"));
   EXPECT_EQ(m["references"]["layout"], "mvr");
@@ -138,7 +138,7 @@ TEST(Cli, CameraInDisplayTerms) {
   std::ofstream(scene) << R"({"meshes": [{"file": "quad.obj", "transform": {"translate": [0, 0, 0.5]}}]})";
   test::CliResult r = test::runMvr("render " + scene.string() + " --backend mvr --pst cpu --views 5 --size 48x36 --cone 40 "
                  "--focal center --background 0.25,0.25,0.25 --opaque --quilt auto --out " + d.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   const auto m = nlohmann::json::parse(std::ifstream(d / "manifest.json"));
   EXPECT_NEAR(m["camera"]["cone_deg"].get<double>(), 40.0, 1e-9);
   EXPECT_NEAR(m["camera"]["image_plane_z"].get<double>(), 0.5, 1e-7);
@@ -163,7 +163,7 @@ TEST(Cli, CameraInDisplayTerms) {
   // a 40 degree cone twice as deep is 2 atan(2 tan 20) wide.
   r = test::runMvr("render " + scene.string() + " --views 3 --size 48x36 --cone 40 --fov 90 --depthiness 2 --out " +
           d.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   const auto m2 = nlohmann::json::parse(std::ifstream(d / "manifest.json"));
   const double pi = 3.14159265358979323846;
   EXPECT_NEAR(m2["camera"]["fov_deg"].get<double>(), 90.0, 1e-9);
@@ -172,7 +172,7 @@ TEST(Cli, CameraInDisplayTerms) {
   for (const char* bad : {"--cone 180", "--fov 0", "--focal near", "--depthiness -1", "--background 2,0,0",
                           "--background red"}) {
     test::CliResult e = test::runMvr(std::string("render --views 2 --size 16x12 ") + bad + " --out " + d.string());
-    EXPECT_NE(e.status, 0) << bad;
+    EXPECT_TRUE(test::failed(e)) << bad;
     EXPECT_EQ(std::count(e.err.begin(), e.err.end(), '\n'), 1) << bad << ": " << e.err;
   }
 }
@@ -186,7 +186,7 @@ TEST(Cli, ManifestTakesTheFilesCoordinates) {
   fs::create_directories(mesh.parent_path());
   std::ofstream(mesh) << "v 2 1 0\nv 4 1 0\nv 4 3 1\nv 2 3 1\nf 1 2 3\nf 1 3 4\n";
   test::CliResult r = test::runMvr("render " + mesh.string() + " --views 3 --size 32x24 --focal center --out " + d.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   const auto m = nlohmann::json::parse(std::ifstream(d / "manifest.json"));
   const nlohmann::json& f = m["cameras"]["from_file"];
   const nlohmann::json& v = m["cameras"]["views"][1]["V"];
@@ -205,7 +205,7 @@ TEST(Cli, ManifestTakesTheFilesCoordinates) {
   const fs::path scene_file = mesh.parent_path() / "quad.json";
   std::ofstream(scene_file) << R"({"meshes": [{"file": "quad.obj"}]})";
   r = test::runMvr("render " + scene_file.string() + " --views 3 --size 32x24 --out " + d.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   EXPECT_FALSE(nlohmann::json::parse(std::ifstream(d / "manifest.json"))["cameras"].contains("from_file"));
 }
 
@@ -214,10 +214,10 @@ TEST(Cli, ManifestTakesTheFilesCoordinates) {
 TEST(Cli, RerenderingLeavesNoStaleFiles) {
   const fs::path d = test::freshDir("cli_stale");
   test::CliResult r = test::runMvr("render --backend svr --views 6 --size 32x24 --depth --quilt auto --out " + d.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   std::ofstream(d / "notes.txt") << "the user's own file";
   r = test::runMvr("render --backend svr --views 3 --size 32x24 --out " + d.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   std::vector<std::string> names;
   for (const auto& e : fs::directory_iterator(d)) names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
@@ -234,7 +234,7 @@ TEST(Cli, RerenderingLeavesNoStaleFiles) {
 TEST(Cli, QuiltPresetsMetadataAndStrictGrids) {
   const fs::path d = test::freshDir("cli_quilt_preset");
   test::CliResult r = test::runMvr("render --backend mvr --pst cpu --quilt portrait --size 42x56 --out " + d.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   const auto m = nlohmann::json::parse(std::ifstream(d / "manifest.json"));
   EXPECT_EQ(m["views"], 48);  // 8 x 6
   EXPECT_EQ(m["quilt"], "quilt_qs8x6a0.75.png");
@@ -249,18 +249,18 @@ TEST(Cli, QuiltPresetsMetadataAndStrictGrids) {
   // --quilt-only: the quilt and the manifest, no views (the earlier set's
   // views are gone too).
   r = test::runMvr("render --backend svr --views 6 --size 16x12 --quilt-only --out " + d.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   std::vector<std::string> names;
   for (const auto& e : fs::directory_iterator(d)) names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
   EXPECT_EQ(names, (std::vector<std::string>{"manifest.json", "quilt_qs2x3a1.33.png"}));
   // 10 views in an 8x6 grid (X accepted as x): done, with a warning.
   r = test::runMvr("render --backend svr --views 10 --size 16x12 --quilt 8X6 --out " + d.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   EXPECT_NE(r.err.find("leaves 38 of its tiles empty"), std::string::npos) << r.err;
   for (const char* bad : {"8x6.5", "8x6x3360", "0x6", "-8x6", "8x", "lookingglass"}) {
     test::CliResult e = test::runMvr(std::string("render --views 2 --size 16x12 --quilt ") + bad + " --out " + d.string());
-    EXPECT_NE(e.status, 0) << bad;
+    EXPECT_TRUE(test::failed(e)) << bad;
     EXPECT_NE(e.err.find("--quilt"), std::string::npos) << bad << ": " << e.err;
     EXPECT_EQ(std::count(e.err.begin(), e.err.end(), '\n'), 1) << bad << ": " << e.err;
   }
@@ -272,7 +272,7 @@ TEST(Cli, AntialiasingKeepsTheSizeAndSaysHow) {
   const fs::path d = test::freshDir("cli_aa");
   test::CliResult r = test::runMvr("render --backend mvr --pst cpu --views 4 --size 32x24 --aa 2 --aa-views 2 --quilt auto --out " +
                  d.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   const mvr::Image view = mvr::readImage((d / "view_0002.png").string());
   EXPECT_EQ(view.width, 32);
   EXPECT_EQ(view.height, 24);
@@ -286,7 +286,7 @@ TEST(Cli, AntialiasingKeepsTheSizeAndSaysHow) {
   EXPECT_EQ(m["views"], 4);
   for (const char* bad : {"--aa 0", "--aa 9", "--aa-views 17", "--aa-views 2 --views 1"}) {
     test::CliResult e = test::runMvr(std::string("render --size 16x12 ") + bad + " --out " + d.string());
-    EXPECT_NE(e.status, 0) << bad;
+    EXPECT_TRUE(test::failed(e)) << bad;
     EXPECT_NE(e.err.find("--aa"), std::string::npos) << bad << ": " << e.err;
     EXPECT_EQ(std::count(e.err.begin(), e.err.end(), '\n'), 1) << bad << ": " << e.err;
   }
@@ -300,7 +300,7 @@ TEST(Cli, FromABareMeshToALookingGlassQuiltInOneCommand) {
   const fs::path d = test::freshDir("cli_lkg_one_command");
   test::CliResult r = test::runMvr("render " + test::assetsDir() + "/teacup_4k.ply --quilt portrait --size 42x56 --cone 40 "
                  "--focal center --quilt-only --out " + d.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   const auto m = nlohmann::json::parse(std::ifstream(d / "manifest.json"));
   EXPECT_NEAR(m["camera"]["cone_deg"].get<double>(), 40.0, 1e-9);
   EXPECT_EQ(m["views"], 48);
@@ -312,7 +312,7 @@ TEST(Cli, FromABareMeshToALookingGlassQuiltInOneCommand) {
   if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "no xvfb-run";
   const auto viewed = test::shell("xvfb-run -a " + test::mvrBinary() + " view " + quilt.string() +
                                   " --screenshot " + (d / "shot.png").string());
-  ASSERT_EQ(viewed.status, 0) << viewed.err;
+  ASSERT_TRUE(test::succeeded(viewed));
   const mvr::Image shot = mvr::readImage((d / "shot.png").string());
   EXPECT_EQ(shot.width, 42);
   EXPECT_EQ(shot.height, 56 + 48);
@@ -325,7 +325,7 @@ TEST(Cli, RealAssetsToAQuiltDepthMapsAndAStream) {
   const fs::path d = test::freshDir("cli_real_assets");
   const std::string scene = test::writeAssetScene(d / "scene");
   test::CliResult r = test::runMvr("render " + scene + " --quilt portrait --size 42x56 --depth --out " + (d / "quilt").string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   const auto m = nlohmann::json::parse(std::ifstream(d / "quilt" / "manifest.json"));
   EXPECT_EQ(m["views"], 48);
   EXPECT_EQ(m["notes"]["passes"], "diffuse+texture+view-dependent");
@@ -335,7 +335,7 @@ TEST(Cli, RealAssetsToAQuiltDepthMapsAndAStream) {
   EXPECT_TRUE(fs::exists(d / "quilt" / "depth_0047.exr"));
   const fs::path stream = d / "epis.bin";
   r = test::runMvr("stream " + scene + " --views 8 --size 48x32 --to " + stream.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   EXPECT_GT(fs::file_size(stream), size_t(48) * 8 * 32 * 4);
 }
 

@@ -31,7 +31,7 @@ namespace fs = std::filesystem;
 TEST(Cli, RendersDefaultSceneUnderEgl) {
   fs::path d = test::freshDir("cli_egl");
   test::CliResult r = test::runMvr("render --gl egl --views 4 --size 48x36 --out " + d.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   test::expectSet(d, 4, "mvr");
 }
 
@@ -43,7 +43,7 @@ TEST(Cli, RendersDefaultSceneUnderOsMesa) {
   const char* forced = std::getenv("MVR_TEST_GL");
   if (r.status != 0 && forced && std::string(forced) == "egl" && r.err.find("libOSMesa") != std::string::npos)
     GTEST_SKIP() << r.err;
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   test::expectSet(d, 3, "mvr");
 }
 
@@ -51,7 +51,7 @@ TEST(Cli, EveryBaselineWritesItsSet) {
   for (std::string b : {"svr-layered", "deferred"}) {
     fs::path d = test::freshDir("cli_" + b);
     test::CliResult r = test::runMvr("render --backend " + b + " --views 3 --size 40x30 --out " + d.string());
-    ASSERT_EQ(r.status, 0) << r.err;
+    ASSERT_TRUE(test::succeeded(r));
     test::expectSet(d, 3, b);
   }
 }
@@ -63,7 +63,7 @@ TEST(Cli, CompareReportsIdenticalAndRejectsMismatch) {
   ASSERT_TRUE(test::succeeded(test::runMvr("render --views 2 --size 42x30 --out " + c.string())));
   EXPECT_TRUE(test::succeeded(test::runMvr("compare " + a.string() + " " + b.string())));
   test::CliResult mismatch = test::runMvr("compare " + a.string() + " " + c.string());
-  EXPECT_NE(mismatch.status, 0);
+  EXPECT_TRUE(test::failed(mismatch));
   EXPECT_NE(mismatch.err.find("size mismatch"), std::string::npos) << mismatch.err;
 }
 
@@ -120,7 +120,7 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
                            "synthesize --from " + test::assetsDir() + " --warp-path fast --out " + d.string(),
                            "frobnicate"}) {
     test::CliResult r = test::runMvr(args);
-    EXPECT_NE(r.status, 0) << args;
+    EXPECT_TRUE(test::failed(r)) << args;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
     EXPECT_EQ(r.err.rfind("mvr: ", 0), 0u) << r.err;
     EXPECT_FALSE(fs::exists(d / "manifest.json")) << args;
@@ -155,7 +155,7 @@ TEST(Cli, EncodingsEveryFormatOffers) {
                         Case{"--bits 16", "view_0000.png", 16, ""}}) {
     const fs::path d = test::freshDir("cli_encoding");
     const test::CliResult r = test::runMvr("render --views 2 --size 32x24 " + c.flags + " --out " + d.string());
-    ASSERT_EQ(r.status, 0) << c.flags << ": " << r.err;
+    ASSERT_TRUE(test::succeeded(r)) << c.flags;
     const mvr::ImageEncoding e = mvr::readImageEncoding((d / c.file).string());
     EXPECT_EQ(e.bits, c.bits) << c.flags;
     EXPECT_EQ(e.codec, c.codec) << c.flags;
@@ -168,7 +168,7 @@ TEST(Cli, EncodingsEveryFormatOffers) {
                                   "--format tiff --codec piz"}) {
     const fs::path d = test::freshDir("cli_encoding_bad");
     const test::CliResult r = test::runMvr("render --views 2 --size 32x24 " + flags + " --out " + d.string());
-    EXPECT_NE(r.status, 0) << flags;
+    EXPECT_TRUE(test::failed(r)) << flags;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << flags << ": " << r.err;
     EXPECT_NE(r.err.find(flags.find("codec") != std::string::npos ? "--codec" : "--bits"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(d / "manifest.json")) << flags;
@@ -184,12 +184,12 @@ TEST(Cli, DroppedFacesWarnAndStrictRefuses) {
                         "0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 2\n3 0 1 7\n";
   const std::string args = "render " + ply.string() + " --views 2 --size 32x24 --out " + d.string();
   test::CliResult r = test::runMvr(args);
-  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(test::succeeded(r));
   EXPECT_NE(r.err.find("mvr: warning: " + ply.string() + ": 1 faces dropped"), std::string::npos) << r.err;
   EXPECT_TRUE(fs::exists(d / "manifest.json"));
   fs::remove_all(d);
   r = test::runMvr(args + " --strict");
-  EXPECT_NE(r.status, 0);
+  EXPECT_TRUE(test::failed(r));
   EXPECT_EQ(r.err, "mvr: " + ply.string() +
                        ": 1 faces dropped (a repeated corner or a vertex that does not exist) (--strict)\n");
   EXPECT_FALSE(fs::exists(d / "manifest.json"));
@@ -206,7 +206,7 @@ TEST(Cli, FailedWritesLeaveNoSet) {
                                   "render --views 4 --size 320x240 --format exr --out " + d.string(),
                                   "stream --views 4 --size 320x240 --to " + stream.string()}) {
     const test::CliResult r = test::shell("ulimit -f 16; " + test::mvrBinary() + " " + args + " >/dev/null");
-    EXPECT_NE(r.status, 0) << args;
+    EXPECT_TRUE(test::failed(r)) << args;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
     EXPECT_NE(r.err.find(args.rfind("render", 0) == 0 ? ": cannot write: File too large"
                                                         : "s.bin: cannot write stream: File too large"),
@@ -226,10 +226,10 @@ TEST(Cli, MissingImageModuleIsOneLineError) {
   const fs::path d = test::freshDir("cli_no_codec");
   const std::string noModule = "MVR_IMAGE_CODEC=/nonexistent/libmvr_oiio.so " + test::mvrBinary();
   test::CliResult r = test::shell(noModule + " render --views 2 --size 16x12 --out " + d.string() + " >/dev/null");
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   EXPECT_EQ(mvr::readImage((d / "view_0001.png").string()).width, 16);
   r = test::shell(noModule + " render --views 2 --size 16x12 --format exr --out " + d.string() + " >/dev/null");
-  EXPECT_NE(r.status, 0);
+  EXPECT_TRUE(test::failed(r));
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(r.err.find("mvr: /nonexistent/libmvr_oiio.so: cannot load the image codec module"), std::string::npos)
       << r.err;
@@ -240,9 +240,8 @@ TEST(Cli, RendersUnderGlfwWithAVirtualDisplay) {
   if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) GTEST_SKIP() << "no xvfb-run";
   fs::path d = test::freshDir("cli_glfw");
   const std::string cmd = "xvfb-run -a " + test::mvrBinary() +
-                          " render --gl glfw --views 2 --size 32x24 --out " + d.string() +
-                          " >/dev/null 2>&1";
-  ASSERT_EQ(WEXITSTATUS(std::system(cmd.c_str())), 0);
+                          " render --gl glfw --views 2 --size 32x24 --out " + d.string() + " >/dev/null";
+  ASSERT_TRUE(test::succeeded(test::shell(cmd)));
   test::expectSet(d, 2, "mvr");
   auto m = nlohmann::json::parse(std::ifstream(d / "manifest.json"));
   EXPECT_EQ(m["gl"]["platform"], "glfw");
@@ -251,7 +250,7 @@ TEST(Cli, RendersUnderGlfwWithAVirtualDisplay) {
 TEST(Cli, MvrWritesEpisAndStats) {
   fs::path d = test::freshDir("cli_epis");
   test::CliResult r = test::runMvr("render --backend mvr --pst cpu --order epi --views 5 --size 40x30 --out " + d.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   EXPECT_TRUE(fs::exists(d / "epi_0000.png"));
   EXPECT_TRUE(fs::exists(d / "epi_0029.png"));
   auto m = nlohmann::json::parse(std::ifstream(d / "manifest.json"));
@@ -273,7 +272,7 @@ TEST(Cli, MvrWritesEpisAndStats) {
   EXPECT_EQ(m["cameras"]["views"].size(), 5u);
   // An exr set needs the module, and says how long its load took.
   r = test::runMvr("render --backend mvr --pst cpu --format exr --views 2 --size 16x12 --out " + d.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   m = nlohmann::json::parse(std::ifstream(d / "manifest.json"));
   EXPECT_GT(m["startup_s"]["image_module_load"].get<double>(), 0.0);
 }
@@ -286,7 +285,7 @@ TEST(Cli, TheDefaultAccuracyModeFollowsWhereGlRenders) {
   const fs::path d = test::freshDir("cli_default_pst");
   auto pstOf = [&](const std::string& args) {
     const test::CliResult r = test::runMvr("render " + args + " --views 3 --size 40x30 --out " + d.string());
-    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(test::succeeded(r));
     const auto m = nlohmann::json::parse(std::ifstream(d / "manifest.json"));
     const std::string renderer = m["gl"]["renderer"];
     return std::pair{m["pst"].get<std::string>(), renderer.find("llvmpipe") != std::string::npos};
@@ -311,7 +310,7 @@ TEST(Cli, BenchPlotsAgainFromItsJson) {
   ASSERT_TRUE(test::succeeded(
       test::runMvr("bench --views 1,4 --size 40x30 --backends svr,mvr:quad,interp:center:c1 --json " + json.string())));
   const test::CliResult r = test::runMvr("bench --replot " + json.string() + " --plots " + (d / "plots").string());
-  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(test::succeeded(r));
   for (const char* plot : {"time_per_view_40x30.gp", "backends_40x30.gp", "psnr_vs_time_40x30.gp"})
     EXPECT_TRUE(fs::exists(d / "plots" / plot)) << plot;
   std::ifstream backends(d / "plots" / "backends_40x30.gp");
@@ -323,14 +322,14 @@ TEST(Cli, BenchPlotsAgainFromItsJson) {
                                   "bench --replot /nonexistent/bench.json --plots " + d.string(),
                                   "bench --replot " + json.string()}) {
     const test::CliResult bad = test::runMvr(args);
-    EXPECT_NE(bad.status, 0) << args;
+    EXPECT_TRUE(test::failed(bad)) << args;
     EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << args << ": " << bad.err;
   }
 }
 
 TEST(Cli, HelpForEverySubcommand) {
   for (std::string c : {"info", "render", "stream", "synthesize", "view", "compare", "bench"})
-    EXPECT_EQ(test::runMvr(c + " --help").status, 0) << c;
+    EXPECT_TRUE(test::succeeded(test::runMvr(c + " --help"))) << c;
 }
 
 // Issue 19's small things: a repeated option and an option that swallows
@@ -340,12 +339,12 @@ TEST(Cli, RepeatedOptionsAndTheSummaryLine) {
   const fs::path d = test::freshDir("cli_polish");
   for (const char* bad : {"--views 3 --views 4", "--views --out"}) {
     test::CliResult e = test::runMvr(std::string("render --size 16x12 ") + bad + " " + d.string());
-    EXPECT_NE(e.status, 0) << bad;
+    EXPECT_TRUE(test::failed(e)) << bad;
     EXPECT_EQ(e.err.rfind("mvr: --views", 0), 0u) << bad << ": " << e.err;
     EXPECT_EQ(std::count(e.err.begin(), e.err.end(), '\n'), 1) << bad << ": " << e.err;
   }
   test::CliResult r = test::runMvr("render --backend svr --views 2 --size 16x12 --out " + d.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   EXPECT_EQ(r.err.rfind("mvr: rendered 2 views of 16x12 with svr to ", 0), 0u) << r.err;
   EXPECT_EQ(r.err.find("mvr: mvr"), std::string::npos) << r.err;
 }
@@ -354,12 +353,12 @@ TEST(Cli, RepeatedOptionsAndTheSummaryLine) {
 // named in the order given (CLI11 lists them as it parsed them, backwards).
 TEST(Cli, UnknownCommandsAndUnexpectedArgumentsInTheOrderGiven) {
   test::CliResult c = test::runMvr("lenticular");
-  EXPECT_EQ(c.status, 1);
+  EXPECT_TRUE(test::exitedWith(c, 1));
   EXPECT_EQ(c.err, "mvr: unknown command 'lenticular' (expected info, render, stream, synthesize, view, native, live, "
                    "compare or bench)\n");
   const fs::path d = test::freshDir("cli_extras");
   test::CliResult e = test::runMvr("render " + test::assetsDir() + "/cube.obj extra --bogus --out " + d.string());
-  EXPECT_EQ(e.status, 1);
+  EXPECT_TRUE(test::exitedWith(e, 1));
   EXPECT_EQ(e.err, "mvr: unexpected arguments extra --bogus (see mvr render --help)\n");
   EXPECT_FALSE(fs::exists(d));
   test::CliResult one = test::runMvr("info --frames");
@@ -373,7 +372,7 @@ TEST(Cli, ReferenceDocsMatchTheHelp) {
   const fs::path generated = fs::temp_directory_path() / ("mvr_cli_doc_" + std::to_string(getpid()) + ".md");
   const std::string cmd = "MVR=" + test::mvrBinary() + " MVR_CONSUME=" + test::consumeBinary() + " bash " +
                           (source / "scripts/cli-doc").string() + " --stdout >" + generated.string();
-  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  ASSERT_TRUE(test::succeeded(test::shell(cmd)));
   std::stringstream expected, actual;
   expected << std::ifstream(source / "docs/CLI.md").rdbuf();
   actual << std::ifstream(generated).rdbuf();
@@ -384,7 +383,7 @@ TEST(Cli, ReferenceDocsMatchTheHelp) {
 
 TEST(Cli, VersionPrintsTheProjectVersion) {
   const std::string cmd = test::mvrBinary() + " --version | grep -qx 'mvr [0-9]*\\.[0-9]*\\.[0-9]*'";
-  EXPECT_EQ(std::system(cmd.c_str()), 0);
+  EXPECT_TRUE(test::succeeded(test::shell(cmd)));
 }
 
 }  // namespace

@@ -66,7 +66,7 @@ TEST(ColorEncoding, EveryBackEndWritesSrgbUnlessLinear) {
       const std::string args = "render " + scene.string() + " --backend " + backend +
                                " --views 3 --size 40x30" + (linear ? " --linear" : "");
       const auto r = test::runMvr(args + " --out " + out.string());
-      ASSERT_EQ(r.status, 0) << args << ": " << r.err;
+      ASSERT_TRUE(test::succeeded(r)) << args;
       expectCentres(out, !linear, args);
     }
   }
@@ -80,7 +80,7 @@ TEST(ColorEncoding, AccumulatedPassesAndFloatFilesAreEncodedToo) {
     fs::remove_all(out);
     const std::string args = "render " + planeScene(true).string() + " " + flags + " --views 3 --size 40x30";
     const auto r = test::runMvr(args + " --out " + out.string());
-    ASSERT_EQ(r.status, 0) << args << ": " << r.err;
+    ASSERT_TRUE(test::succeeded(r)) << args;
     expectCentres(out, true, args);
   }
 }
@@ -107,7 +107,7 @@ TEST(ColorEncoding, TexturesAreDecodedFromSrgb) {
       const std::string args = "render " + (dir / "plane.json").string() + " --backend " + backend +
                                " --views 3 --size 40x30" + (linear ? " --linear" : "");
       const auto r = test::runMvr(args + " --out " + out.string());
-      ASSERT_EQ(r.status, 0) << args << ": " << r.err;
+      ASSERT_TRUE(test::succeeded(r)) << args;
       const Image img = readImage((out / "view_0001.png").string());
       EXPECT_NEAR(img.pixel(20, 15).g * 255.0f, linear ? 55.0f : 128.0f, 1.0f) << args;
     }

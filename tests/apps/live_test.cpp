@@ -40,13 +40,11 @@ TEST(Live, HeadlessFrameIsTheNativeImageOfTheRenderedQuilt) {
   const test::CliResult r = test::shell("env -u DISPLAY " + test::mvrBinary() + " live " + kScene +
                                         " --display 2x2 --size 48x32 --calibration " + calibration.string() +
                                         " --frames 3 --screenshot " + shot + " 1>&2");  // the rate line too
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   EXPECT_TRUE(std::regex_search(r.err, std::regex("mvr: live: 3 frames, [0-9.]+ fps \\(median [0-9.]+ ms, p99 [0-9.]+ ms\\)")))
       << r.err;
-  ASSERT_EQ(test::runMvr("render " + kScene + " --views 4 --size 48x32 --quilt 2x2 --quilt-only --native " +
-                         calibration.string() + " --out " + (dir / "set").string())
-                .status,
-            0);
+  ASSERT_TRUE(test::succeeded(test::runMvr("render " + kScene + " --views 4 --size 48x32 --quilt 2x2 --quilt-only --native " +
+                         calibration.string() + " --out " + (dir / "set").string())));
   const Image shown = readImage(shot), native = readImage((dir / "set" / "native_96x64.png").string());
   EXPECT_EQ(shown.width, 96);
   EXPECT_EQ(shown.bytes, native.bytes);
@@ -57,13 +55,11 @@ TEST(Live, HeadlessFrameIsTheNativeImageOfTheRenderedQuilt) {
 TEST(Live, QuiltFileIsShownAsItIs) {
   const fs::path dir = test::freshDir("live_quilt");
   fs::create_directories(dir);
-  ASSERT_EQ(test::runMvr("render " + kScene + " --views 4 --size 48x32 --quilt 2x2 --quilt-only --out " +
-                         (dir / "set").string())
-                .status,
-            0);
+  ASSERT_TRUE(test::succeeded(test::runMvr("render " + kScene + " --views 4 --size 48x32 --quilt 2x2 --quilt-only --out " +
+                         (dir / "set").string())));
   const std::string quilt = (dir / "set" / "quilt_qs2x2a1.50.png").string(), shot = (dir / "shot.png").string();
   const test::CliResult r = test::shell("env -u DISPLAY " + test::mvrBinary() + " live " + quilt + " --frames 1 --screenshot " + shot);
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   Image q = readImage(quilt);
   const Image shown = readImage(shot);
   ASSERT_EQ(shown.width, q.width);
@@ -83,11 +79,9 @@ TEST(Live, WindowShowsTheTurningScene) {
   const test::CliResult r = test::shell("xvfb-run -a " + test::mvrBinary() + " live " + kScene +
                                         " --display 2x2 --size 48x32 --calibration " + calibration.string() +
                                         " --turntable 90 --frames 4 --screenshot " + shot);
-  ASSERT_EQ(r.status, 0) << r.err;
-  ASSERT_EQ(test::runMvr("render " + kScene + " --views 4 --size 48x32 --quilt 2x2 --quilt-only --frames 10 " +
-                         "--turntable 90 --native " + calibration.string() + " --out " + (dir / "seq").string())
-                .status,
-            0);
+  ASSERT_TRUE(test::succeeded(r));
+  ASSERT_TRUE(test::succeeded(test::runMvr("render " + kScene + " --views 4 --size 48x32 --quilt 2x2 --quilt-only --frames 10 " +
+                         "--turntable 90 --native " + calibration.string() + " --out " + (dir / "seq").string())));
   const Image shown = readImage(shot);
   const ImageDifference turned = compareImages(readImage((dir / "seq" / "frame_0001" / "native_96x64.png").string()), shown);
   const ImageDifference still = compareImages(readImage((dir / "seq" / "frame_0000" / "native_96x64.png").string()), shown);
@@ -118,7 +112,7 @@ TEST(Live, GpuPathShowsWhatTheCpuPathShows) {
           test::shell("env -u DISPLAY " + test::mvrBinary() + " live " + kScene + " " + c.backend +
                       " --display 2x2 --size 48x32 --calibration " + calibration.string() + " --turntable 90 " +
                       "--frames 3 --path " + (gpu ? "gpu" : "cpu") + " --screenshot " + shots[gpu]);
-      ASSERT_EQ(r.status, 0) << c.backend << ": " << r.err;
+      ASSERT_TRUE(test::succeeded(r)) << c.backend;
       EXPECT_NE(r.err.find(gpu ? c.said : "its own thread"), std::string::npos) << c.backend << ": " << r.err;
     }
     EXPECT_EQ(readImage(shots[1]).bytes, readImage(shots[0]).bytes) << c.backend;
@@ -138,7 +132,7 @@ TEST(Live, BadInputsAreOneLineErrors) {
                         Case{kScene + " --path fast --frames 1", "--path: fast not in {auto,gpu,cpu}"},
                         Case{kScene + " --display 2x2 --size 48x32", "glfw: cannot initialise: no display"}}) {
     const test::CliResult r = test::shell("env -u DISPLAY " + test::mvrBinary() + " live " + c.args);
-    EXPECT_EQ(r.status, 1) << c.args;
+    EXPECT_TRUE(test::exitedWith(r, 1)) << c.args;
     EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }

@@ -57,7 +57,7 @@ TEST(MemoryBudget, MvrViewsThroughScratchAreByteIdentical) {
       const std::string job = "render --backend mvr --pst cpu --bits " + bits + " --rows " + rows + kJob;
       ASSERT_TRUE(test::succeeded(test::runMvr(job + " --out " + memory.string())));
       const auto r = test::runMvr(job + " --memory " + (bits == "8" ? "48K" : "190K") + " --out " + scratch.string());
-      ASSERT_EQ(r.status, 0) << r.err;
+      ASSERT_TRUE(test::succeeded(r));
       expectSameFiles(memory, scratch);
       EXPECT_EQ(reorderOf(scratch)["scratch_file"], true);
       EXPECT_EQ(reorderOf(scratch)["frames_per_pass"], 3);
@@ -72,7 +72,7 @@ TEST(MemoryBudget, SvrEpisThroughScratchAreByteIdentical) {
   const std::string job = "render --backend svr --order epi --bits 16" + kJob;
   ASSERT_TRUE(test::succeeded(test::runMvr(job + " --out " + memory.string())));
   const auto r = test::runMvr(job + " --memory 100K --out " + scratch.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   expectSameFiles(memory, scratch);
   EXPECT_EQ(reorderOf(scratch)["scratch_file"], true);
 }
@@ -84,7 +84,7 @@ TEST(MemoryBudget, StreamAndConsumerThroughScratchAreByteIdentical) {
   ASSERT_TRUE(test::succeeded(test::runMvr(job + " --to " + (dir / "memory.epis").string())));
   auto r = test::runMvr(job + " --memory 48K --scratch " + dir.string() + " --to " +
                         (dir / "scratch.epis").string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   // 48x12 EPIs; the queue holds 8 and their copies (36,864 bytes): 5 per pass.
   EXPECT_NE(r.err.find("reordered through a scratch file, 5 frames per pass"), std::string::npos) << r.err;
   EXPECT_TRUE(bytesOf(dir / "memory.epis") == bytesOf(dir / "scratch.epis"));
@@ -93,7 +93,7 @@ TEST(MemoryBudget, StreamAndConsumerThroughScratchAreByteIdentical) {
     const fs::path out = dir / (budget.empty() ? "views_memory" : "views_scratch");
     r = test::shell(test::consumeBinary() + " --threads 1 --from " + (dir / "memory.epis").string() +
                     budget + " --out " + out.string());
-    ASSERT_EQ(r.status, 0) << r.err;
+    ASSERT_TRUE(test::succeeded(r));
     EXPECT_EQ(r.err.find("through a scratch file, 3 frames per pass") != std::string::npos, !budget.empty())
         << r.err;
     // Within the budget the rows go straight into the views' encoders.

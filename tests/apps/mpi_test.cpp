@@ -63,7 +63,7 @@ TEST_P(MpiRender, OneTwoAndThreeRanksWriteTheSingleProcessSet) {
     const fs::path dir = test::freshDir(std::string("mpi_") + std::to_string(ranks) + GetParam().name);
     const test::CliResult r =
         test::shell(mpirun(ranks) + test::mvrBinary() + " render " + args + " --out " + dir.string() + " >/dev/null");
-    ASSERT_EQ(r.status, 0) << r.err;
+    ASSERT_TRUE(test::succeeded(r));
     const auto got = imagesIn(dir);
     ASSERT_EQ(got.size(), expected.size()) << ranks << " ranks";
     for (const auto& [name, bytes] : expected) EXPECT_TRUE(got.at(name) == bytes) << name << ", " << ranks << " ranks";
@@ -126,7 +126,7 @@ TEST_P(MpiStream, RanksWriteTheSingleProcessStream) {
     const fs::path file = dir / ("ranks" + std::to_string(ranks) + ".epi");
     const test::CliResult r =
         test::shell(mpirun(ranks) + test::mvrBinary() + " render " + args + " --stream " + file.string());
-    ASSERT_EQ(r.status, 0) << r.err;
+    ASSERT_TRUE(test::succeeded(r));
     EXPECT_TRUE(contentsOf(file) == expected) << ranks << " ranks";
     EXPECT_FALSE(fs::exists(file.string() + ".part"));
   }
@@ -134,7 +134,7 @@ TEST_P(MpiStream, RanksWriteTheSingleProcessStream) {
   const fs::path piped = dir / "piped.epi";
   const test::CliResult r = test::shell("cd " + dir.string() + " && " + mpirun(2) + test::mvrBinary() + " render " +
                                         args + " --stream - > " + piped.string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   EXPECT_TRUE(contentsOf(piped) == expected);
   EXPECT_FALSE(fs::exists(dir / ".mvr_split_stream"));  // the relay's scratch file is gone
   fs::remove_all(dir);
@@ -174,7 +174,7 @@ TEST(MpiSequence, RanksShareTheFramesOfTheSingleProcessSequence) {
   for (int ranks : {2, 3}) {
     const fs::path dir = test::freshDir("mpi_seq_" + std::to_string(ranks));
     const test::CliResult r = test::shell(mpirun(ranks) + test::mvrBinary() + " " + args + dir.string() + " >/dev/null");
-    ASSERT_EQ(r.status, 0) << r.err;
+    ASSERT_TRUE(test::succeeded(r));
     sameAsSingle(dir, std::to_string(ranks) + " ranks");
     if (ranks == 2) {
       // Frames 1 and 4 lost (rank 1's and rank 0's): --resume renders those two.
@@ -182,7 +182,7 @@ TEST(MpiSequence, RanksShareTheFramesOfTheSingleProcessSequence) {
       const auto kept = fs::last_write_time(dir / "frame_0002" / "manifest.json");
       const test::CliResult resumed =
           test::shell(mpirun(2) + test::mvrBinary() + " " + args + dir.string() + " --resume >/dev/null");
-      ASSERT_EQ(resumed.status, 0) << resumed.err;
+      ASSERT_TRUE(test::succeeded(resumed));
       EXPECT_NE(resumed.err.find("rendered 2 of 5 frames"), std::string::npos) << resumed.err;
       EXPECT_EQ(fs::last_write_time(dir / "frame_0002" / "manifest.json"), kept);
       sameAsSingle(dir, "resumed under 2 ranks");
@@ -196,7 +196,7 @@ TEST(MpiSequence, AStreamedSequenceUnderRanksIsOneLineError) {
   if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
   const test::CliResult r = test::shell(mpirun(2) + test::mvrBinary() +
                                         " render --frames 3 --turntable 30 --views 4 --size 32x24 --stream /dev/null");
-  EXPECT_NE(r.status, 0);
+  EXPECT_TRUE(test::failed(r));
   EXPECT_NE(r.err.find("not split across ranks"), std::string::npos) << r.err;
 }
 
@@ -205,7 +205,7 @@ TEST(MpiRenderErrors, ABadSceneFailsTheJobWithOneLine) {
   const fs::path dir = test::freshDir("mpi_bad");
   const test::CliResult r = test::shell(mpirun(2) + test::mvrBinary() + " render /no/such/scene.ply --out " +
                                         dir.string());
-  EXPECT_NE(r.status, 0);
+  EXPECT_TRUE(test::failed(r));
   size_t lines = 0;
   for (size_t at = 0; (at = r.err.find("mvr: ", at)) != std::string::npos; ++at) ++lines;
   EXPECT_EQ(lines, 1u) << r.err;
@@ -217,7 +217,7 @@ TEST(MpiRenderErrors, AStreamFileThatCannotBeCreatedFailsWithOneLine) {
   if (!haveMpirun()) GTEST_SKIP() << "mpirun not installed";
   const test::CliResult r =
       test::shell(mpirun(2) + test::mvrBinary() + " render --views 4 --size 32x24 --stream /no/such/dir/x.epi");
-  EXPECT_NE(r.status, 0);
+  EXPECT_TRUE(test::failed(r));
   EXPECT_NE(r.err.find("mvr: /no/such/dir/x.epi: cannot create the stream file"), std::string::npos) << r.err;
   size_t lines = 0;
   for (size_t at = 0; (at = r.err.find("mvr: ", at)) != std::string::npos; ++at) ++lines;
@@ -237,7 +237,7 @@ TEST(MpiRenderErrors, ARankThatDiesLeavesNoCompleteSet) {
       "grep -qx OMPI_COMM_WORLD_RANK=1 && kill -9 $p; done";
   const test::CliResult r = test::shell(mpirun(2) + test::mvrBinary() + " render --backend svr --views 3000 --size 160x120 --out " +
                                         dir.string() + " >/dev/null & " + killRankOne + "; wait $!");
-  EXPECT_NE(r.status, 0) << "the job finished before rank 1 was killed";
+  EXPECT_TRUE(test::failed(r)) << "the job finished before rank 1 was killed";
   EXPECT_FALSE(fs::exists(dir / "manifest.json"));
   fs::remove_all(dir);
 }

@@ -48,7 +48,7 @@ TEST(Native, GlAndCpuMappingsWriteTheSameImage) {
   for (const char* mapping : {"gl", "cpu"}) {
     const test::CliResult r = test::runMvr("native " + quilt + " --calibration " + calibration.string() + " --mapping " +
                                            mapping + " --out " + (dir / (std::string(mapping) + ".png")).string());
-    ASSERT_EQ(r.status, 0) << r.err;
+    ASSERT_TRUE(test::succeeded(r));
   }
   const Image gl = readImage((dir / "gl.png").string()), cpu = readImage((dir / "cpu.png").string());
   EXPECT_EQ(gl.width, 96);
@@ -69,14 +69,14 @@ TEST(Native, SequenceWritesEachFramesNativeImageAndVideo) {
   const std::string frames = " --frames 3 --turntable 60";
   test::CliResult r = test::runMvr("render" + kShape + frames + " --video --native " + calibration.string() +
                                    " --out " + (dir / "with").string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   ASSERT_TRUE(test::succeeded(test::runMvr("render" + kShape + frames + " --out " + (dir / "without").string())));
   for (int k = 0; k < 3; ++k) {
     const fs::path frame = dir / "with" / ("frame_000" + std::to_string(k));
     ASSERT_TRUE(fs::exists(frame / "native_96x64.png")) << frame;
     r = test::runMvr("native " + (frame / "quilt_qs2x2a1.50.png").string() + " --calibration " + calibration.string() +
                      " --out " + (dir / "check.png").string());
-    ASSERT_EQ(r.status, 0) << r.err;
+    ASSERT_TRUE(test::succeeded(r));
     EXPECT_EQ(readImage((frame / "native_96x64.png").string()).bytes, readImage((dir / "check.png").string()).bytes);
     for (int v = 0; v < 4; ++v) {
       const std::string view = "view_000" + std::to_string(v) + ".png";
@@ -110,7 +110,7 @@ TEST(Native, BadInputsAreOneLineErrors) {
                                  " --out " + (dir / "noquilt").string(),
                              "--native: maps the quilt: give --quilt"}}) {
     const test::CliResult r = test::runMvr(c.args);
-    EXPECT_EQ(r.status, 1) << c.args;
+    EXPECT_TRUE(test::exitedWith(r, 1)) << c.args;
     EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }

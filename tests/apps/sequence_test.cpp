@@ -73,9 +73,9 @@ TEST(Sequence, TurntableFramesAreStillRendersOfTheTurnedScene) {
   const fs::path scene = writeScene(dir, 0);
   const test::CliResult seq =
       test::runMvr("render " + scene.string() + kShape + kFocal + " --frames 3 --turntable 90 --out " + (dir / "seq").string());
-  ASSERT_EQ(seq.status, 0) << seq.err;
+  ASSERT_TRUE(test::succeeded(seq));
   const test::CliResult still = test::runMvr("render " + scene.string() + kShape + kFocal + " --out " + (dir / "still").string());
-  ASSERT_EQ(still.status, 0) << still.err;
+  ASSERT_TRUE(test::succeeded(still));
   for (int v = 0; v < 4; ++v) {
     const std::string view = "view_000" + std::to_string(v) + ".png";
     EXPECT_EQ(bytesOf(dir / "seq" / "frame_0000" / view), bytesOf(dir / "still" / view)) << view;
@@ -102,7 +102,7 @@ TEST(Sequence, VideoHoldsEveryQuilt) {
   const fs::path scene = writeScene(dir, 0);
   const test::CliResult r = test::runMvr("render " + scene.string() + kShape +
                                          " --frames 5 --turntable 90 --quilt 2x2 --video --out " + (dir / "seq").string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   const fs::path mp4 = dir / "seq" / "quilt_qs2x2a1.33.mp4";
   ASSERT_TRUE(fs::exists(mp4));
   EXPECT_FALSE(fs::exists(dir / "seq" / "quilt_qs2x2a1.33.mp4.part"));
@@ -133,7 +133,7 @@ TEST(Sequence, ResumeKeepsTheCompleteFrames) {
   fs::rename(dir / "seq" / "frame_0002", dir / "seq" / ".frame_0002.partial");
   const fs::file_time_type kept = fs::last_write_time(dir / "seq" / "frame_0000" / "view_0000.png");
   const test::CliResult again = test::shell(test::mvrBinary() + " " + args + " --resume >/dev/null");
-  ASSERT_EQ(again.status, 0) << again.err;
+  ASSERT_TRUE(test::succeeded(again));
   EXPECT_NE(again.err.find("rendered 2 of 3 frames"), std::string::npos) << again.err;
   EXPECT_EQ(fs::last_write_time(dir / "seq" / "frame_0000" / "view_0000.png"), kept);
   EXPECT_EQ(bytesOf(dir / "seq" / "frame_0001" / "view_0002.png"), frame1);
@@ -157,11 +157,10 @@ void expectFramesArePosedStills(const fs::path& dir, GltfWriter write, const std
   const std::string clipFlag = clip.empty() ? "" : " --clip " + clip;
   const test::CliResult r = test::runMvr("render " + (dir / "anim.json").string() + kShape + flags + " --fps 2" + clipFlag +
                                          " --out " + (dir / "seq").string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   EXPECT_TRUE(fs::exists(dir / "seq" / "frame_0003" / "manifest.json"));
   EXPECT_FALSE(fs::exists(dir / "seq" / "frame_0004"));
-  ASSERT_EQ(test::runMvr("render " + (dir / "posed.json").string() + kShape + flags + " --out " + (dir / "posed").string()).status,
-            0);
+  ASSERT_TRUE(test::succeeded(test::runMvr("render " + (dir / "posed.json").string() + kShape + flags + " --out " + (dir / "posed").string())));
   // Frame 0 is the rest pose: the animation shows.
   expectViewsLike(dir / "seq" / "frame_0003", dir / "posed", dir / "posed", dir / "seq" / "frame_0000");
 }
@@ -171,7 +170,7 @@ TEST(Sequence, AnimationFramesAreStillRendersOfThePosedFile) {
   expectFramesArePosedStills(dir, test::writeAnimatedGltf, "Walk");
   const test::CliResult missing =
       test::runMvr("render " + (dir / "anim.json").string() + kShape + " --clip Run --out " + (dir / "run").string());
-  EXPECT_EQ(missing.status, 1);
+  EXPECT_TRUE(test::exitedWith(missing, 1));
   EXPECT_NE(missing.err.find("--clip: the scene has no animation clip named 'Run'"), std::string::npos) << missing.err;
   EXPECT_FALSE(fs::exists(dir / "run"));
 }
@@ -196,7 +195,7 @@ TEST(Sequence, ABareClipIsFramedOnEveryPose) {
   test::writeAnimatedGltf(dir / "walk.gltf", true);
   const test::CliResult r =
       test::runMvr("render " + (dir / "walk.gltf").string() + kShape + " --fps 2 --out " + (dir / "seq").string());
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   for (int k = 0; k < 4; ++k)
     for (int v = 0; v < 4; ++v) {
       const Image view = readImage(viewFile(dir / "seq" / ("frame_000" + std::to_string(k)), v));
@@ -231,7 +230,7 @@ TEST(Sequence, BadValuesAreOneLineErrors) {
                         Case{"--quilt 2x2 --video", "--video: needs a sequence"},
                         Case{"--frames 2 --quilt 2x2 --video --crf 60", "--crf: must be 0 to 51"}}) {
     const test::CliResult r = test::runMvr("render " + scene.string() + kShape + " " + c.args + " --out " + out.string());
-    EXPECT_EQ(r.status, 1) << c.args;
+    EXPECT_TRUE(test::exitedWith(r, 1)) << c.args;
     EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.args << ": " << r.err;
     EXPECT_FALSE(fs::exists(out)) << c.args;

@@ -31,7 +31,7 @@ TEST(Stream, PipeProducerToConsumer) {
   auto ref = test::freshDir("stream_ref"), got = test::freshDir("stream_pipe");
   ASSERT_TRUE(test::succeeded(test::runMvr("render" + kArgs + " --out " + ref.string())));
   auto r = streamToConsumer(kArgs + " --queue 2", got);
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   expectSameSet(ref, got);
 }
 
@@ -42,7 +42,7 @@ TEST(Stream, ConsumerManifestHasTheRenderCameras) {
   const std::string args = kArgs + " --cone 30 --focal center";
   ASSERT_TRUE(test::succeeded(test::runMvr("render" + args + " --out " + ref.string())));
   auto r = streamToConsumer(args, got);
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   const auto a = nlohmann::json::parse(std::ifstream(ref / "manifest.json"));
   const auto b = nlohmann::json::parse(std::ifstream(got / "manifest.json"));
   ASSERT_TRUE(b.contains("cameras")) << b.dump();
@@ -61,7 +61,7 @@ TEST(Stream, SequenceFramesEqualTheRenderedSequence) {
   const std::string args = kArgs + " --frames 3 --fps 4 --turntable 60";
   ASSERT_TRUE(test::succeeded(test::runMvr("render" + args + " --out " + ref.string())));
   auto r = streamToConsumer(args, got);
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   for (const char* frame : {"frame_0000", "frame_0001", "frame_0002"}) expectSameSet(ref / frame, got / frame);
   EXPECT_FALSE(std::filesystem::exists(got / "frame_0003"));
   const auto m = nlohmann::json::parse(std::ifstream(got / "frame_0002" / "manifest.json"));
@@ -72,7 +72,7 @@ TEST(Stream, SequenceFramesEqualTheRenderedSequence) {
                 .identicalFraction,
             0.9);
   const auto resume = test::runMvr("render" + args + " --resume --stream " + (got / "x.epi").string());
-  EXPECT_EQ(resume.status, 1);
+  EXPECT_TRUE(test::exitedWith(resume, 1));
   EXPECT_NE(resume.err.find("--resume: keeps complete frame folders: not with a stream"), std::string::npos) << resume.err;
   EXPECT_FALSE(std::filesystem::exists(got / "x.epi"));
 }
@@ -86,7 +86,7 @@ TEST(Stream, UnixSocketProducerToListeningConsumer) {
   auto r = test::shell(test::consumeBinary() + " --from unix:" + sock + " --out " + got.string() +
                        " & for i in $(seq 50); do [ -S " + sock + " ] && break; sleep 0.1; done; " +
                        test::mvrBinary() + " stream" + kArgs + " --to unix:" + sock + " && wait");
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   expectSameSet(ref, got);
 }
 
@@ -100,7 +100,7 @@ TEST(Stream, NamedPipeIsWrittenInPlace) {
   ASSERT_TRUE(test::succeeded(test::runMvr("render" + kArgs + " --out " + ref.string())));
   auto r = test::shell("timeout 60 " + test::consumeBinary() + " --from " + fifo + " --out " + got.string() + " & " +
                        test::mvrBinary() + " stream" + kArgs + " --to " + fifo + " && wait $!");
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   expectSameSet(ref, got);
   EXPECT_TRUE(std::filesystem::is_fifo(fifo));
   EXPECT_FALSE(std::filesystem::exists(fifo + ".part"));
@@ -116,7 +116,7 @@ TEST(Stream, FileStreamAndTruncationIsReported) {
   EXPECT_EQ(size, 144u + 40u * (8u + 56u * 6u * 4u));  // the header with the camera
   std::filesystem::resize_file(path, size - 100);
   auto r = test::shell(test::consumeBinary() + " --from " + path + " --out " + (file / "out").string());
-  EXPECT_NE(r.status, 0);
+  EXPECT_TRUE(test::failed(r));
   EXPECT_NE(r.err.find("truncated"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(file / "out" / "manifest.json"));
 }
@@ -125,7 +125,7 @@ TEST(Stream, ConsumerGoneIsAnErrorNotAHang) {
   // pipefail: the pipeline's status is the producer's, not head's.
   auto r = test::shell("bash -o pipefail -c '" + test::mvrBinary() +
                        " stream --views 64 --size 256x200 --to - | head -c 100 >/dev/null'");
-  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_TRUE(test::exitedWith(r, 1)) << r.err;
   EXPECT_EQ(r.err, "mvr: -: cannot write stream: Broken pipe\n");
 }
 

@@ -34,7 +34,7 @@ TEST(Viewer, ScreenshotShowsTheViewAndItsEpi) {
   const std::string shot = (set / "shot.png").string();
   auto r = test::shell("xvfb-run -a " + test::mvrBinary() + " view " + set.string() +
                        " --view 3 --scanline 30 --screenshot " + shot);
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   Image s = readImage(shot);
   ASSERT_EQ(s.width, 64);
   ASSERT_EQ(s.height, 48 + 7);
@@ -55,16 +55,14 @@ TEST(Viewer, RendersASceneWithTheCameraOptionsAsRenderDoes) {
   if (!haveXvfb()) GTEST_SKIP() << "no xvfb-run";
   auto dir = test::freshDir("viewer_camera");
   const std::string scene = test::assetsDir() + "/default.json", camera = " --cone 30 --focal center --depthiness 1.5";
-  ASSERT_EQ(test::runMvr("render " + scene + " --views 5 --size 64x48" + camera + " --out " + (dir / "set").string())
-                .status,
-            0);
+  ASSERT_TRUE(test::succeeded(test::runMvr("render " + scene + " --views 5 --size 64x48" + camera + " --out " + (dir / "set").string())));
   Image shots[2];
   for (int k = 0; k < 2; ++k) {
     const std::string shot = (dir / ("shot" + std::to_string(k) + ".png")).string();
     auto r = test::shell("xvfb-run -a " + test::mvrBinary() + " view " + scene +
                          " --views 5 --size 64x48 --view 2 --scanline 20 --screenshot " + shot +
                          (k == 0 ? camera : ""));
-    ASSERT_EQ(r.status, 0) << r.err;
+    ASSERT_TRUE(test::succeeded(r));
     shots[k] = readImage(shot);
   }
   const Image view = overBlack(readImage((dir / "set" / "view_0002.png").string()));
@@ -72,7 +70,7 @@ TEST(Viewer, RendersASceneWithTheCameraOptionsAsRenderDoes) {
   for (int y = 0; y < 48; ++y) ASSERT_EQ(0, std::memcmp(shots[0].row(y), view.row(y), view.rowBytes())) << y;
   EXPECT_NE(shots[1].bytes, shots[0].bytes);
   auto r = test::shell("env -u DISPLAY " + test::mvrBinary() + " view " + (dir / "set").string() + " --cone 30");
-  EXPECT_EQ(r.status, 1);
+  EXPECT_TRUE(test::exitedWith(r, 1));
   EXPECT_NE(r.err.find("--cone: applies to a scene"), std::string::npos) << r.err;
 }
 
@@ -85,7 +83,7 @@ TEST(Viewer, OpensAQuiltOnTheMiddleOfTheObject) {
   const std::string shot = (set / "shot.png").string();
   auto r = test::shell("xvfb-run -a " + test::mvrBinary() + " view " + (set / "quilt_qs3x2a1.33.png").string() +
                        " --screenshot " + shot);
-  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(test::succeeded(r));
   const Image s = readImage(shot);
   ASSERT_EQ(s.width, 32);
   ASSERT_EQ(s.height, 24 + 6);
@@ -130,7 +128,7 @@ TEST(Viewer, OpensASetWrittenAsAQuiltOnly) {
     const std::string shot = (only / "shot.png").string();
     auto r = test::shell("xvfb-run -a " + test::mvrBinary() + " view " + only.string() +
                          " --view 2 --scanline 12 --screenshot " + shot);
-    ASSERT_EQ(r.status, 0) << c.shape << ": " << r.err;
+    ASSERT_TRUE(test::succeeded(r)) << c.shape;
     const Image s = readImage(shot);
     ASSERT_EQ(s.width, 32);
     ASSERT_EQ(s.height, 24 + c.views);
@@ -151,17 +149,17 @@ TEST(Viewer, StartsOutsideTheSetAreErrors) {
   ASSERT_TRUE(test::succeeded(test::runMvr("render --views 4 --size 32x24 --out " + set.string())));
   for (const char* bad : {"--view 4", "--scanline 24"}) {
     auto r = test::runMvr("view " + set.string() + " " + bad + " --screenshot " + (set / "x.png").string());
-    EXPECT_NE(r.status, 0) << bad;
+    EXPECT_TRUE(test::failed(r)) << bad;
     EXPECT_NE(r.err.find(std::string(bad).substr(0, std::string(bad).find(' '))), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("beyond"), std::string::npos) << r.err;
   }
   auto r = test::runMvr("view " + (set / "view_0000.png").string());
-  EXPECT_NE(r.status, 0);
+  EXPECT_TRUE(test::failed(r));
 }
 
 TEST(Viewer, NotASetIsAnError) {
   auto r = test::runMvr("view /nonexistent/folder_or_scene.json");
-  EXPECT_NE(r.status, 0);
+  EXPECT_TRUE(test::failed(r));
   EXPECT_EQ(r.err.rfind("mvr: ", 0), 0u) << r.err;
 }
 

@@ -37,7 +37,7 @@ fs::path renderedSet(const std::string& name, const std::string& extra = "") {
   const fs::path d = freshDir(name);
   const test::CliResult r = test::shell(test::mvrBinary() + " render --backend svr --views 3 --size 48x36 --depth " +
                                         extra + " --out " + (d / "set").string() + " >/dev/null");
-  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(test::succeeded(r));
   return d / "set";
 }
 

@@ -39,6 +39,19 @@ inline ::testing::AssertionResult succeeded(const CliResult& r) {
   if (r.status == 0) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure() << "exit status " << r.status << ", stderr:\n" << r.err;
 }
+// A run that exited `status` (an error path's 1), or a failure that shows
+// what it exited with and its stderr.
+inline ::testing::AssertionResult exitedWith(const CliResult& r, int status) {
+  if (r.status == status) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "exit status " << r.status << " (expected " << status << "), stderr:\n"
+                                       << r.err;
+}
+// A run that failed (any non-zero status), or a failure that shows its
+// stderr: what the program said as it went through.
+inline ::testing::AssertionResult failed(const CliResult& r) {
+  if (r.status != 0) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "exit status 0 (expected a failure), stderr:\n" << r.err;
+}
 
 // The programs under test: MVR_TEST_MVR and MVR_TEST_CONSUME from the
 // environment (packed copies on another machine), else the build's.
