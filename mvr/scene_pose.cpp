@@ -56,4 +56,25 @@ bool hasClip(const Scene& scene, const std::string& clip) {
   return false;
 }
 
+std::vector<double> framingTimes(const Scene& scene, const std::string& clip, size_t most) {
+  std::vector<double> keys;
+  for (const auto& a : scene.animations)
+    for (size_t c = 0; c < a->clips.size(); ++c) {
+      if (!clip.empty() && a->clips[c].name != clip) continue;
+      for (const AnimationChannel& channel : a->clips[c].channels)
+        keys.insert(keys.end(), channel.times.begin(), channel.times.end());
+    }
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  std::vector<double> times;
+  for (size_t i = 0; i < keys.size(); ++i) {
+    if (i > 0) times.push_back(0.5 * (keys[i - 1] + keys[i]));
+    times.push_back(keys[i]);
+  }
+  if (times.size() <= most || most < 2) return times;
+  std::vector<double> spread(most);
+  for (size_t i = 0; i < most; ++i) spread[i] = times[i * (times.size() - 1) / (most - 1)];
+  return spread;
+}
+
 }  // namespace mvr

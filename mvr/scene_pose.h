@@ -5,6 +5,7 @@
 // stay where they are in the world: a turntable turns the model under the
 // studio's lights, before a camera that does not move.
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -27,5 +28,12 @@ void poseAnimations(Scene& scene, double t, const std::string& clip, const glm::
 // The longest of the scene's clips, or of those named `clip`; 0: none.
 double animationLength(const Scene& scene, const std::string& clip);
 bool hasClip(const Scene& scene, const std::string& clip);
+// The times whose poses a camera is framed on so that every pose of the
+// clips that play stays in the picture: each key time of every channel,
+// and the midpoint between neighbouring keys (where a slerp's arc or a
+// cubic's overshoot leaves the keys' poses most), ascending; at most
+// `most` of them, spread evenly over the list, its first and last kept.
+// None for a scene without animation.
+std::vector<double> framingTimes(const Scene& scene, const std::string& clip, size_t most);
 
 }  // namespace mvr

@@ -167,6 +167,7 @@ FrameChainSpec PreparedJob::chainSpec(const RenderJob& job) const {
 void prepareJob(RenderJob& job, PreparedJob& prepared) {
   start(job, prepared);
   prepared.still = std::make_shared<const Scene>(prepared.scene);  // live poses the scene
+  frameEveryPose(job, prepared);
   setUp(job, prepared);
   planMemory(job, prepared);
 }
@@ -175,6 +176,22 @@ void poseJob(const RenderJob& job, PreparedJob& p, double time, const glm::mat4&
   poseGeometry(p.scene, *p.still, move);
   poseAnimations(p.scene, time, job.sequence.clip, move);
   if (p.renderer && !p.renderer->sceneMoved()) p.renderer = makeRenderer(job.backend, p.scene, job.type);
+}
+
+void frameEveryPose(const RenderJob& job, PreparedJob& p) {
+  // A 100K-vertex skin poses in about 3 ms: a clip of any length adds at
+  // most 0.4 s to the set-up.
+  constexpr size_t kMostPoses = 128;
+  const std::vector<double> times = framingTimes(p.scene, job.sequence.clip, kMostPoses);
+  if (times.empty()) return;
+  Bounds all = Bounds::none();
+  for (double t : times) {
+    poseJob(job, p, t, glm::mat4(1.0f));
+    const Bounds b = p.scene.bounds();
+    all.include(b.min), all.include(b.max);
+  }
+  p.framed = all;
+  poseGeometry(p.scene, *p.still, glm::mat4(1.0f));  // the still, as it was loaded
 }
 
 int runJob(RenderJob& job) {

@@ -98,7 +98,8 @@ struct PreparedJob {
   // (into a file's camera, behind the focal plane); p.scene is posed from
   // it (poseJob).
   std::shared_ptr<const Scene> still;
-  // An animated sequence: the bounds of its every pose, which the camera frames.
+  // An animated scene: the bounds of its every pose, which the camera frames
+  // (frameEveryPose).
   std::optional<Bounds> framed;
   // A sequence's video: each frame's finished quilt, with its file name.
   std::function<void(const Image& quilt, const std::string& name)> quiltOut;
@@ -127,6 +128,13 @@ void prepareJob(RenderJob& job, PreparedJob& prepared);
 // it (Renderer::sceneMoved) or, a back end that cannot, is built again
 // (none yet: a sequence's frame 0 is posed before the renderer is built).
 void poseJob(const RenderJob& job, PreparedJob& prepared, double time, const glm::mat4& move);
+// A scene that plays an animation is framed on every pose of the clips
+// that play (framingTimes: their key times, not the frames'), so that a
+// character that walks stays in the picture and frame k of a sequence is
+// the still render at its time (--frames 1 --time t_k), whatever the
+// sequence's range. Sets prepared.framed; the scene is left as the still.
+// A turntable's turns are not framed (its framing is the unturned scene's).
+void frameEveryPose(const RenderJob& job, PreparedJob& prepared);
 int writeSet(const RenderJob& job, PreparedJob& prepared);
 // The frames of one stream: a still's one, or a sequence's, each posed
 // by beforeFrame(k) before it is rendered; afterFrame(k) once it is.

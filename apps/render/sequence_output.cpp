@@ -262,18 +262,8 @@ void startSequence(RenderJob& job, PreparedJob& p) {
   s.fromAnimation(animationLength(p.scene, s.clip));
   p.still = std::make_shared<const Scene>(p.scene);
   if (p.scene.animations.empty()) return;
-  // The camera frames every pose, not frame 0's alone: a character that
-  // walks stays in the picture. Up to 32 frames spread over the sequence
-  // (its first and last among them) stand for the rest.
-  const int samples = std::min(s.frames, 32);
-  Bounds all = Bounds::none();
-  for (int i = samples - 1; i >= 0; --i) {  // frame 0 last: the pose set-up starts from
-    const int k = samples > 1 ? int(std::lround(double(i) * (s.frames - 1) / (samples - 1))) : 0;
-    pose(job, p, {k, s.timeOf(k), 0.0}, glm::vec3(0.0f));
-    const Bounds b = p.scene.bounds();
-    all.include(b.min), all.include(b.max);
-  }
-  p.framed = all;
+  frameEveryPose(job, p);
+  pose(job, p, frameAt(s, 0), glm::vec3(0.0f));  // the pose set-up starts from
 }
 
 int writeSequence(const RenderJob& job, PreparedJob& p) {

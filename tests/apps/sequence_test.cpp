@@ -211,6 +211,26 @@ TEST(Sequence, ABareClipIsFramedOnEveryPose) {
     }
 }
 
+// A still at a time of the clip is framed on every pose too, as the
+// sequence is: frame 2 of --fps 2 (t = 1) is byte for byte the still
+// --frames 1 --time 1 renders, and so is frame 0 of a sequence that
+// starts there (framed on the clip, not on its own range). Framed on
+// their own poses, the three differed.
+TEST(Sequence, AStillAtATimeIsFramedAsTheSequence) {
+  const fs::path dir = test::freshDir("sequence_still_framed");
+  fs::create_directories(dir);
+  test::writeAnimatedGltf(dir / "walk.gltf", true);
+  const std::string scene = "render " + (dir / "walk.gltf").string() + kShape;
+  ASSERT_TRUE(test::succeeded(test::runMvr(scene + " --fps 2 --out " + (dir / "seq").string())));
+  ASSERT_TRUE(test::succeeded(test::runMvr(scene + " --frames 1 --time 1 --out " + (dir / "still").string())));
+  ASSERT_TRUE(test::succeeded(test::runMvr(scene + " --time 1:1.5 --fps 2 --out " + (dir / "late").string())));
+  for (int v = 0; v < 4; ++v) {
+    const Image frame = readImage(viewFile(dir / "seq" / "frame_0002", v));
+    EXPECT_EQ(frame.bytes, readImage(viewFile(dir / "still" / "frame_0000", v)).bytes) << "view " << v;
+    EXPECT_EQ(frame.bytes, readImage(viewFile(dir / "late" / "frame_0000", v)).bytes) << "view " << v;
+  }
+}
+
 TEST(Sequence, BadValuesAreOneLineErrors) {
   const fs::path dir = test::freshDir("sequence_bad");
   const fs::path scene = writeScene(dir, 0);
