@@ -58,12 +58,16 @@ bool hasClip(const Scene& scene, const std::string& clip) {
 
 std::vector<double> framingTimes(const Scene& scene, const std::string& clip, size_t most) {
   std::vector<double> keys;
-  for (const auto& a : scene.animations)
+  for (const auto& a : scene.animations) {
+    // The clips poseAnimations plays: every one, or the first so named.
+    const int index = clip.empty() ? -1 : a->clipNamed(clip);
+    if (!clip.empty() && index < 0) continue;
     for (size_t c = 0; c < a->clips.size(); ++c) {
-      if (!clip.empty() && a->clips[c].name != clip) continue;
+      if (index >= 0 && int(c) != index) continue;
       for (const AnimationChannel& channel : a->clips[c].channels)
         keys.insert(keys.end(), channel.times.begin(), channel.times.end());
     }
+  }
   std::sort(keys.begin(), keys.end());
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
   std::vector<double> times;

@@ -31,9 +31,9 @@ bool hasClip(const Scene& scene, const std::string& clip);
 // The times whose poses a camera is framed on so that every pose of the
 // clips that play stays in the picture: each key time of every channel,
 // and the midpoint between neighbouring keys (where a slerp's arc or a
-// cubic's overshoot leaves the keys' poses most), ascending; at most
-// `most` of them, spread evenly over the list, its first and last kept.
-// None for a scene without animation.
+// cubic's overshoot leaves the keys' poses most), ascending. Where there
+// are more than `most` (2 or more), `most` spread evenly over the list,
+// its first and last kept. None for a scene without animation.
 std::vector<double> framingTimes(const Scene& scene, const std::string& clip, size_t most);
 
 }  // namespace mvr
