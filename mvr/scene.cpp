@@ -1,11 +1,23 @@
 #include "mvr/scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "mvr/scene_animation.h"
 
 namespace mvr {
+
+void Material::setMetallicRoughness(const glm::vec3& base, float metallic, float roughness,
+                                    const glm::vec3& dielectricF0, float dielectricF90) {
+  const glm::vec3 b = glm::clamp(base, 0.0f, 1.0f);
+  const float m = std::clamp(metallic, 0.0f, 1.0f);
+  specularModel = SpecularModel::Ggx;
+  diffuse = b * (1.0f - m);
+  specular = glm::mix(glm::clamp(dielectricF0, 0.0f, 1.0f), b, m);
+  specularF90 = glm::mix(std::clamp(dielectricF90, 0.0f, 1.0f), 1.0f, m);
+  this->roughness = std::clamp(roughness, 0.0f, 1.0f);
+}
 
 std::vector<uint32_t> Scene::vertexMaterials() const {
   std::vector<uint32_t> m(vertexCount(), 0);
@@ -64,6 +76,13 @@ void Scene::transform(const glm::mat4& m) {
     else if (turns)
       turn(light.vector);
     if (light.type == Light::Type::Spot && turns) turn(light.axis);
+    if (light.falloff && turns) {
+      // Scaled by s, distances grow by s: the range follows, and the
+      // colour at distance 1 by s^2, so the light reaches what it lit.
+      const double scale = std::cbrt(std::abs(glm::determinant(glm::dmat3(glm::mat3(m)))));
+      light.range = float(light.range * scale);
+      light.color = glm::vec3(glm::dvec3(light.color) * (scale * scale));
+    }
   }
   for (FileCamera& c : fileCameras) c.toWorld = m * c.toWorld;
   for (auto& a : animations) {
@@ -83,6 +102,18 @@ glm::vec2 coneScaleOffset(const Light& light) {
   // thousandth of a cosine is a band too narrow to see.
   const float scale = 1.0f / std::max(light.cosInner - light.cosOuter, 1e-3f);
   return {scale, -light.cosOuter * scale};
+}
+
+float distanceFalloff(const Light& light, const glm::vec3& p) {
+  if (!light.falloff) return 1.0f;
+  const float d2 = std::max(glm::dot(light.vector - p, light.vector - p), 0.01f);
+  if (!(light.range > 0.0f)) return 1.0f / d2;
+  const float q = d2 / (light.range * light.range);
+  return std::clamp(1.0f - q * q, 0.0f, 1.0f) / d2;
+}
+
+glm::vec3 incidentLight(const Light& light, const glm::vec3& p, const glm::vec3& l) {
+  return light.color * (coneFactor(light, l) * distanceFalloff(light, p));
 }
 
 float coneFactor(const Light& light, const glm::vec3& l) {

@@ -17,7 +17,11 @@ namespace mvr {
 struct Image;
 struct SceneAnimation;  // mvr/scene_animation.h: what poses a scene, which it holds
 
-enum class SpecularModel { Phong, BlinnPhong };
+// Phong and Blinn-Phong: a highlight of colour `specular` and exponent
+// `shininess`. Ggx: glTF's metallic-roughness lobe (shading/brdf.h), with
+// `specular` its reflectance at normal incidence F0 and `roughness` its
+// width; `diffuse` is then c_diff, the base colour's non-metallic part.
+enum class SpecularModel { Phong, BlinnPhong, Ggx };
 
 struct Material {
   std::string name = "default";
@@ -29,6 +33,8 @@ struct Material {
   glm::vec3 specular{0.0f};   // zero: no view-dependent pass needed
   float shininess = 32.0f;
   SpecularModel specularModel = SpecularModel::BlinnPhong;
+  float roughness = 1.0f;     // Ggx: perceptual roughness, alpha = roughness^2
+  float specularF90 = 1.0f;   // Ggx: reflectance at grazing (KHR_materials_specular)
   std::string reflectionMap;  // empty for none
   glm::vec3 reflectivity{1.0f};  // scales the reflected environment
   bool twoSided = true;       // false: back faces are culled
@@ -47,6 +53,13 @@ struct Material {
   // is behind it. 0: opaque. Only a textured material has a mask.
   float alphaCutoff = 0.0f;
   bool masked() const { return alphaCutoff > 0.0f && !texture.empty(); }
+
+  // glTF's metallic-roughness as this model (Ggx): c_diff = mix(base,
+  // black, metallic) as the diffuse colour, F0 = mix(dielectricF0, base,
+  // metallic) and F90 = mix(dielectricF90, 1, metallic) (KHR_materials_ior
+  // and _specular set the dielectric's; 0.04 and 1 without them).
+  void setMetallicRoughness(const glm::vec3& base, float metallic, float roughness,
+                            const glm::vec3& dielectricF0 = glm::vec3(0.04f), float dielectricF90 = 1.0f);
 };
 
 // A reflectance, vertex or light colour: every channel in [0, 1] (NaN is
@@ -67,6 +80,11 @@ struct Light {
   // none outside cosOuter, a smooth square falloff between (coneFactor).
   glm::vec3 axis{0.0f, 0.0f, -1.0f};  // unit, the direction light travels
   float cosInner = 1.0f, cosOuter = 0.70710678f;
+  // A point or spot light in physical units (glTF's candela): its colour
+  // is what reaches distance 1, and it falls off as 1/d^2, windowed to
+  // zero at `range` (0: no range) as KHR_lights_punctual recommends.
+  bool falloff = false;
+  float range = 0.0f;
   bool positional() const { return type != Type::Directional; }
 };
 
@@ -78,6 +96,13 @@ struct Light {
 // that is no spot has (0, 1).
 glm::vec2 coneScaleOffset(const Light& light);
 float coneFactor(const Light& light, const glm::vec3& l);
+// The share of a falloff light's colour that reaches point p: 1 / d^2
+// (d at least 0.1, three.js's floor) times clamp(1 - (d / range)^4, 0, 1);
+// 1 for every other light.
+float distanceFalloff(const Light& light, const glm::vec3& p);
+// What of a light reaches point p from unit direction l (towards the
+// light): its colour times coneFactor and distanceFalloff.
+glm::vec3 incidentLight(const Light& light, const glm::vec3& p, const glm::vec3& l);
 
 // A camera a scene file holds (glTF's perspective cameras): it sits at
 // toWorld's origin, looks down its -z with +y up. `--camera` makes one the
@@ -101,6 +126,11 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Light> lights;
   glm::vec3 ambient{0.15f};
+  // What `--exposure auto` multiplies the lights by (shading::applyExposure):
+  // 1, or for a file's lights in physical units (glTF's lux and candela),
+  // what brings their illuminance at the centre of its bounds to a sum of
+  // 1, as a camera's automatic exposure would.
+  float autoExposure = 1.0f;
   // The colours are data (depth, mvr/depth.h), not reflectances: back ends
   // keep them in float wherever they store them (the G-buffer's albedo).
   bool exactColors = false;

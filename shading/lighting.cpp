@@ -1,5 +1,6 @@
 #include "shading/lighting.h"
 
+#include <cmath>
 #include <string>
 
 #include "mvr/error.h"
@@ -7,6 +8,14 @@
 #include "mvr/parallel.h"
 
 namespace mvr::shading {
+
+void applyExposure(Scene& scene, std::optional<float> ev) {
+  const float k = ev ? std::exp2(*ev) : scene.autoExposure;
+  for (Light& light : scene.lights) light.color *= k;
+  if (!ev) return;
+  scene.ambient *= k;
+  for (Material& m : scene.materials) m.emission *= k;
+}
 
 std::vector<glm::vec3> vertexAlbedo(const Scene& scene) {
   std::vector<glm::vec3> albedo(scene.colors);
@@ -33,7 +42,7 @@ glm::vec3 diffuse(const Scene& scene, const glm::vec3& albedo, const glm::vec3& 
   glm::vec3 sum = scene.ambient;
   for (const Light& light : scene.lights) {
     const glm::vec3 l = towardsLight(light, p);
-    sum += light.color * coneFactor(light, l) * glm::max(glm::dot(n, l), 0.0f);
+    sum += incidentLight(light, p, l) * glm::max(glm::dot(n, l), 0.0f);
   }
   return glm::clamp(albedo * sum, 0.0f, 1.0f);
 }
@@ -71,27 +80,36 @@ uniform vec4 uLightVector[8];  // w = 0: direction light travels; w = 1: positio
 uniform vec3 uLightColor[8];
 uniform vec3 uLightAxis[8];  // a spot's
 uniform vec2 uLightCone[8];  // scale, offset (coneScaleOffset): 0, 1 for no spot
+uniform vec2 uLightFalloff[8];  // on (1) or off (0), 1 / range^2 (0: no range)
 uniform vec3 uAmbient;
 
 vec3 towardsLight(int i, vec3 p) {
   return uLightVector[i].w == 0.0 ? -uLightVector[i].xyz : normalize(uLightVector[i].xyz - p);
 }
 
-// uLightColor[i] times coneFactor (1 in a scene without spots).
-vec3 lightColor(int i, vec3 l) {
+// uLightColor[i] times coneFactor and distanceFalloff (1 in a scene
+// without spots or falloff lights): incidentLight.
+vec3 lightColor(int i, vec3 p, vec3 l) {
+  vec3 c = uLightColor[i];
 #ifdef SPOT_LIGHTS
   float t = clamp(dot(uLightAxis[i], -l) * uLightCone[i].x + uLightCone[i].y, 0.0, 1.0);
-  return uLightColor[i] * (t * t);
-#else
-  return uLightColor[i];
+  c *= t * t;
 #endif
+#ifdef FALLOFF_LIGHTS
+  if (uLightFalloff[i].x != 0.0) {
+    vec3 d = uLightVector[i].xyz - p;
+    float d2 = max(dot(d, d), 0.01), q = d2 * uLightFalloff[i].y;
+    c *= (uLightFalloff[i].y > 0.0 ? clamp(1.0 - q * q, 0.0, 1.0) : 1.0) / d2;
+  }
+#endif
+  return c;
 }
 
 vec3 diffuseLight(vec3 albedo, vec3 p, vec3 n) {
   vec3 sum = uAmbient;
   for (int i = 0; i < uLightCount; ++i) {
     vec3 l = towardsLight(i, p);
-    sum += lightColor(i, l) * max(dot(n, l), 0.0);
+    sum += lightColor(i, p, l) * max(dot(n, l), 0.0);
   }
   return clamp(albedo * sum, 0.0, 1.0);
 }
@@ -119,6 +137,8 @@ void setLightUniforms(const gl::Program& program, const Scene& scene) {
     gl::setUniform(program, ("uLightColor" + idx).c_str(), l.color);
     gl::setUniform(program, ("uLightAxis" + idx).c_str(), l.axis);
     gl::setUniform(program, ("uLightCone" + idx).c_str(), coneScaleOffset(l));
+    const float inverseRange2 = l.range > 0.0f ? 1.0f / (l.range * l.range) : 0.0f;
+    gl::setUniform(program, ("uLightFalloff" + idx).c_str(), glm::vec2(l.falloff ? 1.0f : 0.0f, inverseRange2));
   }
 }
 

@@ -3,6 +3,7 @@
 // directional lights), shared by every back end: once per vertex on the CPU
 // for MVR, per vertex per view in SVR's vertex shader, per pixel in the
 // deferred pipeline. One formula, written twice (C++ and GLSL) side by side.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,12 @@
 namespace mvr::shading {
 
 using mvr::kMaxLights;
+
+// A camera's exposure (`--exposure`): with a value EV, every light, the
+// ambient light and every emission are multiplied by 2^EV (the scene's
+// radiance, exposed); without one (auto), the lights alone by the scene's
+// autoExposure.
+void applyExposure(Scene& scene, std::optional<float> ev);
 
 // Per vertex: material diffuse times vertex colour.
 std::vector<glm::vec3> vertexAlbedo(const Scene& scene);

@@ -12,7 +12,10 @@ ShadingPlan planShading(const Scene& scene) {
     plan.emission |= m.emission != glm::vec3(0.0f) || !m.emissionTexture.empty();
     plan.mask |= m.masked();
   }
-  for (const Light& l : scene.lights) plan.spots |= l.type == Light::Type::Spot;
+  for (const Light& l : scene.lights) {
+    plan.spots |= l.type == Light::Type::Spot;
+    plan.falloff |= l.falloff;
+  }
   if (plan.texture) {
     plan.uv = plan.extraCount;
     plan.extraCount += 2;
@@ -56,6 +59,7 @@ std::string ShadingPlan::glslDefines() const {
   if (emissionTexture) s += "#define EMISSION_TEXTURE\n";
   if (mask) s += "#define MASK\n";
   if (spots) s += "#define SPOT_LIGHTS\n";
+  if (falloff) s += "#define FALLOFF_LIGHTS\n";
   return s;
 }
 

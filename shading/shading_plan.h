@@ -34,6 +34,8 @@ struct ShadingPlan {
   // Some light is a spot: the GLSL lighting takes cones (SPOT_LIGHTS);
   // without one it skips them (8% of svr's time on llvmpipe).
   bool spots = false;
+  // Some light falls off with distance (Light::falloff): FALLOFF_LIGHTS.
+  bool falloff = false;
 
   // Offsets into the per-vertex extras; -1 when absent.
   int uv = -1;        // 2 floats: texture coordinates

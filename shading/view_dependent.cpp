@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shading/brdf.h"
 #include "shading/lighting.h"
 
 namespace mvr::shading {
@@ -10,12 +11,16 @@ namespace {
 
 // std430 layout of one material in the storage block.
 struct GpuMaterial {
-  glm::vec4 specular;  // rgb, shininess
-  glm::vec4 params;    // model (0 Phong, 1 Blinn-Phong), texture layer, reflection layer, map kind
+  glm::vec4 specular;  // rgb (Ggx: F0), shininess (Ggx: roughness)
+  glm::vec4 params;    // model (0 Phong, 1 Blinn-Phong, 2 Ggx), texture layer, reflection layer, map kind
   glm::vec4 reflectivity;  // rgb, texture group
   glm::vec4 emission;      // rgb, alpha cut-off (0: opaque)
-  glm::vec4 glow;          // unlit (1) or lit (0), emission texture group, layer (-1: none), 0
+  glm::vec4 glow;          // unlit (1) or lit (0), emission texture group, layer (-1: none), Ggx's F90
 };
+
+float modelCode(SpecularModel model) {
+  return model == SpecularModel::Phong ? 0.0f : model == SpecularModel::BlinnPhong ? 1.0f : 2.0f;
+}
 
 }  // namespace
 
@@ -26,13 +31,20 @@ glm::vec3 specularLight(const Scene& scene, const Material& m, const glm::vec3& 
   if (m.specular == glm::vec3(0.0f) || !(len > 1e-20f) || !(dist > 1e-20f)) return glm::vec3(0.0f);
   const glm::vec3 n = nIn / len, v = (eye - p) / dist;
   glm::vec3 sum(0.0f);
+  if (m.specularModel == SpecularModel::Ggx) {
+    for (const Light& light : scene.lights) {
+      const glm::vec3 l = towardsLight(light, p);
+      sum += incidentLight(light, p, l) * ggxLobe(m.specular, m.specularF90, m.roughness, n, l, v);
+    }
+    return sum;
+  }
   for (const Light& light : scene.lights) {
     const glm::vec3 l = towardsLight(light, p);
     if (glm::dot(n, l) <= 0.0f) continue;
     const float s = m.specularModel == SpecularModel::Phong
                         ? glm::dot(glm::reflect(-l, n), v)
                         : glm::dot(n, glm::normalize(l + v));
-    sum += light.color * coneFactor(light, l) * std::pow(std::max(s, 1e-30f), m.shininess);
+    sum += incidentLight(light, p, l) * std::pow(std::max(s, 1e-30f), m.shininess);
   }
   return m.specular * sum;
 }
@@ -40,11 +52,11 @@ glm::vec3 specularLight(const Scene& scene, const Material& m, const glm::vec3& 
 const char* glslMaterials() {
   return R"(
 struct Material {
-  vec4 specular;  // rgb, shininess
-  vec4 params;    // model (0 Phong, 1 Blinn-Phong), texture layer, reflection layer, map kind
+  vec4 specular;  // rgb (Ggx: F0), shininess (Ggx: roughness)
+  vec4 params;    // model (0 Phong, 1 Blinn-Phong, 2 Ggx), texture layer, reflection layer, map kind
   vec4 reflectivity;  // rgb, texture group (TextureSet::glsl)
   vec4 emission;      // rgb, alpha cut-off (0: opaque)
-  vec4 glow;          // unlit (1) or lit (0), emission texture group, layer (-1: none), 0
+  vec4 glow;          // unlit (1) or lit (0), emission texture group, layer (-1: none), Ggx's F90
 };
 layout(std430, binding = 1) readonly buffer Materials { Material uMaterials[]; };
 vec3 materialEmission(int material) { return uMaterials[material].emission.rgb; }
@@ -56,7 +68,7 @@ bool maskedOut(int material, float alpha) { return alpha < uMaterials[material].
 }
 
 const std::string& glslSpecular() {
-  static const std::string src = std::string(glslMaterials()) + R"(
+  static const std::string src = std::string(glslMaterials()) + glslBrdf() + R"(
 
 vec3 specularLight(int material, vec3 p, vec3 nIn, vec3 eye) {
   Material m = uMaterials[material];
@@ -64,11 +76,18 @@ vec3 specularLight(int material, vec3 p, vec3 nIn, vec3 eye) {
   if (m.specular.rgb == vec3(0.0) || !(len > 1e-20) || !(dist > 1e-20)) return vec3(0.0);
   vec3 n = nIn / len, v = (eye - p) / dist;
   vec3 sum = vec3(0.0);
+  if (m.params.x == 2.0) {
+    for (int i = 0; i < uLightCount; ++i) {
+      vec3 l = towardsLight(i, p);
+      sum += lightColor(i, p, l) * ggxLobe(m.specular.rgb, m.glow.w, m.specular.w, n, l, v);
+    }
+    return sum;
+  }
   for (int i = 0; i < uLightCount; ++i) {
     vec3 l = towardsLight(i, p);
     if (dot(n, l) <= 0.0) continue;
     float s = m.params.x == 0.0 ? dot(reflect(-l, n), v) : dot(n, normalize(l + v));
-    sum += lightColor(i, l) * pow(max(s, 1e-30), m.specular.w);
+    sum += lightColor(i, p, l) * pow(max(s, 1e-30), m.specular.w);
   }
   return m.specular.rgb * sum;
 }
@@ -85,11 +104,12 @@ gl::Buffer makeMaterialBuffer(const Scene& scene, const TextureSet& textures,
     const glm::ivec2 slot = i < textureSlots.size() ? textureSlots[i] : glm::ivec2(-1);
     const glm::ivec2 glow = i < emissionSlots.size() ? emissionSlots[i] : glm::ivec2(-1);
     const EnvironmentSet::Map map = i < reflectionMaps.size() ? reflectionMaps[i] : EnvironmentSet::Map{};
-    gpu.push_back({glm::vec4(m.specular, m.shininess),
-                   glm::vec4(m.specularModel == SpecularModel::Phong ? 0.0f : 1.0f, float(slot.y),
+    const bool ggx = m.specularModel == SpecularModel::Ggx;
+    gpu.push_back({glm::vec4(m.specular, ggx ? m.roughness : m.shininess),
+                   glm::vec4(modelCode(m.specularModel), float(slot.y),
                              float(map.layer), float(map.kind)),
                    glm::vec4(m.reflectivity, float(std::max(slot.x, 0))), glm::vec4(m.emission, m.masked() ? m.alphaCutoff : 0.0f),
-                   glm::vec4(m.unlit ? 1.0f : 0.0f, float(std::max(glow.x, 0)), float(glow.y), 0.0f)});
+                   glm::vec4(m.unlit ? 1.0f : 0.0f, float(std::max(glow.x, 0)), float(glow.y), m.specularF90)});
   }
   return gl::makeBuffer(gpu.data(), gpu.size());
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shading/brdf.h"
 #include "shading/lighting.h"
 #include "shading/view_dependent.h"
 
@@ -36,10 +37,13 @@ int HighlightSplitter::add(const glm::vec3& p, const glm::vec3& n, uint32_t mate
   if (views > 1 && splits_ > 0) {
     // The view direction's angle off the mirror ray where the highlight
     // has fallen to fraction f: cos^s = f (Blinn-Phong's half vector turns
-    // half as fast as the view).
-    const float turn = m.specularModel == SpecularModel::BlinnPhong ? 2.0f : 1.0f;
+    // half as fast as the view; GGX's lobe is taken as the Blinn-Phong one
+    // of its width).
+    const bool ggx = m.specularModel == SpecularModel::Ggx;
+    const float turn = m.specularModel == SpecularModel::Phong ? 1.0f : 2.0f;
+    const float exponent = ggx ? shading::ggxBlinnExponent(m.roughness) : m.shininess;
     auto angleAt = [&](float f) {
-      return std::min(1.4f, turn * std::acos(std::pow(f, 1.0f / std::max(m.shininess, 1e-3f))));
+      return std::min(1.4f, turn * std::acos(std::pow(f, 1.0f / std::max(exponent, 1e-3f))));
     };
     const glm::dvec3 track = cam_.eye(0.0, row_);  // the track line: y and z of every eye
     for (const Light& light : scene_.lights) {

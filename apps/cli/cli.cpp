@@ -1,6 +1,7 @@
 #include "apps/cli/cli.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "mvr/camera.h"
@@ -8,6 +9,7 @@
 #include "mvr/gl/gl_context.h"
 #include "mvr/assets/scene_io.h"
 #include "mvr/parallel.h"
+#include "shading/lighting.h"
 
 namespace mvr::app {
 
@@ -106,8 +108,33 @@ CLI::Option* addStrictOption(CLI::App& app, bool& strict) {
                       "missing vertex) are an error instead of a warning");
 }
 
-Scene loadInputScene(const std::string& path, bool strict) {
+CLI::Option* addExposureOption(CLI::App& app, std::optional<float>& ev) {
+  return app
+      .add_option_function<std::string>(
+          "--exposure",
+          [&ev](const std::string& v) {
+            if (v == "auto") return ev.reset();
+            ev = std::stof(v);
+          },
+          "camera exposure: EV stops on the scene's radiance (lights in physical units, glTF's lux and "
+          "candela, times 2^EV; ambient and emission too), or auto (default: a file's lights scaled so "
+          "that their illuminance at the scene's centre sums to 1)")
+      ->check([](const std::string& v) -> std::string {
+        if (v == "auto") return "";
+        try {
+          size_t used = 0;
+          const float ev = std::stof(v, &used);
+          if (used == v.size() && std::isfinite(ev) && std::abs(ev) <= 64.0f) return "";
+        } catch (const std::exception&) {
+        }
+        return "must be auto or a number of stops in [-64, 64]";
+      })
+      ->type_name("auto|EV");
+}
+
+Scene loadInputScene(const std::string& path, bool strict, std::optional<float> exposure) {
   Scene scene = loadScene(path, strict);
+  shading::applyExposure(scene, exposure);
   if (const std::string warning = droppedFacesWarning(scene); !warning.empty())
     std::fprintf(stderr, "mvr: warning: %s\n", warning.c_str());
   for (const std::string& warning : scene.warnings) std::fprintf(stderr, "mvr: warning: %s\n", warning.c_str());

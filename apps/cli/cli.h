@@ -44,8 +44,11 @@ CLI::Option* addThreadsOption(CLI::App& app);
 // of a warning.
 CLI::Option* addStrictOption(CLI::App& app, bool& strict);
 
-// The scene a command renders (a .json scene or a bare mesh), with a
-// one-line warning on stderr when faces were dropped.
-Scene loadInputScene(const std::string& path, bool strict);
+// --exposure auto|EV (shading::applyExposure): ev stays empty for auto.
+CLI::Option* addExposureOption(CLI::App& app, std::optional<float>& ev);
+
+// The scene a command renders (a .json scene or a bare mesh), exposed,
+// with a one-line warning on stderr when faces were dropped.
+Scene loadInputScene(const std::string& path, bool strict, std::optional<float> exposure = std::nullopt);
 
 }  // namespace mvr::app

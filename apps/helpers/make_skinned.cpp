@@ -14,44 +14,15 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/cli/cli.h"
+#include "apps/helpers/glb_writer.h"
 #include "mvr/error.h"
 
 namespace {
 
 using Json = nlohmann::json;
+using mvr::app::Glb;
 constexpr float kLength = 2.0f, kPi = 3.14159265358979f;
 constexpr int kAround = 32, kKeys = 25;
-
-// One binary buffer that accessors are appended to, each in its own view.
-struct Glb {
-  Json json = {{"asset", {{"version", "2.0"}, {"generator", "mvr make_skinned"}}},
-               {"bufferViews", Json::array()}, {"accessors", Json::array()}};
-  std::vector<unsigned char> bin;
-
-  template <class T>
-  int accessor(const std::vector<T>& values, int componentType, const char* type, size_t count) {
-    while (bin.size() % 4) bin.push_back(0);
-    const size_t at = bin.size(), bytes = values.size() * sizeof(T);
-    bin.resize(at + bytes);
-    std::memcpy(bin.data() + at, values.data(), bytes);
-    json["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at}, {"byteLength", bytes}});
-    json["accessors"].push_back({{"bufferView", json["bufferViews"].size() - 1}, {"componentType", componentType},
-                                 {"type", type}, {"count", count}});
-    return int(json["accessors"].size()) - 1;
-  }
-  void write(const std::string& path) {
-    while (bin.size() % 4) bin.push_back(0);
-    json["buffers"] = Json::array({{{"byteLength", bin.size()}}});
-    std::string text = json.dump();
-    while (text.size() % 4) text += ' ';
-    auto word = [](uint32_t w) { return std::string(reinterpret_cast<const char*>(&w), 4); };
-    std::ofstream out(path, std::ios::binary);
-    out << "glTF" << word(2) << word(uint32_t(28 + text.size() + bin.size())) << word(uint32_t(text.size())) << "JSON"
-        << text << word(uint32_t(bin.size())) << std::string("BIN\0", 4);
-    out.write(reinterpret_cast<const char*>(bin.data()), std::streamsize(bin.size()));
-    if (!out.flush()) mvr::fail(path, "cannot write");
-  }
-};
 
 void writeTube(int vertices, int joints, const std::string& path) {
   const int rings = std::max(2, vertices / kAround);
@@ -78,7 +49,7 @@ void writeTube(int vertices, int joints, const std::string& path) {
       const uint32_t p = uint32_t(r * kAround + a), q = uint32_t(r * kAround + (a + 1) % kAround);
       indices.insert(indices.end(), {p, p + kAround, q, q, p + kAround, q + kAround});
     }
-  Glb g;
+  Glb g("mvr make_skinned");
   const size_t n = positions.size() / 3;
   const int pos = g.accessor(positions, 5126, "VEC3", n);
   g.json["accessors"][pos]["min"] = {-0.2, 0.0, -0.2};

@@ -4,6 +4,7 @@
 // (mvr/assets/assimp_import.h): assimp's readers are not safe on every input,
 // and a crash here is one line there. Exit 1 with one line on stderr when
 // the file cannot be read.
+#include <cmath>
 #include <sys/resource.h>
 
 #include <assimp/Importer.hpp>
@@ -29,7 +30,8 @@ glm::vec3 colorOf(const aiMaterial& m, const char* key, unsigned type, unsigned 
 // assimp's material as ours: the diffuse (or PBR base) colour and its
 // texture, the specular colour times its strength and the shininess
 // (only for the shading models that have a highlight: not for Collada's
-// lambert, which assimp calls Gouraud); "*K" names an embedded image.
+// lambert, which assimp calls Gouraud), or its metallic-roughness where it
+// has one; "*K" names an embedded image.
 Material materialOf(const aiMaterial& m) {
   Material out;
   aiString name;
@@ -45,6 +47,14 @@ Material materialOf(const aiMaterial& m) {
                                                model == aiShadingMode_PBR_BRDF);
   out.specular = highlight ? colorOf(m, AI_MATKEY_COLOR_SPECULAR, glm::vec3(0.0f)) * strength : glm::vec3(0.0f);
   out.shininess = shininess;
+  // A metallic-roughness material (FBX's and others' PBR, as assimp
+  // reports it): glTF's model, base colour first.
+  float metallic = 0.0f, roughness = 1.0f;
+  const bool hasMetallic = m.Get(AI_MATKEY_METALLIC_FACTOR, metallic) == AI_SUCCESS;
+  const bool hasRoughness = m.Get(AI_MATKEY_ROUGHNESS_FACTOR, roughness) == AI_SUCCESS;
+  if (hasMetallic || hasRoughness)
+    out.setMetallicRoughness(colorOf(m, AI_MATKEY_BASE_COLOR, out.diffuse), std::isfinite(metallic) ? metallic : 0.0f,
+                             std::isfinite(roughness) ? roughness : 1.0f);
   out.emission = glm::clamp(colorOf(m, AI_MATKEY_COLOR_EMISSIVE, glm::vec3(0.0f)), 0.0f, 1.0f);
   // Two-sided always: assimp's readers report "one-sided" by default for
   // formats whose files do not say, and a missing back face is worse than

@@ -137,6 +137,7 @@ struct LiveFlags {
   std::optional<int> frames;
   std::pair<int, int> size{0, 0};  // 0 x 0: the preset's tile
   double turntable = 0.0;  // degrees a second
+  std::optional<float> exposure;
   BackendFlags backend;
   CameraFlags camera;
 
@@ -168,6 +169,7 @@ struct LiveFlags {
                    "gpu)")
         ->check(CLI::IsMember({"auto", "gpu", "cpu"}))
         ->type_name("auto|gpu|cpu");
+    addExposureOption(app, exposure);
     backend.add(app);
     camera.add(app);
   }
@@ -191,6 +193,7 @@ RenderJob liveJob(const LiveFlags& f, QuiltLayout display) {
   job.camera = f.camera;
   job.camera.validate();
   job.scenePath = f.source.empty() ? defaultScenePath() : f.source;
+  job.exposure = f.exposure;
   job.quilt = display;
   job.views = display.columns * display.rows;
   job.width = display.tileWidth(), job.height = display.tileHeight();

@@ -62,7 +62,10 @@ void RenderFlags::addOutputShape(CLI::App& app) {
   app.add_option("--format", format_, "image format: png, exr or tiff (exr renders in float)")->capture_default_str();
   addGlOption(app, gl_);
   addThreadsOption(app);
-  if (!app.get_option_no_throw("--from")) addStrictOption(app, strict_);
+  if (!app.get_option_no_throw("--from")) {
+    addStrictOption(app, strict_);
+    addExposureOption(app, exposure_);
+  }
   app.add_flag("--linear", linear_,
                "write linear values to png and tiff files (and 8-bit streams) instead of "
                "sRGB-encoded ones; exr is always linear");
@@ -182,6 +185,7 @@ RenderJob RenderFlags::describe(const CLI::App& app) const {
     if (!app.count("--size")) job.width = job.references->width, job.height = job.references->height;
   }
   job.strict = strict_;
+  job.exposure = exposure_;
   job.out = out_, job.format = format_, job.order = order_;
   job.bits = bits_.value_or(defaultBits(format_));
   job.compression = compression_, job.codec = codec_, job.linear = linear_;

@@ -39,6 +39,7 @@ struct RenderJob {
   BackendOptions backend;
   std::string scenePath;
   bool strict = false;
+  std::optional<float> exposure;  // --exposure: empty for auto
   std::optional<RgbdSet> references;  // synthesize
   std::string from;
   WarpOptions warp;

@@ -367,6 +367,7 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bo
   if (emission()) header += "#define EMISSION\n";
   if (emission() && shading.plan.emissionTexture) header += "#define EMISSION_TEXTURE\n";
   if (shading.plan.spots) header += "#define SPOT_LIGHTS\n";
+  if (shading.plan.falloff) header += "#define FALLOFF_LIGHTS\n";
   if (maskDepth) header += "#define MASK_DEPTH\n";
   std::string fragment = header + (exact ? kExactFragment : kSliverFragment) + kAttributeHelpers;
   if (pass == shading::Pass::Diffuse) {

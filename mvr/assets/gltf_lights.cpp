@@ -14,24 +14,22 @@ void GltfReader::placeLight(const tinygltf::Value& ext, const glm::mat4& world) 
   placedLights_.emplace_back(size_t(index), world);
 }
 
-// The exposure rule. A directional light's intensity is illuminance (lux),
-// a point or spot light's luminous intensity (candela), whose illuminance
-// falls off as 1/d^2. Our lights are colours in [0, 1] that do not fall
-// off, so each light's illuminance is taken at the centre of the scene's
-// bounds, and the lights are scaled so that these sum to 1: they keep
-// their balance, and the exposure is ours, as a camera's automatic
-// exposure would set it (a scene lit by one 5 lx or one 50,000 lx sun
-// looks the same, as a photograph of either does).
+// KHR_lights_punctual in its physical units as our colours, which are
+// illuminance over pi (shading/brdf.h): a directional light of E lux is
+// its colour times E / pi, a point or spot light of I candela its colour
+// times I / pi at distance 1, falling off as 1/d^2 within its range. The
+// brightest at the centre of the scene's bounds are kept, and what brings
+// their illuminance there to a sum of 1 is the scene's autoExposure.
 void GltfReader::addLights() {
   const glm::vec3 centre = scene_.bounds().center();
-  std::vector<std::pair<double, Light>> lit;  // illuminance, light
+  std::vector<std::pair<double, Light>> lit;  // illuminance at the centre, light
   for (const auto& [index, world] : placedLights_) {
     const tinygltf::Light& g = model_.lights[index];
     Light light;
     if (g.color.size() == 3)
       light.color = glm::clamp(glm::vec3(float(g.color[0]), float(g.color[1]), float(g.color[2])), 0.0f, 1.0f);
-    const double intensity = std::isfinite(g.intensity) ? std::max(g.intensity, 0.0) : 0.0;
-    double illuminance = intensity;
+    const double intensity = std::isfinite(g.intensity) ? std::clamp(g.intensity, 0.0, 1e30) : 0.0;
+    light.color *= float(intensity / M_PI);
     // Directional and spot lights shine down their node's -z.
     const glm::vec3 minusZ = glm::mat3(world) * glm::vec3(0.0f, 0.0f, -1.0f);
     const glm::vec3 down = glm::length(minusZ) > 0.0f ? glm::normalize(minusZ) : glm::vec3(0.0f, 0.0f, -1.0f);
@@ -40,17 +38,17 @@ void GltfReader::addLights() {
     } else {
       light.type = g.type == "spot" ? Light::Type::Spot : Light::Type::Point;
       light.vector = glm::vec3(world * glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+      light.falloff = true;
+      light.range = std::isfinite(g.range) && g.range > 0.0 ? float(std::min(g.range, 1e30)) : 0.0f;
       if (light.type == Light::Type::Spot) {
         light.axis = down;
         const double outer = std::clamp(g.spot.outerConeAngle, 0.0, M_PI / 2);
         light.cosOuter = float(std::cos(outer));
         light.cosInner = float(std::cos(std::clamp(g.spot.innerConeAngle, 0.0, outer)));
       }
-      // A spot's as if the centre were on its axis: it is aimed at what it lights.
-      const double d = glm::distance(glm::dvec3(light.vector), glm::dvec3(centre));
-      illuminance = intensity / std::max(d * d, 1e-12);
     }
-    if (g.range > 0.0) warn_("light ranges not modelled: lights do not fall off");
+    // A spot's as if the centre were on its axis: it is aimed at what it lights.
+    const double illuminance = intensity * distanceFalloff(light, centre);
     if (illuminance > 0.0 && std::isfinite(illuminance)) lit.emplace_back(illuminance, light);
   }
   if (lit.empty()) {
@@ -64,10 +62,8 @@ void GltfReader::addLights() {
   }
   double sum = 0.0;
   for (const auto& l : lit) sum += l.first;
-  for (auto& [illuminance, light] : lit) {
-    light.color *= float(illuminance / sum);
-    scene_.lights.push_back(light);
-  }
+  for (const auto& l : lit) scene_.lights.push_back(l.second);
+  scene_.autoExposure = float(std::min(M_PI / sum, 1e30));
 }
 
 }  // namespace mvr::gltf

@@ -1,46 +1,60 @@
-// glTF materials as ours: metallic-roughness, base colour and emission
-// textures with their transforms and texture coordinate sets, alpha masks
-// and KHR_materials_unlit.
+// glTF materials as ours: metallic-roughness (with KHR_materials_ior and
+// _specular), base colour and emission textures with their transforms and
+// texture coordinate sets, alpha masks and KHR_materials_unlit.
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "mvr/color.h"
 #include "mvr/error.h"
 #include "mvr/image.h"
 #include "mvr/assets/gltf_reader.h"
+#include "mvr/assets/load_warnings.h"
 
 namespace mvr::gltf {
 namespace {
 
-// glTF's metallic-roughness as our Blinn-Phong material. The lobe: a
-// Beckmann distribution of roughness alpha = roughness^2 is matched by a
-// Blinn-Phong exponent 2 / alpha^2 - 2 (Walter et al. 2007); its colour is
-// the Fresnel reflectance at normal incidence, F0 = mix(0.04, base,
-// metallic), and the diffuse part base (1 - metallic). A lobe wider than
-// exponent 1 (roughness above 0.84) is diffuse to our model: it is
-// dropped, no view-dependent pass is planned for it, and the surface keeps
-// its base colour as diffuse (a rough metal's look; glTF's defaults,
-// metallic 1 and roughness 1, would otherwise be black).
-Material materialOf(const tinygltf::Material& g, size_t index) {
-  Material m;
-  m.name = g.name.empty() ? "material " + std::to_string(index) : g.name;
-  const auto& pbr = g.pbrMetallicRoughness;
-  const glm::vec3 base = pbr.baseColorFactor.size() >= 3
-                             ? glm::vec3(float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]),
-                                         float(pbr.baseColorFactor[2]))
-                             : glm::vec3(1.0f);
-  const float metallic = std::clamp(float(pbr.metallicFactor), 0.0f, 1.0f);
-  const float roughness = std::clamp(float(pbr.roughnessFactor), 0.0f, 1.0f);
-  const float alpha = std::max(roughness * roughness, 1e-3f);
-  const float exponent = 2.0f / (alpha * alpha) - 2.0f;
-  m.diffuse = glm::clamp(base, 0.0f, 1.0f);
-  if (exponent >= 1.0f) {
-    m.shininess = std::min(exponent, 1e4f);
-    m.specular = glm::mix(glm::vec3(0.04f), m.diffuse, metallic);
-    m.diffuse *= 1.0f - metallic;
+glm::vec3 factor3(const std::vector<double>& f, glm::vec3 fallback) {
+  if (f.size() < 3 || !std::isfinite(f[0]) || !std::isfinite(f[1]) || !std::isfinite(f[2])) return fallback;
+  return glm::vec3(float(f[0]), float(f[1]), float(f[2]));
+}
+
+float finiteOr(double v, float fallback) { return std::isfinite(v) ? float(v) : fallback; }
+
+const tinygltf::Value* extensionOf(const tinygltf::Material& g, const char* name) {
+  const auto it = g.extensions.find(name);
+  return it != g.extensions.end() && it->second.IsObject() ? &it->second : nullptr;
+}
+
+// The dielectric's reflectance at normal and grazing incidence:
+// KHR_materials_ior's F0 = ((ior - 1) / (ior + 1))^2 (0.04 at glTF's 1.5),
+// times KHR_materials_specular's colour (at most 1) and its factor, which
+// also scales F90. Their textures are not drawn (said once).
+std::pair<glm::vec3, float> dielectricOf(const tinygltf::Material& g, LoadWarnings& warn) {
+  float f0 = 0.04f;
+  if (const tinygltf::Value* x = extensionOf(g, "KHR_materials_ior")) {
+    const double ior = numberOr(*x, "ior", -1, 1.5);
+    if (ior >= 1.0) f0 = float(std::pow((ior - 1.0) / (ior + 1.0), 2.0));
   }
-  m.twoSided = g.doubleSided;
-  return m;
+  glm::vec3 colour(1.0f);
+  float factor = 1.0f;
+  if (const tinygltf::Value* x = extensionOf(g, "KHR_materials_specular")) {
+    factor = std::clamp(float(numberOr(*x, "specularFactor", -1, 1.0)), 0.0f, 1.0f);
+    for (int k = 0; k < 3; ++k) colour[k] = std::max(float(numberOr(*x, "specularColorFactor", k, 1.0)), 0.0f);
+    if (x->Has("specularTexture") || x->Has("specularColorTexture"))
+      warn("KHR_materials_specular's textures not read: drawn with its factors alone");
+  }
+  return {glm::min(glm::vec3(f0) * colour, glm::vec3(1.0f)) * factor, factor};
+}
+
+// The mean of a metallic-roughness texture's G (roughness) and B
+// (metallic), which multiply the factors, until the texture is drawn per
+// texel: a uniform texture is drawn exactly, a patterned one as its mean.
+glm::vec2 meanRoughnessMetallic(const Image& image) {
+  glm::dvec2 sum(0.0);
+  const size_t n = size_t(image.width) * size_t(image.height);
+  for (size_t i = 0; i < n; ++i) sum += glm::dvec2(image.bytes[4 * i + 1], image.bytes[4 * i + 2]) / 255.0;
+  return glm::vec2(sum / double(std::max<size_t>(n, 1)));
 }
 
 // An image tinygltf decoded, as sRGB texels (glTF's base colour is sRGB).
@@ -122,7 +136,9 @@ void GltfReader::readMaterials() {
 
 Material GltfReader::material(size_t i) {
   const tinygltf::Material& g = model_.materials[i];
-  Material m = materialOf(g, i);
+  Material m;
+  m.name = g.name.empty() ? "material " + std::to_string(i) : g.name;
+  m.twoSided = g.doubleSided;
   const tinygltf::TextureInfo& t = g.pbrMetallicRoughness.baseColorTexture;
   if (t.index >= 0) {
     const int source = textureSource(t);
@@ -132,11 +148,36 @@ Material GltfReader::material(size_t i) {
     else
       warn_("image " + std::to_string(source) + " could not be decoded: drawn untextured");
   }
+  metallicRoughness(g, m);
   if (g.alphaMode == "BLEND") warn_("alphaMode BLEND drawn opaque");
   if (g.alphaMode == "MASK") mask(g, m);
   emission(g, i, m);
   if (g.extensions.count("KHR_materials_unlit")) unlit(g, m);
   return m;
+}
+
+// pbrMetallicRoughness as our Ggx material, with KHR_materials_ior and
+// KHR_materials_specular setting the dielectric's F0 and F90. A metal's F0
+// is its base colour, which the base colour texture tints; the highlight
+// passes do not sample that texture yet, so the metal's share of F0 takes
+// the texture's mean colour (said once).
+void GltfReader::metallicRoughness(const tinygltf::Material& g, Material& m) {
+  const auto& pbr = g.pbrMetallicRoughness;
+  float metallic = finiteOr(pbr.metallicFactor, 1.0f), roughness = finiteOr(pbr.roughnessFactor, 1.0f);
+  if (pbr.metallicRoughnessTexture.index >= 0) {
+    const int source = textureSource(pbr.metallicRoughnessTexture);
+    if (const std::shared_ptr<const Image> image = texelsOf(model_.images[size_t(source)])) {
+      const glm::vec2 mean = meanRoughnessMetallic(*image);
+      roughness *= mean.x, metallic *= mean.y;
+    }
+  }
+  const auto [f0, f90] = dielectricOf(g, warn_);
+  const glm::vec3 base = factor3(pbr.baseColorFactor, glm::vec3(1.0f));
+  m.setMetallicRoughness(base, metallic, roughness, f0, f90);
+  if (m.textureImage && metallic > 0.0f) {
+    m.specular = glm::mix(f0, glm::clamp(base, 0.0f, 1.0f) * meanLinearColor(*m.textureImage), std::min(metallic, 1.0f));
+    warn_("a metal's base colour texture tints its highlight by the texture's mean colour");
+  }
 }
 
 // KHR_materials_unlit: the base colour (times its texture and the vertex
@@ -191,7 +232,7 @@ void GltfReader::emission(const tinygltf::Material& g, size_t material, Material
   if (const auto s = g.extensions.find("KHR_materials_emissive_strength"); s != g.extensions.end())
     e *= float(numberOr(s->second, "emissiveStrength", -1, 1.0));
   if (!(e.x > 0.0f || e.y > 0.0f || e.z > 0.0f)) return;  // NaN too
-  m.emission = glm::clamp(e, 0.0f, 1.0f);
+  m.emission = e;  // unclamped: KHR_materials_emissive_strength may take it past 1
   const tinygltf::TextureInfo& t = g.emissiveTexture;
   if (t.index < 0) return;
   const int source = textureSource(t);
@@ -205,7 +246,7 @@ void GltfReader::emission(const tinygltf::Material& g, size_t material, Material
     m.emissionImage = image;
     return;
   }
-  m.emission = glm::clamp(e * meanLinearColor(*image), 0.0f, 1.0f);
+  m.emission = e * meanLinearColor(*image);
   warn_("emissiveTexture on other coordinates than baseColorTexture drawn as its mean colour");
 }
 

@@ -22,7 +22,8 @@ constexpr size_t kMaxTriangles = size_t(1) << 28;
 // Extensions read where they are used; any other is named in a warning.
 bool isRead(const std::string& e) {
   return e == "KHR_texture_transform" || e == "KHR_lights_punctual" || e == "KHR_mesh_quantization" ||
-         e == "KHR_materials_emissive_strength" || e == "KHR_materials_unlit" || e == "KHR_draco_mesh_compression";
+         e == "KHR_materials_emissive_strength" || e == "KHR_materials_unlit" || e == "KHR_draco_mesh_compression" ||
+         e == "KHR_materials_ior" || e == "KHR_materials_specular";
 }
 
 // POSITION's values as the file holds them, checked before a node's
@@ -131,7 +132,7 @@ void GltfReader::warnUnread() {
     if (g.normalTexture.index >= 0) warn_("normalTexture not read: drawn with the vertex normals");
     if (g.occlusionTexture.index >= 0) warn_("occlusionTexture not read: drawn unoccluded");
     if (g.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
-      warn_("metallicRoughnessTexture not read: drawn with the factors alone");
+      warn_("metallicRoughnessTexture drawn as its mean roughness and metalness");
   }
 }
 
@@ -346,7 +347,7 @@ uint32_t GltfReader::defaultMaterial() {
   if (defaultMaterial_ < 0) {
     defaultMaterial_ = int(scene_.materials.size());
     Material m;
-    m.diffuse = glm::vec3(1.0f);  // the spec's default material: white, rough
+    m.setMetallicRoughness(glm::vec3(1.0f), 1.0f, 1.0f);  // the spec's default: a white, rough metal
     m.twoSided = false;
     scene_.materials.push_back(m);
   }

@@ -63,6 +63,7 @@ class GltfReader {
   // Materials (gltf_materials.cpp).
   void readMaterials();
   Material material(size_t i);
+  void metallicRoughness(const tinygltf::Material& g, Material& m);
   void mask(const tinygltf::Material& g, Material& m);
   int textureSource(const tinygltf::TextureInfo& t);
   void emission(const tinygltf::Material& g, size_t material, Material& m);

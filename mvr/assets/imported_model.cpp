@@ -69,6 +69,9 @@ void writeImportedModel(std::ostream& out, const ImportedModel& model) {
                                    {"diffuse", vec(m.diffuse)},
                                    {"specular", vec(m.specular)},
                                    {"shininess", m.shininess},
+                                   {"ggx", m.specularModel == SpecularModel::Ggx},
+                                   {"roughness", m.roughness},
+                                   {"f90", m.specularF90},
                                    {"texture", m.texture},
                                    {"two_sided", m.twoSided},
                                    {"emission", vec(m.emission)}});
@@ -110,6 +113,11 @@ ImportedModel readImportedModel(const std::string& bytes, const std::string& whe
     mat.diffuse = glm::clamp(color(m["diffuse"]), 0.0f, 1.0f);
     mat.specular = glm::clamp(color(m["specular"]), 0.0f, 1.0f);
     mat.shininess = m["shininess"].is_number() ? std::clamp(m["shininess"].get<float>(), 1.0f, 1e4f) : 32.0f;
+    if (m.value("ggx", false)) {
+      mat.specularModel = SpecularModel::Ggx;
+      mat.roughness = m["roughness"].is_number() ? std::clamp(m["roughness"].get<float>(), 0.0f, 1.0f) : 1.0f;
+      mat.specularF90 = m["f90"].is_number() ? std::clamp(m["f90"].get<float>(), 0.0f, 1.0f) : 1.0f;
+    }
     mat.texture = m.value("texture", "");
     mat.twoSided = m.value("two_sided", true);
     if (m.contains("emission")) mat.emission = glm::clamp(color(m["emission"]), 0.0f, 1.0f);

@@ -91,6 +91,12 @@ class SceneReader {
     return v;
   }
 
+  float unit(const Json& j, const std::string& where) const {
+    const double v = number(j, where);
+    if (v < 0.0 || v > 1.0) bad(where, "must be in [0, 1]");
+    return float(v);
+  }
+
   glm::vec3 vec3(const Json& j, const std::string& where) const {
     if (!j.is_array() || j.size() != 3) bad(where, "must be an array of 3 numbers");
     return {float(number(j[0], where)), float(number(j[1], where)), float(number(j[2], where))};
@@ -113,8 +119,17 @@ class SceneReader {
     expectObject(j, where,
                  {"diffuse", "texture", "specular", "shininess", "specular_model",
                   "reflection_map", "reflectivity", "two_sided", "emission", "emission_texture", "unlit",
-                  "alpha_cutoff"});
+                  "alpha_cutoff", "base_color", "metallic", "roughness"});
     Material m;
+    if (j.contains("base_color") || j.contains("metallic") || j.contains("roughness")) {
+      // glTF's metallic-roughness; its F0 and c_diff replace specular and diffuse.
+      for (const char* key : {"diffuse", "specular", "shininess", "specular_model"})
+        if (j.contains(key)) bad(where + "." + key, "is not used with base_color, metallic and roughness");
+      const glm::vec3 base = j.contains("base_color") ? color(j["base_color"], where + ".base_color") : glm::vec3(1.0f);
+      const float metallic = j.contains("metallic") ? unit(j["metallic"], where + ".metallic") : 0.0f;
+      const float roughness = j.contains("roughness") ? unit(j["roughness"], where + ".roughness") : 1.0f;
+      m.setMetallicRoughness(base, metallic, roughness);
+    }
     if (j.contains("diffuse")) m.diffuse = color(j["diffuse"], where + ".diffuse");
     if (j.contains("texture")) m.texture = relative(j["texture"], where + ".texture");
     if (j.contains("specular")) m.specular = color(j["specular"], where + ".specular");

@@ -19,6 +19,7 @@
 #include "mvr/images/image_file.h"
 #include "mvr/assets/mesh_io.h"
 #include "mvr/assets/scene_io.h"
+#include "shading/lighting.h"
 #include "tests/support/file_test.h"
 #include "tests/support/gltf_document.h"
 #include "tests/support/render_helpers.h"
@@ -124,15 +125,19 @@ TEST_F(Gltf, MaterialsVertexColoursAndTexture) {
   const Material& shiny = s.materials[0];
   EXPECT_EQ(shiny.name, "shiny");
   EXPECT_EQ(shiny.diffuse, glm::vec3(0.5f, 0.25f, 1.0f));  // metallic 0: all of the base is diffuse
-  EXPECT_EQ(shiny.specular, glm::vec3(0.04f));
-  EXPECT_NEAR(shiny.shininess, 2.0f / (0.25f * 0.25f) - 2.0f, 1e-4f);  // alpha = roughness^2 = 0.25
+  EXPECT_EQ(shiny.specular, glm::vec3(0.04f));  // F0 of glTF's dielectric (ior 1.5)
+  EXPECT_EQ(shiny.specularModel, SpecularModel::Ggx);
+  EXPECT_EQ(shiny.roughness, 0.5f);
   EXPECT_TRUE(shiny.twoSided);
   EXPECT_NEAR(glm::distance(shiny.emission, glm::vec3(0.8f, 0.4f, 0.2f)), 0.0f, 1e-6f);  // times the strength
-  // The defaults (metallic 1, roughness 1): a lobe too wide to keep, so
-  // diffuse base colour and no specular pass; single-sided.
+  // The defaults (metallic 1, roughness 1): a rough metal, no diffuse
+  // part, its F0 the base colour tinted by the texture's mean (red.png's
+  // texels); single-sided.
   const Material& textured = s.materials[1];
-  EXPECT_EQ(textured.specular, glm::vec3(0.0f));
-  EXPECT_EQ(textured.diffuse, glm::vec3(1.0f));
+  EXPECT_EQ(textured.diffuse, glm::vec3(0.0f));
+  EXPECT_EQ(textured.roughness, 1.0f);
+  EXPECT_GT(textured.specular.r, textured.specular.g);
+  EXPECT_GT(textured.specular.g, 0.0f);
   EXPECT_FALSE(textured.twoSided);
   ASSERT_TRUE(textured.textureImage);
   EXPECT_EQ(textured.textureImage->width, 4);
@@ -250,12 +255,17 @@ TEST_F(Gltf, TextureTransformAsTheExtensionDefines) {
 // and a point light of 100 cd 10 away from the triangle's centre (1 lux
 // there): 3/4 and 1/4 of the exposure. A bare file keeps its lights,
 // moved with the mesh as it is centred.
-TEST_F(Gltf, PunctualLightsKeepTheirBalance) {
+// KHR_lights_punctual in physical units: a 3 lux sun is 3 / pi, a
+// 100 cd bulb 100 / pi at distance 1, falling off as 1/d^2 (1 lux at the
+// triangle, 10 away). --exposure auto brings the sum at the centre to 1
+// (3 : 1), as before physical units; an EV of 1 doubles every light.
+TEST_F(Gltf, PunctualLightsAreInPhysicalUnits) {
   Document d = triangleDocument();
   d.json["extensionsUsed"] = {"KHR_lights_punctual"};
   d.json["extensions"] = {{"KHR_lights_punctual",
                            {{"lights", Json::array({{{"type", "directional"}, {"intensity", 3}},
-                                                    {{"type", "point"}, {"intensity", 100}, {"color", {1, 0.5, 0}}}})}}}};
+                                                    {{"type", "point"}, {"intensity", 100}, {"color", {1, 0.5, 0}},
+                                                     {"range", 20}}})}}}};
   const Json sun = {{"KHR_lights_punctual", {{"light", 0}}}}, bulb = {{"KHR_lights_punctual", {{"light", 1}}}};
   d.json["nodes"] = Json::array({{{"mesh", 0}},
                                  {{"rotation", {-0.70710678, 0, 0, 0.70710678}}, {"extensions", sun}},
@@ -263,11 +273,29 @@ TEST_F(Gltf, PunctualLightsKeepTheirBalance) {
   const std::string path = d.write(dir_ / "lights.gltf");
   const Scene s = loadMesh(path);
   ASSERT_EQ(s.lights.size(), 2u);
+  const float pi = float(M_PI);
   EXPECT_EQ(s.lights[0].type, Light::Type::Directional);
+  EXPECT_FALSE(s.lights[0].falloff);
   EXPECT_NEAR(glm::distance(s.lights[0].vector, glm::vec3(0, -1, 0)), 0.0f, 1e-6f);
-  EXPECT_NEAR(glm::distance(s.lights[0].color, glm::vec3(0.75f)), 0.0f, 1e-6f);
+  EXPECT_NEAR(glm::distance(s.lights[0].color, glm::vec3(3.0f / pi)), 0.0f, 1e-6f);
   EXPECT_EQ(s.lights[1].type, Light::Type::Point);
-  EXPECT_NEAR(glm::distance(s.lights[1].color, glm::vec3(0.25f, 0.125f, 0.0f)), 0.0f, 1e-6f);
+  EXPECT_TRUE(s.lights[1].falloff);
+  EXPECT_EQ(s.lights[1].range, 20.0f);
+  EXPECT_NEAR(glm::distance(s.lights[1].color, glm::vec3(100.0f, 50.0f, 0.0f) / pi), 0.0f, 1e-4f);
+  // The range window at d = 10 of 20: 1 - (1/2)^4 = 15/16, over d^2 = 100.
+  const glm::vec3 centre(0.5f, 0.5f, 0.0f);
+  EXPECT_NEAR(distanceFalloff(s.lights[1], centre), 15.0f / 16.0f / 100.0f, 1e-7f);
+  EXPECT_EQ(distanceFalloff(s.lights[1], glm::vec3(0.5f, 0.5f, -10.0f)), 0.0f);  // at the range
+  EXPECT_NEAR(s.autoExposure, pi / (3.0f + 100.0f * 15.0f / 16.0f / 100.0f), 1e-6f);
+  Scene automatic = s;
+  shading::applyExposure(automatic, std::nullopt);
+  EXPECT_NEAR(automatic.lights[0].color.r + automatic.lights[1].color.r * distanceFalloff(automatic.lights[1], centre),
+              1.0f, 1e-5f);
+  EXPECT_EQ(automatic.ambient, s.ambient);
+  Scene exposed = s;
+  shading::applyExposure(exposed, 1.0f);
+  EXPECT_NEAR(exposed.lights[0].color.r, 6.0f / pi, 1e-6f);
+  EXPECT_EQ(exposed.ambient, 2.0f * s.ambient);
   const Scene centred = loadScene(path);
   ASSERT_EQ(centred.lights.size(), 2u);
   EXPECT_NEAR(glm::distance(centred.lights[1].vector, glm::vec3(0, 0, 10)), 0.0f, 1e-6f);

@@ -1,0 +1,44 @@
+#pragma once
+// glTF 2.0's metallic-roughness BRDF (specification, Appendix B), the
+// specular lobe of SpecularModel::Ggx: the GGX (Trowbridge-Reitz)
+// distribution D with alpha = roughness^2, the height-correlated Smith
+// visibility V = G / (4 |n.l| |n.v|) and Schlick's Fresnel F between F0
+// and F90. Its diffuse half, Lambert's c_diff / pi, is shading/lighting's.
+//
+// Units: a light's colour is its illuminance over pi (a colour-1 light
+// lights a white Lambert surface facing it to 1), so the radiance a light
+// sends off the lobe is pi * colour * (n.l) * F V D. That is three.js's
+// irradiance * BRDF_GGX for a light of intensity pi * colour.
+//
+// One formula, written in C++ and GLSL side by side.
+#include <string>
+
+#include <glm/glm.hpp>
+
+namespace mvr::shading {
+
+// Roughness below this is raised to it (three.js's floor): the lobe's
+// peak D = 1 / (pi alpha^2) stays finite in float, and a highlight keeps
+// at least a pixel or so at the sizes a view has.
+inline constexpr float kMinRoughness = 0.0525f;
+
+float ggxDistribution(float alpha, float nh);
+// The same with sin2 = 1 - nh^2 given as |n x h|^2, exact near the mirror.
+float ggxDistribution(float alpha, float nh, float sin2);
+float smithVisibility(float alpha, float nl, float nv);
+glm::vec3 schlickFresnel(const glm::vec3& f0, float f90, float vh);
+
+// pi F V D (n.l) for unit n, l, v: the radiance a colour-1 light sends
+// towards v. Zero where l or v is below the surface.
+glm::vec3 ggxLobe(const glm::vec3& f0, float f90, float roughness, const glm::vec3& n,
+                  const glm::vec3& l, const glm::vec3& v);
+
+// The Blinn-Phong exponent whose lobe is about as wide as GGX's at this
+// roughness (Walter et al. 2007: 2 / alpha^2 - 2): where the highlight
+// splitter places its knots.
+float ggxBlinnExponent(float roughness);
+
+// GLSL: `vec3 ggxLobe(vec3 f0, float f90, float roughness, vec3 n, vec3 l, vec3 v)`.
+const char* glslBrdf();
+
+}  // namespace mvr::shading
