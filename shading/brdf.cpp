@@ -38,6 +38,66 @@ glm::vec3 ggxLobe(const glm::vec3& f0, float f90, float roughness, const glm::ve
          (float(M_PI) * nl * smithVisibility(alpha, nl, nv) * ggxDistribution(alpha, nh, sin2));
 }
 
+namespace {
+
+// The cell at roughness r and n.v = mu: A and B by importance sampling
+// GGX's D (n.h) over a Hammersley set, with the height-correlated Smith
+// visibility: G V.h / (n.h n.v) = 4 V (n.l) (v.h) / (n.h).
+glm::vec2 integrateDfg(float roughness, float mu) {
+  constexpr int kSamples = 1024;
+  const float alpha = roughness * roughness, a2 = alpha * alpha;
+  const glm::vec3 v(std::sqrt(std::max(1.0f - mu * mu, 0.0f)), 0.0f, mu);
+  glm::dvec2 sum(0.0);
+  for (uint32_t i = 0; i < kSamples; ++i) {
+    uint32_t bits = i;  // the radical inverse in base 2
+    bits = (bits << 16u) | (bits >> 16u);
+    bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
+    bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
+    bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
+    bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
+    const float u = (float(i) + 0.5f) / kSamples, w = float(bits) * 2.3283064e-10f;
+    const float phi = 2.0f * float(M_PI) * u, cosTheta = std::sqrt((1.0f - w) / (1.0f + (a2 - 1.0f) * w));
+    const float sinTheta = std::sqrt(std::max(1.0f - cosTheta * cosTheta, 0.0f));
+    const glm::vec3 h(sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta);
+    const float vh = glm::dot(v, h);
+    const glm::vec3 l = 2.0f * vh * h - v;
+    if (l.z <= 0.0f || vh <= 0.0f) continue;
+    const float g = 4.0f * smithVisibility(alpha, l.z, mu) * l.z * vh / h.z;
+    const float fc = std::pow(1.0f - vh, 5.0f);
+    sum += glm::dvec2((1.0f - fc) * g, fc * g);
+  }
+  return glm::vec2(sum / double(kSamples));
+}
+
+}  // namespace
+
+const std::vector<glm::vec2>& dfgTable() {
+  static const std::vector<glm::vec2> table = [] {
+    std::vector<glm::vec2> t(kDfgSize * kDfgSize);
+    for (int j = 0; j < kDfgSize; ++j)
+      for (int i = 0; i < kDfgSize; ++i)
+        t[size_t(j * kDfgSize + i)] = integrateDfg((float(i) + 0.5f) / kDfgSize, (float(j) + 0.5f) / kDfgSize);
+    return t;
+  }();
+  return table;
+}
+
+// Keep in step with the GLSL below.
+glm::vec2 dfg(float roughness, float nv) {
+  const std::vector<glm::vec2>& t = dfgTable();
+  const float x = std::clamp(roughness * kDfgSize - 0.5f, 0.0f, kDfgSize - 1.0f);
+  const float y = std::clamp(nv * kDfgSize - 0.5f, 0.0f, kDfgSize - 1.0f);
+  const int x0 = std::min(int(x), kDfgSize - 2), y0 = std::min(int(y), kDfgSize - 2);
+  const float fx = x - float(x0), fy = y - float(y0);
+  auto at = [&](int i, int j) { return t[size_t(j * kDfgSize + i)]; };
+  return glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx), glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx), fy);
+}
+
+glm::vec3 multiScatterCompensation(const glm::vec3& f0, float roughness, float nv) {
+  const glm::vec2 e = dfg(std::clamp(roughness, kMinRoughness, 1.0f), std::clamp(nv, 0.0f, 1.0f));
+  return 1.0f + f0 * (1.0f / std::max(e.x + e.y, 1e-3f) - 1.0f);
+}
+
 float ggxBlinnExponent(float roughness) {
   const float r = std::clamp(roughness, kMinRoughness, 1.0f), alpha = r * r;
   return std::max(2.0f / (alpha * alpha) - 2.0f, 0.0f);
@@ -45,7 +105,7 @@ float ggxBlinnExponent(float roughness) {
 
 const char* glslBrdf() {
   return R"(
-const float kMinRoughness = 0.0525;
+const float kMinRoughness = 0.045;
 float ggxDistribution(float alpha, float nh, float sin2) {
   float a = nh * alpha, d = sin2 + a * a;
   return alpha * alpha / (3.14159265 * d * d);
@@ -59,6 +119,17 @@ float smithVisibility(float alpha, float nl, float nv) {
 vec3 schlickFresnel(vec3 f0, float f90, float vh) {
   float x = 1.0 - clamp(vh, 0.0, 1.0), x2 = x * x;
   return f0 + (vec3(f90) - f0) * (x2 * x2 * x);
+}
+vec2 dfgAt(int i, int j) { return uDfg[j * 16 + i]; }
+vec2 dfg(float roughness, float nv) {
+  float x = clamp(roughness * 16.0 - 0.5, 0.0, 15.0), y = clamp(nv * 16.0 - 0.5, 0.0, 15.0);
+  int x0 = min(int(x), 14), y0 = min(int(y), 14);
+  float fx = x - float(x0), fy = y - float(y0);
+  return mix(mix(dfgAt(x0, y0), dfgAt(x0 + 1, y0), fx), mix(dfgAt(x0, y0 + 1), dfgAt(x0 + 1, y0 + 1), fx), fy);
+}
+vec3 multiScatterCompensation(vec3 f0, float roughness, float nv) {
+  vec2 e = dfg(clamp(roughness, kMinRoughness, 1.0), clamp(nv, 0.0, 1.0));
+  return 1.0 + f0 * (1.0 / max(e.x + e.y, 1e-3) - 1.0);
 }
 vec3 ggxLobe(vec3 f0, float f90, float roughness, vec3 n, vec3 l, vec3 v) {
   float nl = dot(n, l), nv = dot(n, v);

@@ -12,15 +12,16 @@
 //
 // One formula, written in C++ and GLSL side by side.
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
 namespace mvr::shading {
 
-// Roughness below this is raised to it (three.js's floor): the lobe's
-// peak D = 1 / (pi alpha^2) stays finite in float, and a highlight keeps
-// at least a pixel or so at the sizes a view has.
-inline constexpr float kMinRoughness = 0.0525f;
+// Roughness below this is raised to it (three.js's and Filament's floor):
+// the lobe's peak D = 1 / (pi alpha^2) stays finite in float, and a
+// highlight keeps at least a pixel or so at the sizes a view has.
+inline constexpr float kMinRoughness = 0.045f;
 
 float ggxDistribution(float alpha, float nh);
 // The same with sin2 = 1 - nh^2 given as |n x h|^2, exact near the mirror.
@@ -33,12 +34,27 @@ glm::vec3 schlickFresnel(const glm::vec3& f0, float f90, float vh);
 glm::vec3 ggxLobe(const glm::vec3& f0, float f90, float roughness, const glm::vec3& n,
                   const glm::vec3& l, const glm::vec3& v);
 
+// The split-sum BRDF table (Karis 2013), the lobe's directional albedo
+// E(v) = F0 A + F90 B over the hemisphere at roughness r and n.v: A and B,
+// integrated once (1024 GGX-importance samples a cell), kDfgSize^2 cells
+// whose centres are at ((i + 0.5) / kDfgSize, (j + 0.5) / kDfgSize) in
+// (r, n.v), read bilinearly and clamped to the edge, as a GL texture is.
+inline constexpr int kDfgSize = 16;
+const std::vector<glm::vec2>& dfgTable();  // row j (n.v) after row j - 1
+glm::vec2 dfg(float roughness, float nv);
+
+// What the lobe loses to its single scattering, given back (Turquin 2019,
+// three.js's direct light): 1 + F0 (1 / E_white - 1), E_white = A + B.
+glm::vec3 multiScatterCompensation(const glm::vec3& f0, float roughness, float nv);
+
 // The Blinn-Phong exponent whose lobe is about as wide as GGX's at this
 // roughness (Walter et al. 2007: 2 / alpha^2 - 2): where the highlight
 // splitter places its knots.
 float ggxBlinnExponent(float roughness);
 
-// GLSL: `vec3 ggxLobe(vec3 f0, float f90, float roughness, vec3 n, vec3 l, vec3 v)`.
+// GLSL: `vec3 ggxLobe(vec3 f0, float f90, float roughness, vec3 n, vec3 l, vec3 v)`,
+// and `vec2 dfg(float roughness, float nv)` and multiScatterCompensation
+// over uDfg, the table that the Materials block (glslMaterials) opens with.
 const char* glslBrdf();
 
 }  // namespace mvr::shading

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "shading/brdf.h"
 #include "shading/lighting.h"
@@ -36,7 +37,7 @@ glm::vec3 specularLight(const Scene& scene, const Material& m, const glm::vec3& 
       const glm::vec3 l = towardsLight(light, p);
       sum += incidentLight(light, p, l) * ggxLobe(m.specular, m.specularF90, m.roughness, n, l, v);
     }
-    return sum;
+    return sum * multiScatterCompensation(m.specular, m.roughness, glm::dot(n, v));
   }
   for (const Light& light : scene.lights) {
     const glm::vec3 l = towardsLight(light, p);
@@ -58,7 +59,8 @@ struct Material {
   vec4 emission;      // rgb, alpha cut-off (0: opaque)
   vec4 glow;          // unlit (1) or lit (0), emission texture group, layer (-1: none), Ggx's F90
 };
-layout(std430, binding = 1) readonly buffer Materials { Material uMaterials[]; };
+// Opened by the split-sum table (shading/brdf.h, kDfgSize^2 cells).
+layout(std430, binding = 1) readonly buffer Materials { vec2 uDfg[256]; Material uMaterials[]; };
 vec3 materialEmission(int material) { return uMaterials[material].emission.rgb; }
 bool materialUnlit(int material) { return uMaterials[material].glow.x != 0.0; }
 bool hasEmissionTexture(int material) { return uMaterials[material].glow.z >= 0.0; }
@@ -81,7 +83,7 @@ vec3 specularLight(int material, vec3 p, vec3 nIn, vec3 eye) {
       vec3 l = towardsLight(i, p);
       sum += lightColor(i, p, l) * ggxLobe(m.specular.rgb, m.glow.w, m.specular.w, n, l, v);
     }
-    return sum;
+    return sum * multiScatterCompensation(m.specular.rgb, m.specular.w, dot(n, v));
   }
   for (int i = 0; i < uLightCount; ++i) {
     vec3 l = towardsLight(i, p);
@@ -111,7 +113,13 @@ gl::Buffer makeMaterialBuffer(const Scene& scene, const TextureSet& textures,
                    glm::vec4(m.reflectivity, float(std::max(slot.x, 0))), glm::vec4(m.emission, m.masked() ? m.alphaCutoff : 0.0f),
                    glm::vec4(m.unlit ? 1.0f : 0.0f, float(std::max(glow.x, 0)), float(glow.y), m.specularF90)});
   }
-  return gl::makeBuffer(gpu.data(), gpu.size());
+  // The table first (256 vec2: 2048 bytes, a multiple of the materials' 16-byte alignment).
+  static_assert(kDfgSize == 16, "the GLSL reads a 16 x 16 table");
+  const std::vector<glm::vec2>& table = dfgTable();
+  std::vector<glm::vec4> words(table.size() / 2 + gpu.size() * (sizeof(GpuMaterial) / sizeof(glm::vec4)));
+  std::memcpy(words.data(), table.data(), table.size() * sizeof(glm::vec2));
+  if (!gpu.empty()) std::memcpy(&words[table.size() / 2], gpu.data(), gpu.size() * sizeof(GpuMaterial));
+  return gl::makeBuffer(words.data(), words.size());
 }
 
 }  // namespace mvr::shading

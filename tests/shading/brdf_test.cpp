@@ -84,7 +84,9 @@ TEST(Brdf, ASpecularLightOfAGgxMaterialIsTheLobeTimesTheLight) {
   const glm::vec3 l = glm::normalize(glm::vec3(1, 0, 1));
   s.lights = {Light{Light::Type::Directional, -l, glm::vec3(0.5f)}};
   const glm::vec3 eye(-3.0f, 0.5f, 4.0f), v = glm::normalize(eye);
-  const glm::vec3 expect = 0.5f * shading::ggxLobe(m.specular, 1.0f, 0.4f, kZ, l, v);
+  // The lobe, lifted by what single scattering loses (three.js's direct light).
+  const glm::vec3 expect = 0.5f * shading::ggxLobe(m.specular, 1.0f, 0.4f, kZ, l, v) *
+                           shading::multiScatterCompensation(m.specular, 0.4f, v.z);
   const glm::vec3 c = shading::specularLight(s, m, glm::vec3(0), 2.0f * kZ, eye);
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], expect[k], 1e-5f);
   EXPECT_GT(c.r, 0.0f);
@@ -102,6 +104,38 @@ TEST(Brdf, DielectricKeepsItsBaseAsDiffuseAndAFourPercentF0) {
   EXPECT_NEAR(glm::distance(m.diffuse, glm::vec3(0.25f, 0.125f, 0.5f)), 0.0f, 1e-6f);
   EXPECT_NEAR(glm::distance(m.specular, glm::vec3(0.3f, 0.175f, 0.55f)), 0.0f, 1e-6f);
   EXPECT_NEAR(m.specularF90, 0.8f, 1e-6f);
+}
+
+}  // namespace
+}  // namespace mvr
+
+namespace mvr {
+namespace {
+
+TEST(Brdf, SplitSumTableMatchesThreeJsAndItsLimits) {
+  const std::vector<glm::vec2>& t = shading::dfgTable();
+  ASSERT_EQ(t.size(), size_t(shading::kDfgSize * shading::kDfgSize));
+  auto cell = [&](int i, int j) { return t[size_t(j * shading::kDfgSize + i)]; };
+  // three.js r187's own table (src/renderers/shaders/DFGLUTData.js, half
+  // floats, 4096 samples a cell) at cells (roughness i, n.v j): the same
+  // integral, so the same values to within sampling and rounding.
+  const struct { int i, j; float a, b; } three[] = {{0, 0, 0.1471f, 0.8521f}, {5, 5, 0.8379f, 0.0938f},
+                                                    {15, 15, 0.3452f, 0.0001f}, {15, 0, 0.8599f, 0.0390f},
+                                                    {0, 15, 1.0000f, 0.0000f}, {8, 2, 0.7593f, 0.1009f}};
+  for (const auto& c : three) {
+    EXPECT_NEAR(cell(c.i, c.j).x, c.a, 0.01f) << c.i << ", " << c.j;
+    EXPECT_NEAR(cell(c.i, c.j).y, c.b, 0.01f) << c.i << ", " << c.j;
+  }
+  // A near-mirror reflects all it is lit by (A + B = 1); head-on, Schlick's
+  // term is nothing (B = 0).
+  for (int j = 2; j < shading::kDfgSize; ++j) EXPECT_NEAR(cell(0, j).x + cell(0, j).y, 1.0f, 0.02f) << j;
+  EXPECT_NEAR(shading::dfg(0.0f, 1.0f).y, 0.0f, 1e-3f);
+  // Rough surfaces lose energy to single scattering, which the
+  // compensation gives back: white F0 at roughness 1 is lifted by 1 / E.
+  const glm::vec2 e = shading::dfg(1.0f, 0.5f);
+  EXPECT_LT(e.x + e.y, 0.8f);
+  EXPECT_NEAR(shading::multiScatterCompensation(glm::vec3(1.0f), 1.0f, 0.5f).x, 1.0f / (e.x + e.y), 1e-5f);
+  EXPECT_EQ(shading::multiScatterCompensation(glm::vec3(0.0f), 1.0f, 0.5f), glm::vec3(1.0f));
 }
 
 }  // namespace
