@@ -285,10 +285,11 @@ class SpanRasterizer final : public EpiRasterizer {
   glm::vec3 shade(const Pst& pst, bool front, uint32_t material, float u, float du, float view) const {
     glm::vec3 color = pstColor(pst, front, u);
     const shading::ShadingPlan& plan = shading_.plan;
+    glm::vec3 t(1.0f);
     if (plan.uv >= 0) {
       // The lit colour carries the emission, unless it has a texture; the
       // multiply must not dim it.
-      const glm::vec3 t(texel(pst, shading_.textures->materialLayers()[material], u, du));
+      t = glm::vec3(texel(pst, shading_.textures->materialLayers()[material], u, du));
       const glm::vec3 e = shading_.scene->materials[material].emission;
       color *= t;
       if (const int glow = shading_.textures->emissionLayers()[material]; glow >= 0)
@@ -300,7 +301,10 @@ class SpanRasterizer final : public EpiRasterizer {
     const glm::vec3 p = pstExtras<3>(pst, plan.position, u);
     const glm::vec3 n = pstExtras<3>(pst, plan.normal, u) * (front ? 1.0f : -1.0f);
     const glm::vec3 eye = eye0_ + view * eyeStep_;
-    color += shading::specularLight(*shading_.scene, shading_.scene->materials[material], p, n, eye);
+    const Material& m = shading_.scene->materials[material];
+    color += shading::specularLight(*shading_.scene, m, p, n, eye);
+    if (plan.albedo >= 0)
+      color -= shading::diffuseFresnelLoss(*shading_.scene, m, pstExtras<3>(pst, plan.albedo, u) * t, p, n, eye);
     if (plan.reflect >= 0) {
       float affine[9];
       pstExtras(pst, plan.reflect, 9, u, affine);

@@ -14,7 +14,8 @@ void Material::setMetallicRoughness(const glm::vec3& base, float metallic, float
   const float m = std::clamp(metallic, 0.0f, 1.0f);
   specularModel = SpecularModel::Ggx;
   diffuse = b * (1.0f - m);
-  specular = glm::mix(glm::clamp(dielectricF0, 0.0f, 1.0f), b, m);
+  this->dielectricF0 = glm::clamp(dielectricF0, 0.0f, 1.0f);
+  specular = glm::mix(this->dielectricF0, b, m);
   specularF90 = glm::mix(std::clamp(dielectricF90, 0.0f, 1.0f), 1.0f, m);
   this->roughness = std::clamp(roughness, 0.0f, 1.0f);
 }

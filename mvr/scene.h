@@ -35,6 +35,9 @@ struct Material {
   SpecularModel specularModel = SpecularModel::BlinnPhong;
   float roughness = 1.0f;     // Ggx: perceptual roughness, alpha = roughness^2
   float specularF90 = 1.0f;   // Ggx: reflectance at grazing (KHR_materials_specular)
+  // Ggx: the dielectric's F0 alone (0.04 at ior 1.5): the Fresnel term that
+  // takes its share of the light off the diffuse part (glTF's fresnel_mix).
+  glm::vec3 dielectricF0{0.04f};
   std::string reflectionMap;  // empty for none
   glm::vec3 reflectivity{1.0f};  // scales the reflected environment
   bool twoSided = true;       // false: back faces are culled

@@ -98,6 +98,14 @@ glm::vec3 multiScatterCompensation(const glm::vec3& f0, float roughness, float n
   return 1.0f + f0 * (1.0f / std::max(e.x + e.y, 1e-3f) - 1.0f);
 }
 
+glm::vec3 scatteredShare(const glm::vec3& f0, float f90, float roughness, float nv) {
+  const glm::vec2 e = dfg(std::clamp(roughness, kMinRoughness, 1.0f), std::clamp(nv, 0.0f, 1.0f));
+  const glm::vec3 single = f0 * e.x + f90 * e.y;
+  const float lost = 1.0f - e.x - e.y;
+  const glm::vec3 average = f0 + (1.0f - f0) * (1.0f / 21.0f);
+  return single + single * average / (1.0f - lost * average) * lost;
+}
+
 float ggxBlinnExponent(float roughness) {
   const float r = std::clamp(roughness, kMinRoughness, 1.0f), alpha = r * r;
   return std::max(2.0f / (alpha * alpha) - 2.0f, 0.0f);
@@ -130,6 +138,13 @@ vec2 dfg(float roughness, float nv) {
 vec3 multiScatterCompensation(vec3 f0, float roughness, float nv) {
   vec2 e = dfg(clamp(roughness, kMinRoughness, 1.0), clamp(nv, 0.0, 1.0));
   return 1.0 + f0 * (1.0 / max(e.x + e.y, 1e-3) - 1.0);
+}
+vec3 scatteredShare(vec3 f0, float f90, float roughness, float nv) {
+  vec2 e = dfg(clamp(roughness, kMinRoughness, 1.0), clamp(nv, 0.0, 1.0));
+  vec3 single = f0 * e.x + f90 * e.y;
+  float lost = 1.0 - e.x - e.y;
+  vec3 average = f0 + (1.0 - f0) * (1.0 / 21.0);
+  return single + single * average / (1.0 - lost * average) * lost;
 }
 vec3 ggxLobe(vec3 f0, float f90, float roughness, vec3 n, vec3 l, vec3 v) {
   float nl = dot(n, l), nv = dot(n, v);

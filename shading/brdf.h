@@ -52,6 +52,11 @@ glm::vec3 multiScatterCompensation(const glm::vec3& f0, float roughness, float n
 // splitter places its knots.
 float ggxBlinnExponent(float roughness);
 
+// The share of a uniform surround's light the lobe reflects towards v,
+// single and multiple scattering (Fdez-Aguera 2019; three.js's
+// computeMultiscattering): what a diffuse layer under it does not get.
+glm::vec3 scatteredShare(const glm::vec3& f0, float f90, float roughness, float nv);
+
 // GLSL: `vec3 ggxLobe(vec3 f0, float f90, float roughness, vec3 n, vec3 l, vec3 v)`,
 // and `vec2 dfg(float roughness, float nv)` and multiScatterCompensation
 // over uDfg, the table that the Materials block (glslMaterials) opens with.

@@ -1,5 +1,7 @@
 #include "shading/shading_plan.h"
 
+#include "shading/lighting.h"
+
 namespace mvr::shading {
 
 ShadingPlan planShading(const Scene& scene) {
@@ -11,6 +13,7 @@ ShadingPlan planShading(const Scene& scene) {
     plan.reflection |= !m.reflectionMap.empty();
     plan.emission |= m.emission != glm::vec3(0.0f) || !m.emissionTexture.empty();
     plan.mask |= m.masked();
+    plan.ggx |= m.specularModel == SpecularModel::Ggx && !m.unlit && m.specular != glm::vec3(0.0f);
   }
   for (const Light& l : scene.lights) {
     plan.spots |= l.type == Light::Type::Spot;
@@ -24,6 +27,10 @@ ShadingPlan planShading(const Scene& scene) {
     plan.position = plan.extraCount;
     plan.normal = plan.extraCount + 3;
     plan.extraCount += 6;
+  }
+  if (plan.ggx && plan.specular) {
+    plan.albedo = plan.extraCount;
+    plan.extraCount += 3;
   }
   if (plan.reflection) {
     plan.reflect = plan.extraCount;
@@ -60,6 +67,7 @@ std::string ShadingPlan::glslDefines() const {
   if (mask) s += "#define MASK\n";
   if (spots) s += "#define SPOT_LIGHTS\n";
   if (falloff) s += "#define FALLOFF_LIGHTS\n";
+  if (albedo >= 0) s += "#define GGX\n";
   return s;
 }
 
@@ -76,6 +84,7 @@ namespace mvr::shading {
 std::vector<float> vertexExtras(const Scene& scene, const ShadingPlan& plan) {
   const int k = plan.extraCount;
   std::vector<float> out(scene.vertexCount() * size_t(k));
+  const std::vector<glm::vec3> albedo = plan.albedo >= 0 ? vertexAlbedo(scene) : std::vector<glm::vec3>{};
   for (size_t v = 0; v < scene.vertexCount(); ++v) {
     float* e = out.data() + v * k;
     if (plan.uv >= 0 && !scene.uvs.empty()) {
@@ -85,6 +94,8 @@ std::vector<float> vertexExtras(const Scene& scene, const ShadingPlan& plan) {
     const glm::vec3 p = scene.positions[v], n = scene.normals[v];
     if (plan.position >= 0)
       for (int c = 0; c < 3; ++c) e[plan.position + c] = p[c], e[plan.normal + c] = n[c];
+    if (plan.albedo >= 0)
+      for (int c = 0; c < 3; ++c) e[plan.albedo + c] = albedo[v][c];
     if (plan.reflect >= 0) {
       const glm::vec3 a = p - 2.0f * glm::dot(n, p) * n;
       const float m[9] = {a.x, a.y, a.z, 2 * n.x * n.x - 1, 2 * n.y * n.y - 1, 2 * n.z * n.z - 1,

@@ -36,11 +36,17 @@ struct ShadingPlan {
   bool spots = false;
   // Some light falls off with distance (Light::falloff): FALLOFF_LIGHTS.
   bool falloff = false;
+  // Some lit material is glTF's metallic-roughness (SpecularModel::Ggx):
+  // the view-dependent pass takes off the diffuse light its Fresnel term
+  // reflects instead (GGX; shading::diffuseFresnelLoss), which needs the
+  // diffuse albedo per pixel.
+  bool ggx = false;
 
   // Offsets into the per-vertex extras; -1 when absent.
   int uv = -1;        // 2 floats: texture coordinates
   int position = -1;  // 3 floats: world position (view-dependent pass)
   int normal = -1;    // 3 floats: world normal, front side
+  int albedo = -1;    // 3 floats: diffuse albedo (ggx), right after the normal
   // 9 floats: the reflection vector as an affine function of the eye E,
   // R(E) = A + M E with A = P - 2 (N.P) N and M = 2 N N^T - I (xx yy zz xy
   // xz yz): unnormalised R is linear in E, so interpolating A and M is

@@ -17,6 +17,7 @@ struct GpuMaterial {
   glm::vec4 reflectivity;  // rgb, texture group
   glm::vec4 emission;      // rgb, alpha cut-off (0: opaque)
   glm::vec4 glow;          // unlit (1) or lit (0), emission texture group, layer (-1: none), Ggx's F90
+  glm::vec4 dielectric;    // Ggx: the dielectric's F0, 0
 };
 
 float modelCode(SpecularModel model) {
@@ -50,6 +51,22 @@ glm::vec3 specularLight(const Scene& scene, const Material& m, const glm::vec3& 
   return m.specular * sum;
 }
 
+// Keep in step with the GLSL below.
+glm::vec3 diffuseFresnelLoss(const Scene& scene, const Material& m, const glm::vec3& albedo, const glm::vec3& p,
+                             const glm::vec3& nIn, const glm::vec3& eye) {
+  const float len = glm::length(nIn), dist = glm::length(eye - p);
+  if (m.specularModel != SpecularModel::Ggx || m.unlit || !(len > 1e-20f) || !(dist > 1e-20f)) return glm::vec3(0.0f);
+  const glm::vec3 n = nIn / len, v = (eye - p) / dist;
+  glm::vec3 sum = scene.ambient * scatteredShare(m.dielectricF0, m.specularF90, m.roughness, glm::dot(n, v));
+  for (const Light& light : scene.lights) {
+    const glm::vec3 l = towardsLight(light, p);
+    const float nl = glm::dot(n, l);
+    if (nl <= 0.0f) continue;
+    sum += incidentLight(light, p, l) * nl * schlickFresnel(m.dielectricF0, m.specularF90, glm::dot(v, glm::normalize(l + v)));
+  }
+  return albedo * sum;
+}
+
 const char* glslMaterials() {
   return R"(
 struct Material {
@@ -58,6 +75,7 @@ struct Material {
   vec4 reflectivity;  // rgb, texture group (TextureSet::glsl)
   vec4 emission;      // rgb, alpha cut-off (0: opaque)
   vec4 glow;          // unlit (1) or lit (0), emission texture group, layer (-1: none), Ggx's F90
+  vec4 dielectric;    // Ggx: the dielectric's F0, 0
 };
 // Opened by the split-sum table (shading/brdf.h, kDfgSize^2 cells).
 layout(std430, binding = 1) readonly buffer Materials { vec2 uDfg[256]; Material uMaterials[]; };
@@ -93,6 +111,21 @@ vec3 specularLight(int material, vec3 p, vec3 nIn, vec3 eye) {
   }
   return m.specular.rgb * sum;
 }
+
+vec3 diffuseFresnelLoss(int material, vec3 albedo, vec3 p, vec3 nIn, vec3 eye) {
+  Material m = uMaterials[material];
+  float len = length(nIn), dist = length(eye - p);
+  if (m.params.x != 2.0 || m.glow.x != 0.0 || !(len > 1e-20) || !(dist > 1e-20)) return vec3(0.0);
+  vec3 n = nIn / len, v = (eye - p) / dist;
+  vec3 sum = uAmbient * scatteredShare(m.dielectric.rgb, m.glow.w, m.specular.w, dot(n, v));
+  for (int i = 0; i < uLightCount; ++i) {
+    vec3 l = towardsLight(i, p);
+    float nl = dot(n, l);
+    if (nl <= 0.0) continue;
+    sum += lightColor(i, p, l) * nl * schlickFresnel(m.dielectric.rgb, m.glow.w, dot(v, normalize(l + v)));
+  }
+  return albedo * sum;
+}
 )";
   return src;
 }
@@ -111,7 +144,8 @@ gl::Buffer makeMaterialBuffer(const Scene& scene, const TextureSet& textures,
                    glm::vec4(modelCode(m.specularModel), float(slot.y),
                              float(map.layer), float(map.kind)),
                    glm::vec4(m.reflectivity, float(std::max(slot.x, 0))), glm::vec4(m.emission, m.masked() ? m.alphaCutoff : 0.0f),
-                   glm::vec4(m.unlit ? 1.0f : 0.0f, float(std::max(glow.x, 0)), float(glow.y), m.specularF90)});
+                   glm::vec4(m.unlit ? 1.0f : 0.0f, float(std::max(glow.x, 0)), float(glow.y), m.specularF90),
+                   glm::vec4(m.dielectricF0, 0.0f)});
   }
   // The table first (256 vec2: 2048 bytes, a multiple of the materials' 16-byte alignment).
   static_assert(kDfgSize == 16, "the GLSL reads a 16 x 16 table");

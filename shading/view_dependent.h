@@ -19,6 +19,14 @@ namespace mvr::shading {
 glm::vec3 specularLight(const Scene& scene, const Material& material, const glm::vec3& p,
                         const glm::vec3& n, const glm::vec3& eye);
 
+// glTF's fresnel_mix: the diffuse light that a Ggx material's Fresnel
+// term (its dielectric F0) reflects off instead, from every light and from
+// the ambient (its scattered share), for the eye; the view-dependent pass
+// takes it off the view-independent diffuse (which is albedo times its
+// light). Zero for other models.
+glm::vec3 diffuseFresnelLoss(const Scene& scene, const Material& material, const glm::vec3& albedo,
+                             const glm::vec3& p, const glm::vec3& n, const glm::vec3& eye);
+
 // GLSL: the Materials storage block (binding 1) that makeMaterialBuffer
 // fills; params.y of a material is its texture layer (-1 for none),
 // reflectivity.w its texture group, glow.yz its emission texture's
@@ -27,7 +35,8 @@ glm::vec3 specularLight(const Scene& scene, const Material& material, const glm:
 const char* glslMaterials();
 
 // GLSL: glslMaterials() and
-// `vec3 specularLight(int material, vec3 p, vec3 n, vec3 eye)`; needs
+// `vec3 specularLight(int material, vec3 p, vec3 n, vec3 eye)` and
+// `vec3 diffuseFresnelLoss(int material, vec3 albedo, vec3 p, vec3 n, vec3 eye)`; needs
 // glslLighting() before it for the light uniforms.
 const std::string& glslSpecular();
 

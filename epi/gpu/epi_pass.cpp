@@ -207,9 +207,8 @@ std::string passAttributeGlsl(shading::Pass pass, const shading::ShadingPlan& pl
   switch (pass) {
     case shading::Pass::Diffuse: body = "endAttribute(e, (front ? 4 : 7) + i)"; break;
     case shading::Pass::Texture: body = "endAttribute(e, " + std::to_string(head + plan.uv) + " + i)"; break;
-    case shading::Pass::ViewDependent:
-      body = "endAttribute(e, i < 6 ? " + std::to_string(head + plan.position) + " + i : " +
-             std::to_string(head + plan.reflect - 6) + " + i)";
+    case shading::Pass::ViewDependent:  // position, normal, albedo, reflection: one run (ShadingPlan)
+      body = "endAttribute(e, " + std::to_string(head + plan.position) + " + i)";
       break;
   }
   return "float passAttribute(End e, int i, bool front) { return " + body + "; }\n";
@@ -315,8 +314,10 @@ void main() {
 }
 )";
 
-// Attributes: position (3), normal (3), then, with REFLECT, the reflection
-// vector's affine form A (3), M (6): R(eye) = A + M eye.
+// Attributes: position (3), normal (3), with GGX the diffuse albedo (3),
+// then, with REFLECT, the reflection vector's affine form A (3), M (6):
+// R(eye) = A + M eye. GGX takes off the diffuse light its Fresnel term
+// reflects (before the texture pass's multiply had it: untextured albedo).
 const char* const kViewDependentMain = R"(
 uniform vec3 uEye0;     // eye of view 0 of this row
 uniform vec3 uEyeStep;  // eye movement per view
@@ -325,8 +326,14 @@ void main() {
   vec3 eye = uEye0 + gView * uEyeStep;
   int material = int(vFlat.y);
   vec3 c = specularLight(material, attr3(0), attr3(3) * vFlat.x, eye);
+#ifdef GGX
+  c -= diffuseFresnelLoss(material, attr3(6), attr3(0), attr3(3) * vFlat.x, eye);
+  const int kReflect = 9;
+#else
+  const int kReflect = 6;
+#endif
 #ifdef REFLECT
-  c += environmentLight(material, reflectionVector(attr3(6), attr3(9), attr3(12), eye));
+  c += environmentLight(material, reflectionVector(attr3(kReflect), attr3(kReflect + 3), attr3(kReflect + 6), eye));
 #endif
   oColor = vec4(c, 1.0);
 }
@@ -339,7 +346,7 @@ int passAttributeCount(shading::Pass pass, const EpiShading& shading) {
     case shading::Pass::Texture:
       if (shading.sliceHighlights) return 12;  // + highlight and row at two knots
       return shading.textureMode == TextureMode::Vector || shading.sliceVectors ? 4 : 2;
-    case shading::Pass::ViewDependent: return plan.reflect >= 0 ? 15 : 6;
+    case shading::Pass::ViewDependent: return 6 + (plan.albedo >= 0 ? 3 : 0) + (plan.reflect >= 0 ? 9 : 0);
   }
   return 0;
 }
@@ -368,6 +375,7 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bo
   if (emission() && shading.plan.emissionTexture) header += "#define EMISSION_TEXTURE\n";
   if (shading.plan.spots) header += "#define SPOT_LIGHTS\n";
   if (shading.plan.falloff) header += "#define FALLOFF_LIGHTS\n";
+  if (pass == shading::Pass::ViewDependent && shading.plan.albedo >= 0) header += "#define GGX\n";
   if (maskDepth) header += "#define MASK_DEPTH\n";
   std::string fragment = header + (exact ? kExactFragment : kSliverFragment) + kAttributeHelpers;
   if (pass == shading::Pass::Diffuse) {
@@ -429,9 +437,8 @@ void EpiPass::gather(const SliceEnd& e, bool front, float* out) const {
     case shading::Pass::Texture:
       std::copy_n(e.extrasOverW.begin() + plan.uv, 2, out);
       return;
-    case shading::Pass::ViewDependent:
-      std::copy_n(e.extrasOverW.begin() + plan.position, 6, out);
-      if (plan.reflect >= 0) std::copy_n(e.extrasOverW.begin() + plan.reflect, 9, out + 6);
+    case shading::Pass::ViewDependent:  // one run in the extras (ShadingPlan)
+      std::copy_n(e.extrasOverW.begin() + plan.position, count_, out);
       return;
   }
 }

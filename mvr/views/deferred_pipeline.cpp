@@ -158,6 +158,9 @@ void main() {
 #if defined(VIEW_DEPENDENT) && !defined(SEPARATE_HIGHLIGHTS)
   c += specularLight(int(normal.w + 0.5), p, n, uEye);
 #endif
+#ifdef GGX
+  c -= diffuseFresnelLoss(int(normal.w + 0.5), albedo.rgb, p, n, uEye);
+#endif
 #ifdef REFLECT
   // Per pixel from the G-buffer's normal, unlike the interpolated
   // per-vertex reflection vectors of svr and mvr (Halle eq. 5.2).

@@ -46,6 +46,9 @@ out vec2 vUv;
 #ifdef REFLECT
 out vec3 vReflect;  // unnormalised, interpolated (Halle eq. 5.2)
 #endif
+#ifdef GGX
+out vec3 vAlbedo;
+#endif
 void main() {
 #ifdef LAYERED
   mat4 viewProj = uViewProjs[uLayerBase + gl_InstanceID];
@@ -70,6 +73,9 @@ void main() {
 #ifdef REFLECT
   vReflect = reflect(aPosition - vEye, aNormal);
 #endif
+#ifdef GGX
+  vAlbedo = aAlbedo;
+#endif
 }
 )";
 
@@ -86,6 +92,9 @@ flat in vec3 vEye;
 in vec2 vUv;
 #ifdef REFLECT
 in vec3 vReflect;
+#endif
+#ifdef GGX
+in vec3 vAlbedo;
 #endif
 layout(location = 0) out vec4 oColor;
 void main() {
@@ -107,6 +116,13 @@ void main() {
 #endif
 #ifdef VIEW_DEPENDENT
   c += specularLight(int(vMaterial), vPosition, gl_FrontFacing ? vNormal : -vNormal, vEye);
+#endif
+#ifdef GGX
+  vec3 albedo = vAlbedo;
+#ifdef TEXTURE
+  albedo *= texel.rgb;
+#endif
+  c -= diffuseFresnelLoss(int(vMaterial), albedo, vPosition, gl_FrontFacing ? vNormal : -vNormal, vEye);
 #endif
 #ifdef REFLECT
   c += environmentLight(int(vMaterial), vReflect);
@@ -132,6 +148,10 @@ in vec2 vUv[];
 in vec3 vReflect[];
 out vec3 gReflect;
 #endif
+#ifdef GGX
+in vec3 vAlbedo[];
+out vec3 gAlbedo;
+#endif
 out vec3 gFront;
 out vec3 gBack;
 flat out float gCull;
@@ -155,6 +175,9 @@ void main() {
 #ifdef REFLECT
     gReflect = vReflect[i];
 #endif
+#ifdef GGX
+    gAlbedo = vAlbedo[i];
+#endif
     EmitVertex();
   }
 }
@@ -177,7 +200,7 @@ std::string fragmentSource(const Scene& scene, bool renamed) {
   std::string header = gl::glslHeader() + planDefines(scene);
   if (renamed)
     for (const char* name :
-         {"Front", "Back", "Cull", "Position", "Normal", "Material", "Eye", "Uv", "Reflect"})
+         {"Front", "Back", "Cull", "Position", "Normal", "Material", "Eye", "Uv", "Reflect", "Albedo"})
       header += std::string("#define v") + name + " g" + name + "\n";
   return header + shading::glslLighting() + shading::glslSpecular() + shading::TextureSet::glsl() +
          shading::TextureSet::glslSurfaceTexel() + shading::glslEnvironment() + kSvrFragment;
