@@ -6,7 +6,8 @@
 // intensity pi A), no tone mapping and sRGB output, no anti-aliasing.
 // Writes OUT/view_NNNN.png, one per manifest view.
 //
-//   node scripts/threejs-render.js MODEL MANIFEST OUT [--ambient A] [--exposure EV]
+//   node scripts/threejs-render.js MODEL MANIFEST OUT [--ambient A] [--exposure EV] [--default-light 1]
+// (--default-light 1: mvr's light for a file that has none, added too)
 // THREE_NODE_MODULES: a folder holding three and playwright-core
 // (scripts/threejs-pbr installs them).
 'use strict';
@@ -19,7 +20,7 @@ const { chromium } = require(path.join(modules, 'playwright-core'));
 
 function options(args) {
   const [model, manifest, out, ...rest] = args;
-  const o = { model, manifest, out, ambient: 0.15, exposure: 0 };
+  const o = { model, manifest, out, ambient: 0.15, exposure: 0, 'default-light': 0 };
   for (let i = 0; i < rest.length; i += 2) o[rest[i].replace(/^--/, '')] = Number(rest[i + 1]);
   return o;
 }
@@ -38,6 +39,11 @@ window.renderViews = async (o) => {
     if (n.isMesh) for (const m of [].concat(n.material)) if (m.emissiveIntensity !== undefined) m.emissiveIntensity *= k;
   });
   scene.add(new THREE.AmbientLight(0xffffff, Math.PI * o.ambient * k));
+  if (o.defaultLight) {  // mvr's light for a file without lights: colour 0.85 down (-0.4, -0.6, -1)
+    const sun = new THREE.DirectionalLight(0xffffff, Math.PI * 0.85 * k);
+    sun.position.set(0.4, 0.6, 1.0);
+    scene.add(sun);
+  }
   const canvas = document.createElement('canvas');
   document.body.appendChild(canvas);
   const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, alpha: true, preserveDrawingBuffer: true });
@@ -107,7 +113,7 @@ async function main() {
     await tab.waitForFunction(() => window.ready === true);
     const images = await tab.evaluate((args) => window.renderViews(args), {
       modelName: path.basename(o.model), width: manifest.width, height: manifest.height, views: manifest.cameras.views,
-      fromFile: manifest.cameras.from_file, ambient: o.ambient, exposure: o.exposure,
+      fromFile: manifest.cameras.from_file, ambient: o.ambient, exposure: o.exposure, defaultLight: o['default-light'] > 0,
     });
     fs.mkdirSync(o.out, { recursive: true });
     images.forEach((url, i) => fs.writeFileSync(path.join(o.out, 'view_' + String(i).padStart(4, '0') + '.png'),
