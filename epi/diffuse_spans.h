@@ -180,8 +180,8 @@ template <class Encode>
     F4 c[3];
     for (int k = 0; k < 3; ++k) {
       c[k] = (s.color0[k] + s.colorStep[k] * u) / invW;
-      c[k] = c[k] < 0.0f ? F4{} : c[k];  // glm::clamp(c, 0, 1)
-      c[k] = c[k] > 1.0f ? F4{} + 1.0f : c[k];
+      c[k] = c[k] < 0.0f ? F4{} : c[k];  // glm::clamp(c, 0, 1); float pixels keep HDR values above 1
+      if (pixelBytes == 4) c[k] = c[k] > 1.0f ? F4{} + 1.0f : c[k];
     }
     if (codes.kind == SliceCodes::Kind::Count) {
       I4 pixels = I4{} + int32_t(0xff000000u);  // alpha 255

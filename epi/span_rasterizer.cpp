@@ -232,7 +232,7 @@ class SpanRasterizer final : public EpiRasterizer {
             dz = z;
             uint8_t* p = epi.row(i) + size_t(x) * pixelBytes;
             if (flat) std::memcpy(p, codes.pixel.data(), 4);
-            else encode(p, glm::clamp(pstColor(pst, piece.front, u), 0.0f, 1.0f));
+            else encode(p, clampFor(pstColor(pst, piece.front, u)));
           });
     };
     switch (type_) {
@@ -339,8 +339,14 @@ class SpanRasterizer final : public EpiRasterizer {
     return c + highlight(colors.knots + sv.firstKnot, sv.knotCount, i + 0.5f);
   }
 
+  // What a pixel of the target's type holds: [0, 1] in 8 bits; float
+  // keeps HDR radiance above 1 (EXR, --tonemap), as the GL targets do.
+  glm::vec3 clampFor(const glm::vec3& c) const {
+    return type_ == PixelType::F32 ? glm::max(c, 0.0f) : glm::clamp(c, 0.0f, 1.0f);
+  }
+
   void store(const PixelRows& img, int x, int y, const glm::vec3& c) const {
-    const glm::vec3 v = glm::clamp(c, 0.0f, 1.0f);
+    const glm::vec3 v = clampFor(c);
     uint8_t* p = img.row(y) + size_t(x) * 4 * (type_ == PixelType::F32 ? 4 : 1);
     if (type_ == PixelType::U8) storeU8(p, v);
     else if (type_ == PixelType::Srgb8) storeSrgb8(p, v);

@@ -134,6 +134,10 @@ struct Scene {
   // what brings their illuminance at the centre of its bounds to a sum of
   // 1, as a camera's automatic exposure would.
   float autoExposure = 1.0f;
+  // Shaded for a tone map (`--tonemap`): the lit diffuse colour is not
+  // clamped to 1 before the texture and highlights (it is without one, so
+  // that today's images keep their bytes).
+  bool highDynamicRange = false;
   // The colours are data (depth, mvr/depth.h), not reflectances: back ends
   // keep them in float wherever they store them (the G-buffer's albedo).
   bool exactColors = false;

@@ -3,10 +3,12 @@
 // the file with three.js r187's GLTFLoader and MeshStandardMaterial at
 // every view's K and V from an mvr manifest (times from_file), with mvr's
 // ambient light added (its colour A is three.js's AmbientLight of
-// intensity pi A), no tone mapping and sRGB output, no anti-aliasing.
+// intensity pi A), the tone map named (default none) and sRGB output, no
+// anti-aliasing. --exposure EV multiplies the lights and emission by 2^EV.
 // Writes OUT/view_NNNN.png, one per manifest view.
 //
 //   node scripts/threejs-render.js MODEL MANIFEST OUT [--ambient A] [--exposure EV] [--default-light 1]
+//                                  [--tonemap none|aces|agx|neutral]
 // (--default-light 1: mvr's light for a file that has none, added too)
 // THREE_NODE_MODULES: a folder holding three and playwright-core
 // (scripts/threejs-pbr installs them).
@@ -20,8 +22,11 @@ const { chromium } = require(path.join(modules, 'playwright-core'));
 
 function options(args) {
   const [model, manifest, out, ...rest] = args;
-  const o = { model, manifest, out, ambient: 0.15, exposure: 0, 'default-light': 0 };
-  for (let i = 0; i < rest.length; i += 2) o[rest[i].replace(/^--/, '')] = Number(rest[i + 1]);
+  const o = { model, manifest, out, ambient: 0.15, exposure: 0, 'default-light': 0, tonemap: 'none' };
+  for (let i = 0; i < rest.length; i += 2) {
+    const key = rest[i].replace(/^--/, '');
+    o[key] = key === 'tonemap' ? rest[i + 1] : Number(rest[i + 1]);
+  }
   return o;
 }
 
@@ -51,7 +56,8 @@ window.renderViews = async (o) => {
   renderer.setSize(o.width, o.height, false);
   renderer.setClearColor(0x000000, 0);
   renderer.outputColorSpace = THREE.SRGBColorSpace;
-  renderer.toneMapping = THREE.NoToneMapping;
+  renderer.toneMapping = { none: THREE.NoToneMapping, aces: THREE.ACESFilmicToneMapping, agx: THREE.AgXToneMapping,
+                           neutral: THREE.NeutralToneMapping }[o.tonemap];
   const bounds = new THREE.Box3().setFromObject(scene), sphere = bounds.getBoundingSphere(new THREE.Sphere());
   const camera = new THREE.PerspectiveCamera();
   camera.matrixAutoUpdate = false;
@@ -113,7 +119,7 @@ async function main() {
     await tab.waitForFunction(() => window.ready === true);
     const images = await tab.evaluate((args) => window.renderViews(args), {
       modelName: path.basename(o.model), width: manifest.width, height: manifest.height, views: manifest.cameras.views,
-      fromFile: manifest.cameras.from_file, ambient: o.ambient, exposure: o.exposure, defaultLight: o['default-light'] > 0,
+      fromFile: manifest.cameras.from_file, ambient: o.ambient, exposure: o.exposure, defaultLight: o['default-light'] > 0, tonemap: o.tonemap,
     });
     fs.mkdirSync(o.out, { recursive: true });
     images.forEach((url, i) => fs.writeFileSync(path.join(o.out, 'view_' + String(i).padStart(4, '0') + '.png'),

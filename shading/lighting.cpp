@@ -44,8 +44,10 @@ glm::vec3 diffuse(const Scene& scene, const glm::vec3& albedo, const glm::vec3& 
     const glm::vec3 l = towardsLight(light, p);
     sum += incidentLight(light, p, l) * glm::max(glm::dot(n, l), 0.0f);
   }
-  return glm::clamp(albedo * sum, 0.0f, 1.0f);
+  return glm::clamp(albedo * sum, 0.0f, diffuseCeiling(scene));
 }
+
+float diffuseCeiling(const Scene& scene) { return scene.highDynamicRange ? 3.0e38f : 1.0f; }
 
 glm::vec3 surfaceLight(const Scene& scene, const Material& m, const glm::vec3& albedo, const glm::vec3& p,
                        const glm::vec3& n) {
@@ -82,6 +84,7 @@ uniform vec3 uLightAxis[8];  // a spot's
 uniform vec2 uLightCone[8];  // scale, offset (coneScaleOffset): 0, 1 for no spot
 uniform vec2 uLightFalloff[8];  // on (1) or off (0), 1 / range^2 (0: no range)
 uniform vec3 uAmbient;
+uniform float uDiffuseCeiling;  // 1, or no ceiling (Scene::highDynamicRange)
 
 vec3 towardsLight(int i, vec3 p) {
   return uLightVector[i].w == 0.0 ? -uLightVector[i].xyz : normalize(uLightVector[i].xyz - p);
@@ -111,7 +114,7 @@ vec3 diffuseLight(vec3 albedo, vec3 p, vec3 n) {
     vec3 l = towardsLight(i, p);
     sum += lightColor(i, p, l) * max(dot(n, l), 0.0);
   }
-  return clamp(albedo * sum, 0.0, 1.0);
+  return clamp(albedo * sum, 0.0, uDiffuseCeiling);
 }
 )";
   return src;
@@ -130,6 +133,7 @@ void setLightUniforms(const gl::Program& program, const Scene& scene) {
     fail(scene.source, "more than " + std::to_string(kMaxLights) + " lights");
   gl::setUniform(program, "uLightCount", int(scene.lights.size()));
   gl::setUniform(program, "uAmbient", scene.ambient);
+  gl::setUniform(program, "uDiffuseCeiling", diffuseCeiling(scene));
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
     const std::string idx = "[" + std::to_string(i) + "]";

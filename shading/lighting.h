@@ -33,6 +33,9 @@ glm::vec3 towardsLight(const Light& light, const glm::vec3& p);
 glm::vec3 diffuse(const Scene& scene, const glm::vec3& albedo, const glm::vec3& position,
                   const glm::vec3& normal);
 
+// Where diffuse() clamps the lit colour: 1, or (HDR) nowhere.
+float diffuseCeiling(const Scene& scene);
+
 // diffuse(), or the albedo itself where the material is unlit.
 glm::vec3 surfaceLight(const Scene& scene, const Material& material, const glm::vec3& albedo,
                        const glm::vec3& position, const glm::vec3& normal);

@@ -65,6 +65,12 @@ void RenderFlags::addOutputShape(CLI::App& app) {
   if (!app.get_option_no_throw("--from")) {
     addStrictOption(app, strict_);
     addExposureOption(app, exposure_);
+    app.add_option("--tonemap", tonemap_,
+                   "display transform before the output encoding: none, aces (filmic), agx or neutral (Khronos "
+                   "PBR Neutral), as three.js draws them; shades in float without clamping. Not with exr, "
+                   "which keeps linear radiance")
+        ->check(CLI::IsMember({"none", "aces", "agx", "neutral"}))
+        ->capture_default_str();
   }
   app.add_flag("--linear", linear_,
                "write linear values to png and tiff files (and 8-bit streams) instead of "
@@ -186,6 +192,8 @@ RenderJob RenderFlags::describe(const CLI::App& app) const {
   }
   job.strict = strict_;
   job.exposure = exposure_;
+  job.toneMap = *toneMapNamed(tonemap_);
+  if (job.toneMap != ToneMap::None && format_ == "exr") fail("--tonemap", "exr keeps linear radiance: not with --format exr");
   job.out = out_, job.format = format_, job.order = order_;
   job.bits = bits_.value_or(defaultBits(format_));
   job.compression = compression_, job.codec = codec_, job.linear = linear_;

@@ -10,6 +10,7 @@
 #include "apps/render/mpi_session.h"
 #include "mvr/error.h"
 #include "mvr/frames/progress.h"
+#include "mvr/frames/tone_mapped_renderer.h"
 #include "mvr/images/image_codec.h"
 #include "mvr/assets/scene_io.h"
 #include "mvr/parallel.h"
@@ -52,6 +53,7 @@ void start(RenderJob& job, PreparedJob& p) {
   auto loading = std::async(std::launch::async, [&] {
     const Stopwatch watch;
     Scene loaded = job.synthesize() ? Scene{} : loadInputScene(job.scenePath, job.strict, job.exposure);
+    loaded.highDynamicRange = job.toneMap != ToneMap::None;
     return std::pair{std::move(loaded), watch.seconds()};
   });
   try {
@@ -107,7 +109,7 @@ void setUp(RenderJob& job, PreparedJob& p) {
   p.renderCamera.emplace(job.aa.active() ? supersampledCamera(camera, job.aa) : camera);
   p.referenceCount = synthesize ? job.references->references.size() : 0;
   p.renderer = synthesize ? makeWarpRenderer(std::move(job.references->references), job.type, job.warp, &*p.renderCamera)
-                          : makeRenderer(job.backend, p.scene, job.type);
+                          : makeSceneRenderer(job, p.scene);
   p.startup.add("renderer", phase.restart());
 }
 
@@ -172,10 +174,16 @@ void prepareJob(RenderJob& job, PreparedJob& prepared) {
   planMemory(job, prepared);
 }
 
+std::unique_ptr<Renderer> makeSceneRenderer(const RenderJob& job, const Scene& scene) {
+  if (job.toneMap == ToneMap::None) return makeRenderer(job.backend, scene, job.type);
+  // Shaded in float, tone mapped into the output's type (mvr/tone_map.h).
+  return std::make_unique<ToneMappedRenderer>(makeRenderer(job.backend, scene, PixelType::F32), job.toneMap, job.type);
+}
+
 void poseJob(const RenderJob& job, PreparedJob& p, double time, const glm::mat4& move) {
   poseGeometry(p.scene, *p.still, move);
   poseAnimations(p.scene, time, job.sequence.clip, move);
-  if (p.renderer && !p.renderer->sceneMoved()) p.renderer = makeRenderer(job.backend, p.scene, job.type);
+  if (p.renderer && !p.renderer->sceneMoved()) p.renderer = makeSceneRenderer(job, p.scene);
 }
 
 void frameEveryPose(const RenderJob& job, PreparedJob& p) {

@@ -23,6 +23,7 @@
 #include "mvr/images/manifest.h"
 #include "mvr/images/rgbd_set.h"
 #include "mvr/scene.h"
+#include "mvr/tone_map.h"
 #include "mvr/timer.h"
 
 namespace mvr::app {
@@ -40,6 +41,7 @@ struct RenderJob {
   std::string scenePath;
   bool strict = false;
   std::optional<float> exposure;  // --exposure: empty for auto
+  ToneMap toneMap = ToneMap::None;  // --tonemap
   std::optional<RgbdSet> references;  // synthesize
   std::string from;
   WarpOptions warp;
@@ -124,6 +126,9 @@ int runJob(RenderJob& job);
 // What runJob does before it renders: GL started on this thread, the
 // scene read, the camera framed, the renderer built, the memory planned.
 void prepareJob(RenderJob& job, PreparedJob& prepared);
+// The job's back end for a scene: rendering the job's pixel type, or with
+// --tonemap in float, tone mapped into it.
+std::unique_ptr<Renderer> makeSceneRenderer(const RenderJob& job, const Scene& scene);
 // The scene posed from prepared.still: its animations at `time` (the
 // job's clip), then moved by `move` in world space; the renderer follows
 // it (Renderer::sceneMoved) or, a back end that cannot, is built again

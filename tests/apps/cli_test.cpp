@@ -108,6 +108,10 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
                            "render --views 65536 --size 4096x4096 --memory 1G --threads 1 --out " + d.string(),
                            "render --views 8 --size 4096x4096 --memory 100M --out " + d.string(),
                            "render --memory 12X --out " + d.string(),
+                           "render --exposure bright --out " + d.string(),
+                           "render --exposure 1e9 --out " + d.string(),
+                           "render --tonemap filmic --out " + d.string(),
+                           "render --tonemap aces --format exr --out " + d.string(),
                            "render --depth --order epi --out " + d.string(),
                            "render --depth --stream " + (d / "s.epis").string(),
                            "render --backend svr --tau 0.1 --out " + d.string(),
@@ -132,7 +136,9 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
         {"--quilt auto", "GiB for the quilt) but"},
         {"--memory 1G", "the scratch file needs 4096.0 GiB but the disk has"},
         {"--memory 100M", "mvr: --memory: 100.0 MiB cannot hold one frame (64.0 MiB)"},
-        {"12X", "mvr: --memory: '12X' is not a size"}};
+        {"12X", "mvr: --memory: '12X' is not a size"},
+        {"--exposure bright", "--exposure: must be auto or a number of stops"},
+        {"--format exr", "mvr: --tonemap: exr keeps linear radiance"}};
     for (const auto& [marker, message] : named) {
       if (args.find(marker) == std::string::npos) continue;
       EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
