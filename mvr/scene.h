@@ -88,6 +88,12 @@ struct Light {
   // zero at `range` (0: no range) as KHR_lights_punctual recommends.
   bool falloff = false;
   float range = 0.0f;
+  // What `--exposure auto` multiplies it by (shading::applyExposure): 1,
+  // or for a file's lights in physical units (glTF's lux and candela),
+  // what brings their illuminance at the centre of the file's bounds to a
+  // sum of 1, as a camera's automatic exposure would. Per light, so that
+  // a scene file's meshes keep their own files' exposures.
+  float autoExposure = 1.0f;
   bool positional() const { return type != Type::Directional; }
 };
 
@@ -129,11 +135,6 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Light> lights;
   glm::vec3 ambient{0.15f};
-  // What `--exposure auto` multiplies the lights by (shading::applyExposure):
-  // 1, or for a file's lights in physical units (glTF's lux and candela),
-  // what brings their illuminance at the centre of its bounds to a sum of
-  // 1, as a camera's automatic exposure would.
-  float autoExposure = 1.0f;
   // Shaded for a tone map (`--tonemap`): the lit diffuse colour is not
   // clamped to 1 before the texture and highlights (it is without one, so
   // that today's images keep their bytes).

@@ -10,9 +10,9 @@
 namespace mvr::shading {
 
 void applyExposure(Scene& scene, std::optional<float> ev) {
-  const float k = ev ? std::exp2(*ev) : scene.autoExposure;
-  for (Light& light : scene.lights) light.color *= k;
+  for (Light& light : scene.lights) light.color *= ev ? std::exp2(*ev) : light.autoExposure;
   if (!ev) return;
+  const float k = std::exp2(*ev);
   scene.ambient *= k;
   for (Material& m : scene.materials) m.emission *= k;
 }

@@ -18,7 +18,7 @@ using mvr::kMaxLights;
 
 // A camera's exposure (`--exposure`): with a value EV, every light, the
 // ambient light and every emission are multiplied by 2^EV (the scene's
-// radiance, exposed); without one (auto), the lights alone by the scene's
+// radiance, exposed); without one (auto), the lights alone by their
 // autoExposure.
 void applyExposure(Scene& scene, std::optional<float> ev);
 

@@ -19,7 +19,7 @@ void GltfReader::placeLight(const tinygltf::Value& ext, const glm::mat4& world) 
 // its colour times E / pi, a point or spot light of I candela its colour
 // times I / pi at distance 1, falling off as 1/d^2 within its range. The
 // brightest at the centre of the scene's bounds are kept, and what brings
-// their illuminance there to a sum of 1 is the scene's autoExposure.
+// their illuminance there to a sum of 1 is each one's autoExposure.
 void GltfReader::addLights() {
   const glm::vec3 centre = scene_.bounds().center();
   std::vector<std::pair<double, Light>> lit;  // illuminance at the centre, light
@@ -62,8 +62,10 @@ void GltfReader::addLights() {
   }
   double sum = 0.0;
   for (const auto& l : lit) sum += l.first;
-  for (const auto& l : lit) scene_.lights.push_back(l.second);
-  scene_.autoExposure = float(std::min(M_PI / sum, 1e30));
+  for (auto& [illuminance, light] : lit) {
+    light.autoExposure = float(std::min(M_PI / sum, 1e30));
+    scene_.lights.push_back(light);
+  }
 }
 
 }  // namespace mvr::gltf

@@ -286,7 +286,7 @@ TEST_F(Gltf, PunctualLightsAreInPhysicalUnits) {
   const glm::vec3 centre(0.5f, 0.5f, 0.0f);
   EXPECT_NEAR(distanceFalloff(s.lights[1], centre), 15.0f / 16.0f / 100.0f, 1e-7f);
   EXPECT_EQ(distanceFalloff(s.lights[1], glm::vec3(0.5f, 0.5f, -10.0f)), 0.0f);  // at the range
-  EXPECT_NEAR(s.autoExposure, pi / (3.0f + 100.0f * 15.0f / 16.0f / 100.0f), 1e-6f);
+  for (const Light& l : s.lights) EXPECT_NEAR(l.autoExposure, pi / (3.0f + 100.0f * 15.0f / 16.0f / 100.0f), 1e-6f);
   Scene automatic = s;
   shading::applyExposure(automatic, std::nullopt);
   EXPECT_NEAR(automatic.lights[0].color.r + automatic.lights[1].color.r * distanceFalloff(automatic.lights[1], centre),
@@ -299,6 +299,13 @@ TEST_F(Gltf, PunctualLightsAreInPhysicalUnits) {
   const Scene centred = loadScene(path);
   ASSERT_EQ(centred.lights.size(), 2u);
   EXPECT_NEAR(glm::distance(centred.lights[1].vector, glm::vec3(0, 0, 10)), 0.0f, 1e-6f);
+  // In a scene file that names no lights the file's lights keep their
+  // own exposure.
+  std::ofstream(dir_ / "lights.json") << R"({"meshes": [{"file": "lights.gltf"}]})";
+  Scene framed = loadScene((dir_ / "lights.json").string());
+  ASSERT_EQ(framed.lights.size(), 2u);
+  shading::applyExposure(framed, std::nullopt);
+  EXPECT_NEAR(framed.lights[0].color.r, automatic.lights[0].color.r, 1e-6f);
 }
 
 // A spot light keeps its cone, its axis down its node's -z (here turned to
