@@ -85,8 +85,9 @@ const std::vector<glm::vec2>& dfgTable() {
 // Keep in step with the GLSL below.
 glm::vec2 dfg(float roughness, float nv) {
   const std::vector<glm::vec2>& t = dfgTable();
-  const float x = std::clamp(roughness * kDfgSize - 0.5f, 0.0f, kDfgSize - 1.0f);
-  const float y = std::clamp(nv * kDfgSize - 0.5f, 0.0f, kDfgSize - 1.0f);
+  const float r = std::clamp(roughness, kMinRoughness, 1.0f), mu = std::clamp(nv, 0.0f, 1.0f);
+  const float x = std::clamp(r * kDfgSize - 0.5f, 0.0f, kDfgSize - 1.0f);
+  const float y = std::clamp(mu * kDfgSize - 0.5f, 0.0f, kDfgSize - 1.0f);
   const int x0 = std::min(int(x), kDfgSize - 2), y0 = std::min(int(y), kDfgSize - 2);
   const float fx = x - float(x0), fy = y - float(y0);
   auto at = [&](int i, int j) { return t[size_t(j * kDfgSize + i)]; };
@@ -94,12 +95,12 @@ glm::vec2 dfg(float roughness, float nv) {
 }
 
 glm::vec3 multiScatterCompensation(const glm::vec3& f0, float roughness, float nv) {
-  const glm::vec2 e = dfg(std::clamp(roughness, kMinRoughness, 1.0f), std::clamp(nv, 0.0f, 1.0f));
+  const glm::vec2 e = dfg(roughness, nv);
   return 1.0f + f0 * (1.0f / std::max(e.x + e.y, 1e-3f) - 1.0f);
 }
 
 glm::vec3 scatteredShare(const glm::vec3& f0, float f90, float roughness, float nv) {
-  const glm::vec2 e = dfg(std::clamp(roughness, kMinRoughness, 1.0f), std::clamp(nv, 0.0f, 1.0f));
+  const glm::vec2 e = dfg(roughness, nv);
   const glm::vec3 single = f0 * e.x + f90 * e.y;
   const float lost = 1.0f - e.x - e.y;
   const glm::vec3 average = f0 + (1.0f - f0) * (1.0f / 21.0f);
@@ -130,17 +131,18 @@ vec3 schlickFresnel(vec3 f0, float f90, float vh) {
 }
 vec2 dfgAt(int i, int j) { return uDfg[j * 16 + i]; }
 vec2 dfg(float roughness, float nv) {
-  float x = clamp(roughness * 16.0 - 0.5, 0.0, 15.0), y = clamp(nv * 16.0 - 0.5, 0.0, 15.0);
+  float r = clamp(roughness, kMinRoughness, 1.0), mu = clamp(nv, 0.0, 1.0);
+  float x = clamp(r * 16.0 - 0.5, 0.0, 15.0), y = clamp(mu * 16.0 - 0.5, 0.0, 15.0);
   int x0 = min(int(x), 14), y0 = min(int(y), 14);
   float fx = x - float(x0), fy = y - float(y0);
   return mix(mix(dfgAt(x0, y0), dfgAt(x0 + 1, y0), fx), mix(dfgAt(x0, y0 + 1), dfgAt(x0 + 1, y0 + 1), fx), fy);
 }
 vec3 multiScatterCompensation(vec3 f0, float roughness, float nv) {
-  vec2 e = dfg(clamp(roughness, kMinRoughness, 1.0), clamp(nv, 0.0, 1.0));
+  vec2 e = dfg(roughness, nv);
   return 1.0 + f0 * (1.0 / max(e.x + e.y, 1e-3) - 1.0);
 }
 vec3 scatteredShare(vec3 f0, float f90, float roughness, float nv) {
-  vec2 e = dfg(clamp(roughness, kMinRoughness, 1.0), clamp(nv, 0.0, 1.0));
+  vec2 e = dfg(roughness, nv);
   vec3 single = f0 * e.x + f90 * e.y;
   float lost = 1.0 - e.x - e.y;
   vec3 average = f0 + (1.0 - f0) * (1.0 / 21.0);

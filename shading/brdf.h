@@ -41,6 +41,8 @@ glm::vec3 ggxLobe(const glm::vec3& f0, float f90, float roughness, const glm::ve
 // (r, n.v), read bilinearly and clamped to the edge, as a GL texture is.
 inline constexpr int kDfgSize = 16;
 const std::vector<glm::vec2>& dfgTable();  // row j (n.v) after row j - 1
+// Read at the roughness the lobe uses (raised to kMinRoughness) and n.v
+// clamped to [0, 1].
 glm::vec2 dfg(float roughness, float nv);
 
 // What the lobe loses to its single scattering, given back (Turquin 2019,

@@ -10,9 +10,12 @@
 namespace mvr::shading {
 
 void applyExposure(Scene& scene, std::optional<float> ev) {
-  for (Light& light : scene.lights) light.color *= ev ? std::exp2(*ev) : light.autoExposure;
-  if (!ev) return;
+  if (!ev) {
+    for (Light& light : scene.lights) light.color *= light.autoExposure;
+    return;
+  }
   const float k = std::exp2(*ev);
+  for (Light& light : scene.lights) light.color *= k;
   scene.ambient *= k;
   for (Material& m : scene.materials) m.emission *= k;
 }

@@ -28,7 +28,7 @@ ShadingPlan planShading(const Scene& scene) {
     plan.normal = plan.extraCount + 3;
     plan.extraCount += 6;
   }
-  if (plan.ggx && plan.specular) {
+  if (plan.ggx) {  // a Ggx material with an F0 is specular: position and normal are there
     plan.albedo = plan.extraCount;
     plan.extraCount += 3;
   }

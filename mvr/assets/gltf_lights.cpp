@@ -62,8 +62,9 @@ void GltfReader::addLights() {
   }
   double sum = 0.0;
   for (const auto& l : lit) sum += l.first;
+  const float exposure = float(std::min(M_PI / sum, 1e30));
   for (auto& [illuminance, light] : lit) {
-    light.autoExposure = float(std::min(M_PI / sum, 1e30));
+    light.autoExposure = exposure;
     scene_.lights.push_back(light);
   }
 }

@@ -109,6 +109,23 @@ inline BackEndsAgainstSvr compareBackEndsWithSvr(const Scene& scene, const Shear
   return out;
 }
 
+// The highlight tolerances (specular_test.cpp, pbr_test.cpp) of a scene
+// with view-dependent materials, every back end against svr: svr-layered
+// identical, deferred and every MVR mode (all running the diffuse and
+// view-dependent passes) at least 40 dB, the CPU spans and the exact mode
+// close on any GL.
+inline void expectHighlightsMatchSvr(const Scene& scene, const ShearingCamera& cam) {
+  const BackEndsAgainstSvr r = compareBackEndsWithSvr(scene, cam);
+  EXPECT_EQ(r.difference.at("svr-layered").minIdentical, 1.0);
+  // Deferred lights diffuse per pixel, not per vertex: close, not equal.
+  EXPECT_GE(r.difference.at("deferred").minPsnr, 40.0);
+  for (const char* mode : {"cpu", "exact", "strip", "quad"}) {
+    EXPECT_EQ(r.passes.at(mode), "diffuse+view-dependent") << mode;
+    EXPECT_GE(r.difference.at(mode).minPsnr, 40.0) << mode;
+  }
+  for (const char* mode : {"cpu", "exact"}) expectCloseOnAnyGl(r.difference.at(mode), 0.995, 40.0, mode);
+}
+
 // Every view of the camera by the back end a spec names ("svr", "mvr:exact").
 inline CaptureSink renderSpec(const std::string& spec, const Scene& scene, const ShearingCamera& cam) {
   auto renderer = makeRenderer(parseBackendSpec(spec), scene, PixelType::U8);
