@@ -85,6 +85,13 @@ void Scene::transform(const glm::mat4& m) {
       light.color = glm::vec3(glm::dvec3(light.color) * (scale * scale));
     }
   }
+  if (environment && turns) {
+    // Directions turn by m's rotation (a similarity: its columns scaled
+    // alike); the map stays where it was, so lookups turn back.
+    glm::mat3 r = glm::mat3(glm::dmat3(glm::mat3(m)));
+    for (int c = 0; c < 3; ++c) r[c] = glm::normalize(r[c]);
+    environment->fromScene = environment->fromScene * glm::transpose(r);
+  }
   for (FileCamera& c : fileCameras) c.toWorld = m * c.toWorld;
   for (auto& a : animations) {
     auto moved = std::make_shared<SceneAnimation>(*a);

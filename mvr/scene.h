@@ -16,6 +16,9 @@ namespace mvr {
 
 struct Image;
 struct SceneAnimation;  // mvr/scene_animation.h: what poses a scene, which it holds
+namespace shading {
+class ImageLight;  // shading/image_light.h: an environment's prefiltered maps
+}
 
 // Phong and Blinn-Phong: a highlight of colour `specular` and exponent
 // `shininess`. Ggx: glTF's metallic-roughness lobe (shading/brdf.h), with
@@ -122,6 +125,22 @@ struct FileCamera {
   double yfov = 0.8;  // vertical field of view, radians
 };
 
+// Image-based light (`--environment`, a scene file's "environment"): a
+// distant equirectangular radiance map round the scene, in three.js's
+// EquirectangularReflectionMapping axes, lighting every lit material's
+// diffuse and a metallic-roughness material's specular lobe.
+struct Environment {
+  std::string file;        // equirectangular .hdr or .exr
+  float intensity = 1.0f;  // radiance scale (an exposure multiplies it)
+  float rotation = 0.0f;   // degrees about +y, as three.js's environmentRotation.y
+  // Scene directions to the map's: the rotation about +y, then whatever
+  // Scene::transform() has turned the scene by since its file.
+  glm::mat3 fromScene{1.0f};
+  // The maps, once loaded (shading::loadEnvironment); shared by the
+  // scene's copies (a sequence's frames).
+  std::shared_ptr<const shading::ImageLight> light;
+};
+
 struct Scene {
   // Per vertex.
   std::vector<glm::vec3> positions;
@@ -135,6 +154,10 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Light> lights;
   glm::vec3 ambient{0.15f};
+  // The lights and the ambient are loading's defaults, not a file's: an
+  // environment takes their place.
+  bool defaultLights = false, defaultAmbient = true;
+  std::optional<Environment> environment;
   // Shaded for a tone map (`--tonemap`): the lit diffuse colour is not
   // clamped to 1 before the texture and highlights (it is without one, so
   // that today's images keep their bytes).

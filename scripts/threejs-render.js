@@ -5,10 +5,15 @@
 // ambient light added (its colour A is three.js's AmbientLight of
 // intensity pi A), the tone map named (default none) and sRGB output, no
 // anti-aliasing. --exposure EV multiplies the lights and emission by 2^EV.
+// --environment FILE.exr: scene.environment, an equirectangular map
+// (EquirectangularReflectionMapping, PMREM'd by three.js), of intensity
+// --environment-intensity K times 2^EV, turned --environment-rotation DEG
+// about +y.
 // Writes OUT/view_NNNN.png, one per manifest view.
 //
 //   node scripts/threejs-render.js MODEL MANIFEST OUT [--ambient A] [--exposure EV] [--default-light 1]
-//                                  [--tonemap none|aces|agx|neutral]
+//                                  [--tonemap none|aces|agx|neutral] [--environment FILE.exr]
+//                                  [--environment-intensity K] [--environment-rotation DEG]
 // (--default-light 1: mvr's light for a file that has none, added too)
 // THREE_NODE_MODULES: a folder holding three and playwright-core
 // (scripts/threejs-pbr installs them).
@@ -22,10 +27,11 @@ const { chromium } = require(path.join(modules, 'playwright-core'));
 
 function options(args) {
   const [model, manifest, out, ...rest] = args;
-  const o = { model, manifest, out, ambient: 0.15, exposure: 0, 'default-light': 0, tonemap: 'none' };
+  const o = { model, manifest, out, ambient: 0.15, exposure: 0, 'default-light': 0, tonemap: 'none',
+             environment: '', 'environment-intensity': 1, 'environment-rotation': 0 };
   for (let i = 0; i < rest.length; i += 2) {
     const key = rest[i].replace(/^--/, '');
-    o[key] = key === 'tonemap' ? rest[i + 1] : Number(rest[i + 1]);
+    o[key] = key === 'tonemap' || key === 'environment' ? rest[i + 1] : Number(rest[i + 1]);
   }
   return o;
 }
@@ -36,14 +42,23 @@ const page = `<!doctype html><html><body style="margin:0">
 <script type="module">
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { EXRLoader } from 'three/addons/loaders/EXRLoader.js';
 window.renderViews = async (o) => {
   const gltf = await new GLTFLoader().loadAsync('/model/' + o.modelName);
-  const scene = gltf.scene, k = Math.pow(2, o.exposure);
+  const scene = new THREE.Scene(), k = Math.pow(2, o.exposure);
+  scene.add(gltf.scene);
   scene.traverse((n) => {
     if (n.isLight) n.intensity *= k;
     if (n.isMesh) for (const m of [].concat(n.material)) if (m.emissiveIntensity !== undefined) m.emissiveIntensity *= k;
   });
   scene.add(new THREE.AmbientLight(0xffffff, Math.PI * o.ambient * k));
+  if (o.environment) {
+    const map = await new EXRLoader().loadAsync('/environment/' + o.environment);
+    map.mapping = THREE.EquirectangularReflectionMapping;
+    scene.environment = map;
+    scene.environmentIntensity = o.environmentIntensity * k;
+    scene.environmentRotation.y = o.environmentRotation * Math.PI / 180;
+  }
   if (o.defaultLight) {  // mvr's light for a file without lights: colour 0.85 down (-0.4, -0.6, -1)
     const sun = new THREE.DirectionalLight(0xffffff, Math.PI * 0.85 * k);
     sun.position.set(0.4, 0.6, 1.0);
@@ -88,6 +103,7 @@ window.ready = true;
 
 function serve(o) {
   const roots = { '/three/': path.join(modules, 'three') + '/', '/model/': path.dirname(path.resolve(o.model)) + '/' };
+  if (o.environment) roots['/environment/'] = path.dirname(path.resolve(o.environment)) + '/';
   const types = { '.js': 'text/javascript', '.html': 'text/html', '.png': 'image/png', '.jpg': 'image/jpeg' };
   return http.createServer((req, res) => {
     const url = decodeURIComponent(req.url.split('?')[0]);
@@ -120,6 +136,8 @@ async function main() {
     const images = await tab.evaluate((args) => window.renderViews(args), {
       modelName: path.basename(o.model), width: manifest.width, height: manifest.height, views: manifest.cameras.views,
       fromFile: manifest.cameras.from_file, ambient: o.ambient, exposure: o.exposure, defaultLight: o['default-light'] > 0, tonemap: o.tonemap,
+      environment: o.environment && path.basename(o.environment), environmentIntensity: o['environment-intensity'],
+      environmentRotation: o['environment-rotation'],
     });
     fs.mkdirSync(o.out, { recursive: true });
     images.forEach((url, i) => fs.writeFileSync(path.join(o.out, 'view_' + String(i).padStart(4, '0') + '.png'),

@@ -38,6 +38,23 @@ glm::vec3 ggxLobe(const glm::vec3& f0, float f90, float roughness, const glm::ve
          (float(M_PI) * nl * smithVisibility(alpha, nl, nv) * ggxDistribution(alpha, nh, sin2));
 }
 
+glm::vec2 hammersley(uint32_t i, uint32_t n) {
+  uint32_t bits = i;  // the radical inverse in base 2
+  bits = (bits << 16u) | (bits >> 16u);
+  bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
+  bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
+  bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
+  bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
+  return {(float(i) + 0.5f) / float(n), float(bits) * 2.3283064e-10f};
+}
+
+glm::vec3 ggxHalfVector(const glm::vec2& xi, float alpha) {
+  const float a2 = alpha * alpha, phi = 2.0f * float(M_PI) * xi.x;
+  const float cosTheta = std::sqrt((1.0f - xi.y) / (1.0f + (a2 - 1.0f) * xi.y));
+  const float sinTheta = std::sqrt(std::max(1.0f - cosTheta * cosTheta, 0.0f));
+  return {sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta};
+}
+
 namespace {
 
 // The cell at roughness r and n.v = mu: A and B by importance sampling
@@ -45,20 +62,11 @@ namespace {
 // visibility: G V.h / (n.h n.v) = 4 V (n.l) (v.h) / (n.h).
 glm::vec2 integrateDfg(float roughness, float mu) {
   constexpr int kSamples = 1024;
-  const float alpha = roughness * roughness, a2 = alpha * alpha;
+  const float alpha = roughness * roughness;
   const glm::vec3 v(std::sqrt(std::max(1.0f - mu * mu, 0.0f)), 0.0f, mu);
   glm::dvec2 sum(0.0);
   for (uint32_t i = 0; i < kSamples; ++i) {
-    uint32_t bits = i;  // the radical inverse in base 2
-    bits = (bits << 16u) | (bits >> 16u);
-    bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
-    bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
-    bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
-    bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
-    const float u = (float(i) + 0.5f) / kSamples, w = float(bits) * 2.3283064e-10f;
-    const float phi = 2.0f * float(M_PI) * u, cosTheta = std::sqrt((1.0f - w) / (1.0f + (a2 - 1.0f) * w));
-    const float sinTheta = std::sqrt(std::max(1.0f - cosTheta * cosTheta, 0.0f));
-    const glm::vec3 h(sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta);
+    const glm::vec3 h = ggxHalfVector(hammersley(i, kSamples), alpha);
     const float vh = glm::dot(v, h);
     const glm::vec3 l = 2.0f * vh * h - v;
     if (l.z <= 0.0f || vh <= 0.0f) continue;
@@ -99,12 +107,17 @@ glm::vec3 multiScatterCompensation(const glm::vec3& f0, float roughness, float n
   return 1.0f + f0 * (1.0f / std::max(e.x + e.y, 1e-3f) - 1.0f);
 }
 
-glm::vec3 scatteredShare(const glm::vec3& f0, float f90, float roughness, float nv) {
+Scattering splitScattering(const glm::vec3& f0, float f90, float roughness, float nv) {
   const glm::vec2 e = dfg(roughness, nv);
   const glm::vec3 single = f0 * e.x + f90 * e.y;
   const float lost = 1.0f - e.x - e.y;
   const glm::vec3 average = f0 + (1.0f - f0) * (1.0f / 21.0f);
-  return single + single * average / (1.0f - lost * average) * lost;
+  return {single, single * average / (1.0f - lost * average) * lost};
+}
+
+glm::vec3 scatteredShare(const glm::vec3& f0, float f90, float roughness, float nv) {
+  const Scattering s = splitScattering(f0, f90, roughness, nv);
+  return s.single + s.multiple;
 }
 
 float ggxBlinnExponent(float roughness) {
@@ -141,12 +154,17 @@ vec3 multiScatterCompensation(vec3 f0, float roughness, float nv) {
   vec2 e = dfg(roughness, nv);
   return 1.0 + f0 * (1.0 / max(e.x + e.y, 1e-3) - 1.0);
 }
-vec3 scatteredShare(vec3 f0, float f90, float roughness, float nv) {
+void splitScattering(vec3 f0, float f90, float roughness, float nv, out vec3 single, out vec3 multiple) {
   vec2 e = dfg(roughness, nv);
-  vec3 single = f0 * e.x + f90 * e.y;
+  single = f0 * e.x + f90 * e.y;
   float lost = 1.0 - e.x - e.y;
   vec3 average = f0 + (1.0 - f0) * (1.0 / 21.0);
-  return single + single * average / (1.0 - lost * average) * lost;
+  multiple = single * average / (1.0 - lost * average) * lost;
+}
+vec3 scatteredShare(vec3 f0, float f90, float roughness, float nv) {
+  vec3 single, multiple;
+  splitScattering(f0, f90, roughness, nv, single, multiple);
+  return single + multiple;
 }
 vec3 ggxLobe(vec3 f0, float f90, float roughness, vec3 n, vec3 l, vec3 v) {
   float nl = dot(n, l), nv = dot(n, v);

@@ -11,6 +11,7 @@
 // irradiance * BRDF_GGX for a light of intensity pi * colour.
 //
 // One formula, written in C++ and GLSL side by side.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,13 @@ glm::vec3 schlickFresnel(const glm::vec3& f0, float f90, float vh);
 // towards v. Zero where l or v is below the surface.
 glm::vec3 ggxLobe(const glm::vec3& f0, float f90, float roughness, const glm::vec3& n,
                   const glm::vec3& l, const glm::vec3& v);
+
+// Point i of n of the Hammersley set in [0, 1)^2 (the radical inverse in
+// base 2 as its second coordinate), and the half vector about +z that
+// GGX's D (n.h) at width alpha maps it to: the importance samples of the
+// BRDF table and of the environment's prefiltering.
+glm::vec2 hammersley(uint32_t i, uint32_t n);
+glm::vec3 ggxHalfVector(const glm::vec2& xi, float alpha);
 
 // The split-sum BRDF table (Karis 2013), the lobe's directional albedo
 // E(v) = F0 A + F90 B over the hemisphere at roughness r and n.v: A and B,
@@ -58,6 +66,13 @@ float ggxBlinnExponent(float roughness);
 // single and multiple scattering (Fdez-Aguera 2019; three.js's
 // computeMultiscattering): what a diffuse layer under it does not get.
 glm::vec3 scatteredShare(const glm::vec3& f0, float f90, float roughness, float nv);
+// The same in its two parts: single scattering F0 A + F90 B, which weighs
+// the prefiltered radiance, and the multiple scattering that weighs the
+// irradiance (shading/image_light.h).
+struct Scattering {
+  glm::vec3 single, multiple;
+};
+Scattering splitScattering(const glm::vec3& f0, float f90, float roughness, float nv);
 
 // GLSL: `vec3 ggxLobe(vec3 f0, float f90, float roughness, vec3 n, vec3 l, vec3 v)`,
 // and `vec2 dfg(float roughness, float nv)` and multiScatterCompensation

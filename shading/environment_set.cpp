@@ -7,6 +7,7 @@
 #include "mvr/error.h"
 #include "mvr/image.h"
 #include "mvr/images/image_file.h"
+#include "shading/cube_faces.h"
 
 namespace mvr::shading {
 namespace {
@@ -21,22 +22,6 @@ EnvironmentKind kindOf(const Image& img, const std::string& path) {
   if (img.width == 2 * img.height) return EnvironmentKind::SpherePair;
   fail(path, "a reflection map must be a 6:1 cube strip or a 2:1 sphere map pair, not " +
                  std::to_string(img.width) + "x" + std::to_string(img.height));
-}
-
-// GL 4.5 table 8.19: the face and its (sc, tc, ma) for direction r.
-int cubeFace(const glm::vec3& r, glm::vec2& st) {
-  const glm::vec3 a = glm::abs(r);
-  int face;
-  float sc, tc, ma;
-  if (a.x >= a.y && a.x >= a.z) {
-    face = r.x >= 0 ? 0 : 1, ma = a.x, sc = r.x >= 0 ? -r.z : r.z, tc = -r.y;
-  } else if (a.y >= a.z) {
-    face = r.y >= 0 ? 2 : 3, ma = a.y, sc = r.x, tc = r.y >= 0 ? r.z : -r.z;
-  } else {
-    face = r.z >= 0 ? 4 : 5, ma = a.z, sc = r.z >= 0 ? r.x : -r.x, tc = -r.y;
-  }
-  st = 0.5f * (glm::vec2(sc, tc) / ma + 1.0f);
-  return face;
 }
 
 // GL_SPHERE_MAP's coordinates for unit n; the back map sees the world
@@ -126,13 +111,8 @@ namespace {
 
 gl::Texture uploadLayers(GLenum target, int size, int depth, const std::vector<uint8_t>& texels) {
   if (depth == 0) return {};
-  gl::Texture tex(target);
-  gl::TextureStorage3D(tex.id(), 1, GL_SRGB8_ALPHA8, size, size, depth);  // decoded by GL
-  gl::PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  gl::TextureSubImage3D(tex.id(), 0, 0, 0, 0, size, size, depth, GL_RGBA, GL_UNSIGNED_BYTE,
-                        texels.data());
-  tex.filter(GL_LINEAR, GL_LINEAR);
-  tex.wrap(GL_CLAMP_TO_EDGE);
+  gl::Texture tex = gl::Texture::array2D(target, GL_SRGB8_ALPHA8, size, size, depth);  // decoded by GL
+  tex.uploadLayers(0, depth, size, size, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
   gl::checkError("uploading reflection maps");
   return tex;
 }

@@ -27,6 +27,7 @@ class GpuMaterials {
   gl::Buffer materials_;
   std::vector<gl::Texture> textures_;
   gl::Texture cubeMaps_, sphereMaps_;
+  gl::Texture environment_;  // the image-based light's levels (ImageLight), if the scene has one
 };
 
 }  // namespace mvr::shading

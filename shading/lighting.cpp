@@ -6,6 +6,7 @@
 #include "mvr/error.h"
 #include "mvr/gl/gl_program.h"
 #include "mvr/parallel.h"
+#include "shading/image_light.h"
 
 namespace mvr::shading {
 
@@ -17,6 +18,7 @@ void applyExposure(Scene& scene, std::optional<float> ev) {
   const float k = std::exp2(*ev);
   for (Light& light : scene.lights) light.color *= k;
   scene.ambient *= k;
+  if (scene.environment) scene.environment->intensity *= k;
   for (Material& m : scene.materials) m.emission *= k;
 }
 
@@ -42,7 +44,7 @@ glm::vec3 towardsLight(const Light& light, const glm::vec3& p) {
 // Keep in step with the GLSL below.
 glm::vec3 diffuse(const Scene& scene, const glm::vec3& albedo, const glm::vec3& p,
                   const glm::vec3& n) {
-  glm::vec3 sum = scene.ambient;
+  glm::vec3 sum = scene.ambient + environmentDiffuse(scene, n);
   for (const Light& light : scene.lights) {
     const glm::vec3 l = towardsLight(light, p);
     sum += incidentLight(light, p, l) * glm::max(glm::dot(n, l), 0.0f);
@@ -79,7 +81,7 @@ VertexColors litVertexColors(const Scene& scene) {
 }
 
 const std::string& glslLighting() {
-  static const std::string src = R"(
+  static const std::string src = std::string(glslEnvironmentDiffuse()) + R"(
 uniform int uLightCount;
 uniform vec4 uLightVector[8];  // w = 0: direction light travels; w = 1: position
 uniform vec3 uLightColor[8];
@@ -113,6 +115,9 @@ vec3 lightColor(int i, vec3 p, vec3 l) {
 
 vec3 diffuseLight(vec3 albedo, vec3 p, vec3 n) {
   vec3 sum = uAmbient;
+#ifdef ENVIRONMENT
+  sum += environmentDiffuse(n);
+#endif
   for (int i = 0; i < uLightCount; ++i) {
     vec3 l = towardsLight(i, p);
     sum += lightColor(i, p, l) * max(dot(n, l), 0.0);
@@ -137,6 +142,7 @@ void setLightUniforms(const gl::Program& program, const Scene& scene) {
   gl::setUniform(program, "uLightCount", int(scene.lights.size()));
   gl::setUniform(program, "uAmbient", scene.ambient);
   gl::setUniform(program, "uDiffuseCeiling", diffuseCeiling(scene));
+  setEnvironmentUniforms(program, scene);
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const Light& l = scene.lights[i];
     const std::string idx = "[" + std::to_string(i) + "]";

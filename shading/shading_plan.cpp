@@ -15,6 +15,7 @@ ShadingPlan planShading(const Scene& scene) {
     plan.mask |= m.masked();
     plan.ggx |= m.specularModel == SpecularModel::Ggx && !m.unlit && m.specular != glm::vec3(0.0f);
   }
+  plan.environment = scene.environment.has_value();
   for (const Light& l : scene.lights) {
     plan.spots |= l.type == Light::Type::Spot;
     plan.falloff |= l.falloff;
@@ -68,6 +69,7 @@ std::string ShadingPlan::glslDefines() const {
   if (spots) s += "#define SPOT_LIGHTS\n";
   if (falloff) s += "#define FALLOFF_LIGHTS\n";
   if (albedo >= 0) s += "#define GGX\n";
+  if (environment) s += "#define ENVIRONMENT\n";
   return s;
 }
 

@@ -41,6 +41,10 @@ struct ShadingPlan {
   // reflects instead (GGX; shading::diffuseFresnelLoss), which needs the
   // diffuse albedo per pixel.
   bool ggx = false;
+  // The scene has an image-based light (Scene::environment): its
+  // irradiance joins every lit diffuse colour, and a Ggx material's
+  // view-dependent pass adds its prefiltered radiance (ENVIRONMENT).
+  bool environment = false;
 
   // Offsets into the per-vertex extras; -1 when absent.
   int uv = -1;        // 2 floats: texture coordinates
@@ -59,7 +63,8 @@ struct ShadingPlan {
   std::string passNames() const;  // e.g. "diffuse+texture"
   // "#define TEXTURE", "#define VIEW_DEPENDENT" and "#define REFLECT"
   // lines for the passes after the first, "#define EMISSION",
-  // "#define EMISSION_TEXTURE" and "#define MASK": shaders that compute
+  // "#define EMISSION_TEXTURE" and "#define MASK", and SPOT_LIGHTS,
+  // FALLOFF_LIGHTS, GGX and ENVIRONMENT as above: shaders that compute
   // every pass at once.
   std::string glslDefines() const;
 };

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "shading/brdf.h"
+#include "shading/image_light.h"
 #include "shading/lighting.h"
 
 namespace mvr::shading {
@@ -38,7 +39,7 @@ glm::vec3 specularLight(const Scene& scene, const Material& m, const glm::vec3& 
       const glm::vec3 l = towardsLight(light, p);
       sum += incidentLight(light, p, l) * ggxLobe(m.specular, m.specularF90, m.roughness, n, l, v);
     }
-    return sum * multiScatterCompensation(m.specular, m.roughness, glm::dot(n, v));
+    return sum * multiScatterCompensation(m.specular, m.roughness, glm::dot(n, v)) + environmentSpecular(scene, m, n, v);
   }
   for (const Light& light : scene.lights) {
     const glm::vec3 l = towardsLight(light, p);
@@ -57,7 +58,7 @@ glm::vec3 diffuseFresnelLoss(const Scene& scene, const Material& m, const glm::v
   const float len = glm::length(nIn), dist = glm::length(eye - p);
   if (m.specularModel != SpecularModel::Ggx || m.unlit || !(len > 1e-20f) || !(dist > 1e-20f)) return glm::vec3(0.0f);
   const glm::vec3 n = nIn / len, v = (eye - p) / dist;
-  glm::vec3 sum = scene.ambient * scatteredShare(m.dielectricF0, m.specularF90, m.roughness, glm::dot(n, v));
+  glm::vec3 sum = (scene.ambient + environmentDiffuse(scene, n)) * scatteredShare(m.dielectricF0, m.specularF90, m.roughness, glm::dot(n, v));
   for (const Light& light : scene.lights) {
     const glm::vec3 l = towardsLight(light, p);
     const float nl = glm::dot(n, l);
@@ -88,7 +89,18 @@ bool maskedOut(int material, float alpha) { return alpha < uMaterials[material].
 }
 
 const std::string& glslSpecular() {
-  static const std::string src = std::string(glslMaterials()) + glslBrdf() + R"(
+  static const std::string src = std::string(glslMaterials()) + glslBrdf() + glslEnvironmentRadiance() + R"(
+
+#ifdef ENVIRONMENT
+// environmentSpecular in C++ (shading/image_light.h).
+vec3 environmentSpecular(Material m, vec3 n, vec3 v) {
+  float roughness = clamp(m.specular.w, kMinRoughness, 1.0), a2 = roughness * roughness * roughness * roughness;
+  vec3 r = normalize(mix(reflect(-v, n), n, a2));
+  vec3 single, multiple;
+  splitScattering(m.specular.rgb, m.glow.w, roughness, dot(n, v), single, multiple);
+  return environmentRadiance(r, roughness) * single + environmentDiffuse(n) * multiple;
+}
+#endif
 
 vec3 specularLight(int material, vec3 p, vec3 nIn, vec3 eye) {
   Material m = uMaterials[material];
@@ -101,7 +113,11 @@ vec3 specularLight(int material, vec3 p, vec3 nIn, vec3 eye) {
       vec3 l = towardsLight(i, p);
       sum += lightColor(i, p, l) * ggxLobe(m.specular.rgb, m.glow.w, m.specular.w, n, l, v);
     }
-    return sum * multiScatterCompensation(m.specular.rgb, m.specular.w, dot(n, v));
+    sum *= multiScatterCompensation(m.specular.rgb, m.specular.w, dot(n, v));
+#ifdef ENVIRONMENT
+    sum += environmentSpecular(m, n, v);
+#endif
+    return sum;
   }
   for (int i = 0; i < uLightCount; ++i) {
     vec3 l = towardsLight(i, p);
@@ -117,7 +133,11 @@ vec3 diffuseFresnelLoss(int material, vec3 albedo, vec3 p, vec3 nIn, vec3 eye) {
   float len = length(nIn), dist = length(eye - p);
   if (m.params.x != 2.0 || m.glow.x != 0.0 || !(len > 1e-20) || !(dist > 1e-20)) return vec3(0.0);
   vec3 n = nIn / len, v = (eye - p) / dist;
-  vec3 sum = uAmbient * scatteredShare(m.dielectric.rgb, m.glow.w, m.specular.w, dot(n, v));
+  vec3 sum = uAmbient;
+#ifdef ENVIRONMENT
+  sum += environmentDiffuse(n);
+#endif
+  sum *= scatteredShare(m.dielectric.rgb, m.glow.w, m.specular.w, dot(n, v));
   for (int i = 0; i < uLightCount; ++i) {
     vec3 l = towardsLight(i, p);
     float nl = dot(n, l);

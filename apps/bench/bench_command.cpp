@@ -412,8 +412,8 @@ int runBench(int argc, char** argv) {
   addThreadsOption(app);
   bool strict = false;
   addStrictOption(app, strict);
-  std::optional<float> exposure;
-  addExposureOption(app, exposure);
+  LookOptions look;
+  addLookOptions(app, look);
   if (auto exit = parseCommandLine(app, argc - 1, argv + 1)) return *exit;
   if (linear) cfg.type = PixelType::U8;
 
@@ -449,7 +449,7 @@ int runBench(int argc, char** argv) {
     scenes.emplace_back("slender" + std::to_string(n), [n] { return makeSlenderScene(n); });
   } else {
     const std::string path = scenePath.empty() ? defaultScenePath() : scenePath;
-    Scene s = loadInputScene(path, strict, exposure);  // load now: bad input fails before GL
+    Scene s = loadInputScene(path, strict, look);  // load now: bad input fails before GL
     scenes.emplace_back(std::filesystem::path(path).stem().string(), [s] { return s; });
   }
 

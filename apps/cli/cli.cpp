@@ -9,6 +9,7 @@
 #include "mvr/gl/gl_context.h"
 #include "mvr/assets/scene_io.h"
 #include "mvr/parallel.h"
+#include "shading/image_light.h"
 #include "shading/lighting.h"
 
 namespace mvr::app {
@@ -132,9 +133,46 @@ CLI::Option* addExposureOption(CLI::App& app, std::optional<float>& ev) {
       ->type_name("auto|EV");
 }
 
-Scene loadInputScene(const std::string& path, bool strict, std::optional<float> exposure) {
+void addLookOptions(CLI::App& app, LookOptions& look) {
+  addExposureOption(app, look.exposure);
+  app.add_option("--environment", look.environment,
+                 "image-based light: an equirectangular .hdr or .exr (three.js's axes: +y at the top row, "
+                 "-x at its centre) lighting every lit material's diffuse and metallic-roughness specular; it "
+                 "replaces the default light and ambient (a file's own lights stay)")
+      ->type_name("FILE");
+  app.add_option("--environment-intensity", look.environmentIntensity,
+                 "scales the environment's radiance (--environment's or the scene file's)")
+      ->check(CLI::Range(0.0f, 1e6f))
+      ->type_name("K");
+  app.add_option("--environment-rotation", look.environmentRotation,
+                 "turns the environment by DEG about +y (after a scene file's rotation)")
+      ->check(CLI::Range(-1e6f, 1e6f))
+      ->type_name("DEG");
+}
+
+namespace {
+
+// The look's environment on the scene, in place of its default lighting.
+void lightByEnvironment(Scene& scene, const LookOptions& look) {
+  if (!look.environment.empty()) scene.environment = Environment{look.environment};
+  if (!scene.environment) {
+    if (look.environmentIntensity != 1.0f) fail("--environment-intensity", "the scene has no environment");
+    if (look.environmentRotation != 0.0f) fail("--environment-rotation", "the scene has no environment");
+    return;
+  }
+  scene.environment->intensity *= look.environmentIntensity;
+  scene.environment->rotation += look.environmentRotation;
+  if (scene.defaultLights) scene.lights.clear(), scene.defaultLights = false;
+  if (scene.defaultAmbient) scene.ambient = glm::vec3(0.0f), scene.defaultAmbient = false;
+  shading::loadEnvironment(scene);
+}
+
+}  // namespace
+
+Scene loadInputScene(const std::string& path, bool strict, const LookOptions& look) {
   Scene scene = loadScene(path, strict);
-  shading::applyExposure(scene, exposure);
+  lightByEnvironment(scene, look);
+  shading::applyExposure(scene, look.exposure);
   if (const std::string warning = droppedFacesWarning(scene); !warning.empty())
     std::fprintf(stderr, "mvr: warning: %s\n", warning.c_str());
   for (const std::string& warning : scene.warnings) std::fprintf(stderr, "mvr: warning: %s\n", warning.c_str());

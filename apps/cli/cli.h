@@ -47,8 +47,20 @@ CLI::Option* addStrictOption(CLI::App& app, bool& strict);
 // --exposure auto|EV (shading::applyExposure): ev stays empty for auto.
 CLI::Option* addExposureOption(CLI::App& app, std::optional<float>& ev);
 
-// The scene a command renders (a .json scene or a bare mesh), exposed,
-// with a one-line warning on stderr when faces were dropped.
-Scene loadInputScene(const std::string& path, bool strict, std::optional<float> exposure = std::nullopt);
+// How a command lights and exposes its scene.
+struct LookOptions {
+  std::optional<float> exposure;  // --exposure: empty for auto
+  std::string environment;        // --environment FILE: replaces a scene file's
+  float environmentIntensity = 1.0f;  // --environment-intensity: scales it
+  float environmentRotation = 0.0f;   // --environment-rotation DEG: turns it further about +y
+};
+// --exposure, --environment, --environment-intensity and --environment-rotation.
+void addLookOptions(CLI::App& app, LookOptions& look);
+
+// The scene a command renders (a .json scene or a bare mesh), with its
+// environment loaded (which takes the place of the default light and
+// ambient), exposed, with a one-line warning on stderr when faces were
+// dropped.
+Scene loadInputScene(const std::string& path, bool strict, const LookOptions& look = {});
 
 }  // namespace mvr::app

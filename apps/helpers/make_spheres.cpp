@@ -51,7 +51,7 @@ SphereAccessors writeSphere(Glb& g, int segments) {
   return a;
 }
 
-void writeGrid(int grid, int segments, const std::string& path) {
+void writeGrid(int grid, int segments, bool lit, const std::string& path) {
   Glb g("mvr make_spheres");
   const SphereAccessors sphere = writeSphere(g, segments);
   Json materials = Json::array(), meshes = Json::array(), nodes = Json::array(), roots = Json::array();
@@ -75,16 +75,19 @@ void writeGrid(int grid, int segments, const std::string& path) {
                        {"translation", {spacing * (col - half), spacing * (row - half), 0.0}},
                        {"scale", {radius, radius, radius}}});
     }
-  // A sun from the upper left front and a bulb to the right, in lux and candela.
-  const Json lights = Json::array({{{"type", "directional"}, {"intensity", 2.5}, {"color", {1.0, 0.98, 0.95}}},
-                                   {{"type", "point"}, {"intensity", 8.0}, {"color", {0.8, 0.9, 1.0}}}});
-  roots.push_back(nodes.size());
-  nodes.push_back({{"rotation", {-0.3250576, -0.3250576, 0.0, 0.8880738}},  // its -z turned to (1, -1, -1)
-                   {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
-  roots.push_back(nodes.size());
-  nodes.push_back({{"translation", {half + 1.0, 0.5, 2.0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
-  g.json["extensionsUsed"] = {"KHR_lights_punctual"};
-  g.json["extensions"] = {{"KHR_lights_punctual", {{"lights", lights}}}};
+  // A sun from the upper left front and a bulb to the right, in lux and
+  // candela; none for a grid an environment lights alone.
+  if (lit) {
+    const Json lights = Json::array({{{"type", "directional"}, {"intensity", 2.5}, {"color", {1.0, 0.98, 0.95}}},
+                                     {{"type", "point"}, {"intensity", 8.0}, {"color", {0.8, 0.9, 1.0}}}});
+    roots.push_back(nodes.size());
+    nodes.push_back({{"rotation", {-0.3250576, -0.3250576, 0.0, 0.8880738}},  // its -z turned to (1, -1, -1)
+                     {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    roots.push_back(nodes.size());
+    nodes.push_back({{"translation", {half + 1.0, 0.5, 2.0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+    g.json["extensionsUsed"] = {"KHR_lights_punctual"};
+    g.json["extensions"] = {{"KHR_lights_punctual", {{"lights", lights}}}};
+  }
   g.json["materials"] = materials;
   g.json["meshes"] = meshes;
   g.json["nodes"] = nodes;
@@ -100,12 +103,14 @@ int main(int argc, char** argv) {
   try {
     CLI::App app("Writes a metallic x roughness grid of spheres as GLB (the PBR reference fixture).", "make_spheres");
     int grid = 5, segments = 48;
+    bool unlit = false;
     std::string out;
     app.add_option("--grid", grid, "spheres along each side")->check(CLI::Range(1, 16))->capture_default_str();
     app.add_option("--segments", segments, "segments around each sphere")->check(CLI::Range(8, 512))->capture_default_str();
+    app.add_flag("--no-lights", unlit, "no KHR_lights_punctual lights (for an environment alone)");
     app.add_option("--out", out, "the GLB file to write")->type_name("FILE.glb")->required();
     if (auto exit = mvr::app::parseCommandLine(app, argc, argv)) return *exit;
-    writeGrid(grid, segments, out);
+    writeGrid(grid, segments, !unlit, out);
     return 0;
   } catch (const mvr::Error& e) {
     std::fprintf(stderr, "make_spheres: %s\n", e.what());

@@ -137,7 +137,7 @@ struct LiveFlags {
   std::optional<int> frames;
   std::pair<int, int> size{0, 0};  // 0 x 0: the preset's tile
   double turntable = 0.0;  // degrees a second
-  std::optional<float> exposure;
+  LookOptions look;
   BackendFlags backend;
   CameraFlags camera;
 
@@ -169,7 +169,7 @@ struct LiveFlags {
                    "gpu)")
         ->check(CLI::IsMember({"auto", "gpu", "cpu"}))
         ->type_name("auto|gpu|cpu");
-    addExposureOption(app, exposure);
+    addLookOptions(app, look);
     backend.add(app);
     camera.add(app);
   }
@@ -193,7 +193,7 @@ RenderJob liveJob(const LiveFlags& f, QuiltLayout display) {
   job.camera = f.camera;
   job.camera.validate();
   job.scenePath = f.source.empty() ? defaultScenePath() : f.source;
-  job.exposure = f.exposure;
+  job.look = f.look;
   job.quilt = display;
   job.views = display.columns * display.rows;
   job.width = display.tileWidth(), job.height = display.tileHeight();

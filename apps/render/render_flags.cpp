@@ -64,7 +64,7 @@ void RenderFlags::addOutputShape(CLI::App& app) {
   addThreadsOption(app);
   if (!app.get_option_no_throw("--from")) {
     addStrictOption(app, strict_);
-    addExposureOption(app, exposure_);
+    addLookOptions(app, look_);
     app.add_option("--tonemap", tonemap_,
                    "display transform before the output encoding: none, aces (filmic), agx or neutral (Khronos "
                    "PBR Neutral), as three.js draws them; shades in float without clamping. Not with exr, "
@@ -191,7 +191,7 @@ RenderJob RenderFlags::describe(const CLI::App& app) const {
     if (!app.count("--size")) job.width = job.references->width, job.height = job.references->height;
   }
   job.strict = strict_;
-  job.exposure = exposure_;
+  job.look = look_;
   job.toneMap = *toneMapNamed(tonemap_);
   if (job.toneMap != ToneMap::None && format_ == "exr") fail("--tonemap", "exr keeps linear radiance: not with --format exr");
   job.out = out_, job.format = format_, job.order = order_;

@@ -40,7 +40,7 @@ class RenderFlags {
   std::string out_ = "out", format_ = "png", order_ = "view", gl_ = "auto";
   std::string stream_, quilt_, predistort_, codec_;
   bool strict_ = false, linear_ = false, depth_ = false, quiltOnly_ = false;
-  std::optional<float> exposure_;
+  LookOptions look_;
   std::string tonemap_ = "none";
   std::string native_;  // the display's calibration file
   std::string splitBy_ = "cost";  // under mpirun: scanline bands by estimated cost or by count

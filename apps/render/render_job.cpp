@@ -52,7 +52,7 @@ void start(RenderJob& job, PreparedJob& p) {
   // the thread that made it): 143K triangles take 0.13 s, GL 0.08 s.
   auto loading = std::async(std::launch::async, [&] {
     const Stopwatch watch;
-    Scene loaded = job.synthesize() ? Scene{} : loadInputScene(job.scenePath, job.strict, job.exposure);
+    Scene loaded = job.synthesize() ? Scene{} : loadInputScene(job.scenePath, job.strict, job.look);
     loaded.highDynamicRange = job.toneMap != ToneMap::None;
     return std::pair{std::move(loaded), watch.seconds()};
   });

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "apps/cli/backend_flags.h"
+#include "apps/cli/cli.h"
 #include "apps/cli/camera_flags.h"
 #include "apps/cli/job_split.h"
 #include "apps/cli/memory_check.h"
@@ -40,7 +41,7 @@ struct RenderJob {
   BackendOptions backend;
   std::string scenePath;
   bool strict = false;
-  std::optional<float> exposure;  // --exposure: empty for auto
+  LookOptions look;  // --exposure, --environment
   ToneMap toneMap = ToneMap::None;  // --tonemap
   std::optional<RgbdSet> references;  // synthesize
   std::string from;

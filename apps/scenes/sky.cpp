@@ -3,23 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shading/cube_faces.h"
+
 namespace mvr::app {
 namespace {
 
 // Radiance in linear light, stored sRGB-encoded as image files are.
 void put(Image& img, int x, int y, const glm::vec3& c) { img.setLinear(x, y, glm::vec4(c, 1.0f)); }
-
-// Inverse of GL's table 8.19: the direction through (sc, tc) of a face.
-glm::vec3 cubeDirection(int face, float sc, float tc) {
-  switch (face) {
-    case 0: return {1.0f, -tc, -sc};
-    case 1: return {-1.0f, -tc, sc};
-    case 2: return {sc, 1.0f, tc};
-    case 3: return {sc, -1.0f, -tc};
-    case 4: return {sc, -tc, 1.0f};
-    default: return {-sc, -tc, -1.0f};
-  }
-}
 
 // Inverse of GL_SPHERE_MAP: the view ray (0, 0, -1) mirrored by the ball's
 // normal h at sphere-map coordinates (s, t); the rim stands for the rest.
@@ -54,7 +44,7 @@ Image makeSkyCube(int face) {
     for (int y = 0; y < face; ++y)
       for (int x = 0; x < face; ++x) {
         const float sc = 2.0f * (x + 0.5f) / face - 1.0f, tc = 2.0f * (y + 0.5f) / face - 1.0f;
-        put(img, f * face + x, y, skyRadiance(cubeDirection(f, sc, tc)));
+        put(img, f * face + x, y, skyRadiance(shading::cubeDirection(f, sc, tc)));
       }
   return img;
 }
@@ -69,6 +59,21 @@ Image makeSkySpherePair(int size) {
         if (half == 1) d = glm::vec3(-d.x, d.y, -d.z);
         put(img, half * size + x, y, skyRadiance(d));
       }
+  return img;
+}
+
+Image makeSkyEquirect(int width, float sunScale) {
+  const int height = width / 2;
+  Image img(width, height, PixelType::F32);
+  const glm::vec3 sun = glm::normalize(glm::vec3(0.4f, 0.6f, 0.7f));
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const float phi = (2.0f * (x + 0.5f) / width - 1.0f) * float(M_PI);  // atan2(z, x)
+      const float lat = (0.5f - (y + 0.5f) / height) * float(M_PI);
+      const glm::vec3 d(std::cos(lat) * std::cos(phi), std::sin(lat), std::cos(lat) * std::sin(phi));
+      const glm::vec3 c = skyRadiance(d) * (glm::dot(d, sun) > 0.99f ? sunScale : 1.0f);
+      img.setLinear(x, y, glm::vec4(c, 1.0f));
+    }
   return img;
 }
 

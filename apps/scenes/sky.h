@@ -14,5 +14,8 @@ glm::vec3 skyRadiance(glm::vec3 direction);
 Image makeSkyCube(int face);
 // 2:1: the sphere maps seen from +z (left) and from -z (right).
 Image makeSkySpherePair(int size);
+// 2:1 equirectangular, linear float (an environment, shading/image_light.h's
+// axes), with the sun's radiance times sunScale (an HDR sky).
+Image makeSkyEquirect(int width, float sunScale = 1.0f);
 
 }  // namespace mvr::app

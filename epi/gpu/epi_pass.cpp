@@ -375,6 +375,7 @@ EpiPass::EpiPass(PstMode mode, shading::Pass pass, const EpiShading& shading, bo
   if (emission() && shading.plan.emissionTexture) header += "#define EMISSION_TEXTURE\n";
   if (shading.plan.spots) header += "#define SPOT_LIGHTS\n";
   if (shading.plan.falloff) header += "#define FALLOFF_LIGHTS\n";
+  if (shading.plan.environment) header += "#define ENVIRONMENT\n";
   if (pass == shading::Pass::ViewDependent && shading.plan.albedo >= 0) header += "#define GGX\n";
   if (maskDepth) header += "#define MASK_DEPTH\n";
   std::string fragment = header + (exact ? kExactFragment : kSliverFragment) + kAttributeHelpers;

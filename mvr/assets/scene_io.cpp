@@ -35,7 +35,7 @@ class SceneReader {
 
   Scene read() {
     Json root = parse();
-    expectObject(root, "", {"meshes", "materials", "lights", "ambient", "camera"});
+    expectObject(root, "", {"meshes", "materials", "lights", "ambient", "environment", "camera"});
     Scene scene;
     scene.source = path_;
     if (root.contains("materials")) readMaterials(root["materials"]);
@@ -49,13 +49,15 @@ class SceneReader {
       scene.append(mesh);
     }
     if (root.contains("lights")) readLights(root["lights"], scene);
-    else scene.lights = fileLights.empty() ? defaultLights() : fileLights;
+    else if (fileLights.empty()) scene.lights = defaultLights(), scene.defaultLights = true;
+    else scene.lights = fileLights;
     if (scene.lights.size() > size_t(kMaxLights)) {
       scene.warnings.push_back(path_ + ": the meshes' files hold " + std::to_string(scene.lights.size()) +
                                " lights: the first " + std::to_string(kMaxLights) + " are used");
       scene.lights.resize(size_t(kMaxLights));
     }
-    if (root.contains("ambient")) scene.ambient = color(root["ambient"], "ambient");
+    if (root.contains("ambient")) scene.ambient = color(root["ambient"], "ambient"), scene.defaultAmbient = false;
+    if (root.contains("environment")) scene.environment = readEnvironment(root["environment"]);
     if (root.contains("camera")) scene.camera = readCamera(root["camera"]);
     return scene;
   }
@@ -285,6 +287,27 @@ class SceneReader {
     light.cosInner = float(std::cos(glm::radians(inner)));
   }
 
+  // "environment": "FILE" or {"file", "intensity", "rotation"} (degrees about +y).
+  Environment readEnvironment(const Json& j) const {
+    Environment e;
+    if (j.is_string()) {
+      e.file = relative(j, "environment");
+      return e;
+    }
+    expectObject(j, "environment", {"file", "intensity", "rotation"});
+    if (!j.contains("file")) bad("environment", "no \"file\"");
+    e.file = relative(j["file"], "environment.file");
+    if (j.contains("intensity")) {
+      e.intensity = float(number(j["intensity"], "environment.intensity"));
+      if (!(e.intensity >= 0.0f && e.intensity <= 1e6f)) bad("environment.intensity", "must lie in [0, 1e6]");
+    }
+    if (j.contains("rotation")) {
+      e.rotation = float(number(j["rotation"], "environment.rotation"));
+      if (!(std::abs(e.rotation) <= 1e6f)) bad("environment.rotation", "degrees must lie in [-1e6, 1e6]");
+    }
+    return e;
+  }
+
   CameraSpec readCamera(const Json& j) const {
     expectObject(j, "camera", {"distance", "image_plane", "fov", "track", "cone", "rows", "near", "far"});
     CameraSpec c;
@@ -354,7 +377,7 @@ Scene loadScene(const std::string& path, bool strict) {
   if (fs::path(path).extension() != ".json") {
     scene = loadMesh(path);
     checkSceneGeometry(scene, path);  // before centring: bounds of a stray vertex overflow
-    if (scene.lights.empty()) scene.lights = SceneReader::defaultLights();  // else the file's (glTF)
+    if (scene.lights.empty()) scene.lights = SceneReader::defaultLights(), scene.defaultLights = true;  // else the file's (glTF)
     scene.transform(glm::translate(glm::mat4(1.0f), -scene.bounds().center()));
   } else {
     scene = SceneReader(path).read();

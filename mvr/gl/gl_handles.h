@@ -177,6 +177,22 @@ class Texture {
     t.wrap(GL_CLAMP_TO_EDGE);
     return t;
   }
+  // A 2D array (or cube map array) with one level: `layers` of width x
+  // height, bilinear, clamped at edges; fill it with uploadLayers.
+  static Texture array2D(GLenum target, GLenum format, int width, int height, int layers) {
+    Texture t(target);
+    TextureStorage3D(t.id(), 1, format, width, height, layers);
+    t.filter(GL_LINEAR, GL_LINEAR);
+    t.wrap(GL_CLAMP_TO_EDGE);
+    return t;
+  }
+  // `count` layers from `first`, width x height of tightly packed texels
+  // (type GL_UNSIGNED_BYTE or GL_FLOAT) into the corner of each.
+  void uploadLayers(int first, int count, int width, int height, GLenum format, GLenum type,
+                    const void* texels) const {
+    PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    TextureSubImage3D(id_, 0, 0, 0, first, width, height, count, format, type, texels);
+  }
   // A buffer texture over `buffer` (texelFetch of a samplerBuffer).
   static Texture overBuffer(GLenum format, GLuint buffer) {
     Texture t(GL_TEXTURE_BUFFER);

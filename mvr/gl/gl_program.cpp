@@ -94,6 +94,9 @@ void setUniform(const Program& p, const char* name, const glm::vec3& v) {
 void setUniform(const Program& p, const char* name, const glm::vec4& v) {
   ProgramUniform4f(p.id(), p.location(name), v.x, v.y, v.z, v.w);
 }
+void setUniform(const Program& p, const char* name, const glm::mat3& v) {
+  ProgramUniformMatrix3fv(p.id(), p.location(name), 1, GL_FALSE, glm::value_ptr(v));
+}
 void setUniform(const Program& p, const char* name, const glm::mat4& v) {
   ProgramUniformMatrix4fv(p.id(), p.location(name), 1, GL_FALSE,
                           glm::value_ptr(v));

@@ -35,6 +35,7 @@ void setUniform(const Program& p, const char* name, float v);
 void setUniform(const Program& p, const char* name, const glm::vec2& v);
 void setUniform(const Program& p, const char* name, const glm::vec3& v);
 void setUniform(const Program& p, const char* name, const glm::vec4& v);
+void setUniform(const Program& p, const char* name, const glm::mat3& v);
 void setUniform(const Program& p, const char* name, const glm::mat4& v);
 void setUniform(const Program& p, const char* name, std::span<const float> v);  // float[]
 

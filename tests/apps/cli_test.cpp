@@ -78,6 +78,10 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
   std::ofstream(squareMap) << R"({"meshes": [{"file": ")" << test::assetsDir()
                            << R"(/plane.obj", "material": {"reflection_map": ")" << test::assetsDir()
                            << R"(/checker.png"}}]})";
+  // A scene file's environment with an intensity that is not a number.
+  const fs::path badEnvironment = noTexture.parent_path() / "bad_environment.json";
+  std::ofstream(badEnvironment) << R"({"meshes": [{"file": ")" << test::assetsDir()
+                                << R"(/plane.obj"}], "environment": {"file": "sky.exr", "intensity": "bright"}})";
   for (std::string args : std::vector<std::string>{"render /nonexistent/scene.json --out " + d.string(),
                            "render " + noTexture.string() + " --out " + d.string(),
                            "render " + squareMap.string() + " --backend mvr --pst cpu --out " + d.string(),
@@ -111,6 +115,11 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
                            "render --exposure bright --out " + d.string(),
                            "render --exposure 1e9 --out " + d.string(),
                            "render --tonemap filmic --out " + d.string(),
+                           "render --environment /nonexistent/sky.exr --out " + d.string(),
+                           "render --environment " + test::assetsDir() + "/checker.png --out " + d.string(),
+                           "render --environment-intensity 2 --out " + d.string(),
+                           "render --environment-intensity -1 --out " + d.string(),
+                           "render " + badEnvironment.string() + " --out " + d.string(),
                            "render --tonemap aces --format exr --out " + d.string(),
                            "render --depth --order epi --out " + d.string(),
                            "render --depth --stream " + (d / "s.epis").string(),
@@ -138,7 +147,11 @@ TEST(Cli, BadInputGivesOneLineErrorAndNoSet) {
         {"--memory 100M", "mvr: --memory: 100.0 MiB cannot hold one frame (64.0 MiB)"},
         {"12X", "mvr: --memory: '12X' is not a size"},
         {"--exposure bright", "--exposure: must be auto or a number of stops"},
-        {"--format exr", "mvr: --tonemap: exr keeps linear radiance"}};
+        {"--format exr", "mvr: --tonemap: exr keeps linear radiance"},
+        {"/nonexistent/sky.exr", "/nonexistent/sky.exr"},
+        {"checker.png --out", "checker.png: an environment must be an equirectangular (2:1) map"},
+        {"--environment-intensity 2", "mvr: --environment-intensity: the scene has no environment"},
+        {"bad_environment.json", "bad_environment.json: environment.intensity"}};
     for (const auto& [marker, message] : named) {
       if (args.find(marker) == std::string::npos) continue;
       EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
