@@ -66,6 +66,12 @@ void Scene::transformGeometry(const glm::mat4& m) {
     if (turns) n = glm::vec3(glm::normalize(normalMatrix * glm::dvec3(n)));
 }
 
+void Environment::turn(float degrees) {
+  const float a = glm::radians(degrees), c = std::cos(a), s = std::sin(a);
+  const glm::mat3 back(glm::vec3(c, 0.0f, s), glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(-s, 0.0f, c));
+  fromScene = back * fromScene;
+}
+
 void Scene::transform(const glm::mat4& m) {
   transformGeometry(m);
   fromFile = m * fromFile;

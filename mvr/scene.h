@@ -132,13 +132,15 @@ struct FileCamera {
 struct Environment {
   std::string file;        // equirectangular .hdr or .exr
   float intensity = 1.0f;  // radiance scale (an exposure multiplies it)
-  float rotation = 0.0f;   // degrees about +y, as three.js's environmentRotation.y
-  // Scene directions to the map's: the rotation about +y, then whatever
+  // Scene directions to the map's: its turns (turn()), and whatever
   // Scene::transform() has turned the scene by since its file.
   glm::mat3 fromScene{1.0f};
   // The maps, once loaded (shading::loadEnvironment); shared by the
   // scene's copies (a sequence's frames).
   std::shared_ptr<const shading::ImageLight> light;
+  // Turns the map by `degrees` about +y, as three.js's
+  // environmentRotation.y: a direction looks it up turned back.
+  void turn(float degrees);
 };
 
 struct Scene {

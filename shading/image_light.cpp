@@ -271,20 +271,12 @@ void loadEnvironment(Scene& scene) {
   scene.environment->light = std::move(light);
 }
 
-glm::mat3 environmentMatrix(const Environment& e) {
-  // The map turned by +rotation about +y: a direction looks up the
-  // unturned map at the direction turned back.
-  const float a = glm::radians(e.rotation), c = std::cos(a), s = std::sin(a);
-  const glm::mat3 back(glm::vec3(c, 0.0f, s), glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(-s, 0.0f, c));
-  return back * e.fromScene;
-}
-
 // Keep in step with the GLSL below.
 glm::vec3 environmentDiffuse(const Scene& scene, const glm::vec3& n) {
   const float len = glm::length(n);
   if (!scene.environment || !scene.environment->light || !(len > 1e-20f)) return glm::vec3(0.0f);
   return scene.environment->intensity *
-         scene.environment->light->irradiance(environmentMatrix(*scene.environment) * (n / len));
+         scene.environment->light->irradiance(scene.environment->fromScene * (n / len));
 }
 
 glm::vec3 environmentSpecular(const Scene& scene, const Material& m, const glm::vec3& n, const glm::vec3& v) {
@@ -295,7 +287,7 @@ glm::vec3 environmentSpecular(const Scene& scene, const Material& m, const glm::
   // rough lobe's light comes from nearer the normal than the mirror's.
   const glm::vec3 r = glm::normalize(glm::mix(glm::reflect(-v, n), n, a2));
   const Scattering s = splitScattering(m.specular, m.specularF90, roughness, glm::dot(n, v));
-  const glm::mat3 toMap = environmentMatrix(*scene.environment);
+  const glm::mat3 toMap = scene.environment->fromScene;
   const ImageLight& light = *scene.environment->light;
   return scene.environment->intensity * (light.radiance(toMap * r, roughness) * s.single + light.irradiance(toMap * n) * s.multiple);
 }
@@ -356,7 +348,7 @@ vec3 environmentRadiance(vec3 r, float roughness) {
 
 void setEnvironmentUniforms(const gl::Program& program, const Scene& scene) {
   if (!scene.environment || !scene.environment->light) return;
-  gl::setUniform(program, "uEnvironmentFromScene", environmentMatrix(*scene.environment));
+  gl::setUniform(program, "uEnvironmentFromScene", scene.environment->fromScene);
   gl::setUniform(program, "uEnvironmentIntensity", scene.environment->intensity);
   const std::array<glm::vec3, 9>& sh = scene.environment->light->harmonics();
   for (int i = 0; i < 9; ++i)

@@ -81,10 +81,6 @@ class ImageLight {
 // loaded (one load per file in a process: a sequence's scenes share it).
 void loadEnvironment(Scene& scene);
 
-// Scene directions to the map's (Environment::fromScene after the map's
-// rotation about +y).
-glm::mat3 environmentMatrix(const Environment& environment);
-
 // For the scene's unit normal n: E(n) / pi times the intensity, 0 for a
 // scene without an environment.
 glm::vec3 environmentDiffuse(const Scene& scene, const glm::vec3& n);

@@ -161,7 +161,7 @@ void lightByEnvironment(Scene& scene, const LookOptions& look) {
     return;
   }
   scene.environment->intensity *= look.environmentIntensity;
-  scene.environment->rotation += look.environmentRotation;
+  scene.environment->turn(look.environmentRotation);
   if (scene.defaultLights) scene.lights.clear(), scene.defaultLights = false;
   if (scene.defaultAmbient) scene.ambient = glm::vec3(0.0f), scene.defaultAmbient = false;
   shading::loadEnvironment(scene);

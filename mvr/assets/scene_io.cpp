@@ -302,8 +302,9 @@ class SceneReader {
       if (!(e.intensity >= 0.0f && e.intensity <= 1e6f)) bad("environment.intensity", "must lie in [0, 1e6]");
     }
     if (j.contains("rotation")) {
-      e.rotation = float(number(j["rotation"], "environment.rotation"));
-      if (!(std::abs(e.rotation) <= 1e6f)) bad("environment.rotation", "degrees must lie in [-1e6, 1e6]");
+      const double degrees = number(j["rotation"], "environment.rotation");
+      if (!(std::abs(degrees) <= 1e6)) bad("environment.rotation", "degrees must lie in [-1e6, 1e6]");
+      e.turn(float(degrees));
     }
     return e;
   }

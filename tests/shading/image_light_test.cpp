@@ -6,6 +6,7 @@
 // Scene::transform, and MVR against SVR with the environment lighting a
 // metallic-roughness scene.
 #include <cmath>
+#include <fstream>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -16,6 +17,7 @@
 #include "shading/image_light.h"
 #include "shading/lighting.h"
 #include "shading/shading_plan.h"
+#include "tests/support/cli.h"
 #include "tests/support/render_helpers.h"
 
 namespace mvr {
@@ -109,6 +111,25 @@ TEST(ImageLight, PrefilteredLevelsMatchBruteForceIntegration) {
     }
 }
 
+TEST(ImageLight, ReadsARadianceHdrFile) {
+  // Radiance's RGBE, written flat (no run-length coding) by hand: 16 x 8
+  // texels of mantissas 128, 64, 255 at exponent 128: m / 256, (0.5, 0.25,
+  // 0.996), give or take the half step some readers add.
+  const std::filesystem::path file = test::freshDir("image_light_hdr") / "grey.hdr";
+  std::filesystem::create_directories(file.parent_path());
+  {
+    std::ofstream out(file, std::ios::binary);
+    out << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8 +X 16\n";
+    for (int i = 0; i < 16 * 8; ++i) out << char(128) << char(64) << char(255) << char(128);
+  }
+  const std::shared_ptr<const ImageLight> light = ImageLight::load(file.string());
+  const glm::vec3 e = light->irradiance(glm::vec3(0, 1, 0));
+  EXPECT_NEAR(e.r, 0.5f, 0.005f);
+  EXPECT_NEAR(e.g, 0.25f, 0.005f);
+  EXPECT_NEAR(e.b, 0.996f, 0.005f);
+  EXPECT_THROW(ImageLight::load((file.parent_path() / "none.hdr").string()), Error);
+}
+
 Scene furnaceScene(const Image& map) {
   Scene s = loadScene(test::assetPath("metal_rough.json"));
   s.lights.clear();
@@ -121,7 +142,7 @@ Scene furnaceScene(const Image& map) {
 TEST(ImageLight, TheRotationAndTheScenesTransformTurnTheMap) {
   Scene s = furnaceScene(equirect(256, [](glm::vec3 d) { return glm::vec3(0.5f) + 0.4f * d; }));
   // Turned +90 degrees about +y, the map's +x (brightest red) faces -z.
-  s.environment->rotation = 90.0f;
+  s.environment->turn(90.0f);
   EXPECT_NEAR(shading::environmentDiffuse(s, glm::vec3(0, 0, -1)).r, 0.5f + 0.4f * 2.0f / 3.0f, 3e-3f);
   EXPECT_NEAR(shading::environmentDiffuse(s, glm::vec3(1, 0, 0)).r, 0.5f, 3e-3f);
   // The scene turned with its lights: the map turns with it.
