@@ -302,9 +302,10 @@ class SpanRasterizer final : public EpiRasterizer {
     const glm::vec3 n = pstExtras<3>(pst, plan.normal, u) * (front ? 1.0f : -1.0f);
     const glm::vec3 eye = eye0_ + view * eyeStep_;
     const Material& m = shading_.scene->materials[material];
-    color += shading::specularLight(*shading_.scene, m, p, n, eye);
-    if (plan.albedo >= 0)
-      color -= shading::diffuseFresnelLoss(*shading_.scene, m, pstExtras<3>(pst, plan.albedo, u) * t, p, n, eye);
+    const glm::vec3 albedo = plan.albedo >= 0 ? pstExtras<3>(pst, plan.albedo, u) * t : glm::vec3(0.0f);
+    const shading::ViewDependentLight light = shading::viewDependentLight(*shading_.scene, m, albedo, p, n, eye);
+    color += light.specular;
+    if (plan.albedo >= 0) color -= light.fresnelLoss;
     if (plan.reflect >= 0) {
       float affine[9];
       pstExtras(pst, plan.reflect, 9, u, affine);

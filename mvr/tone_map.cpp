@@ -56,7 +56,7 @@ glm::vec3 neutral(glm::vec3 c) {
 }  // namespace
 
 std::optional<ToneMap> toneMapNamed(const std::string& name) {
-  for (ToneMap m : {ToneMap::None, ToneMap::Aces, ToneMap::Agx, ToneMap::Neutral})
+  for (ToneMap m : kToneMaps)
     if (name == toneMapName(m)) return m;
   return std::nullopt;
 }

@@ -17,6 +17,7 @@
 namespace mvr {
 
 enum class ToneMap { None, Aces, Agx, Neutral };
+inline constexpr ToneMap kToneMaps[] = {ToneMap::None, ToneMap::Aces, ToneMap::Agx, ToneMap::Neutral};
 
 std::optional<ToneMap> toneMapNamed(const std::string& name);  // "none", "aces", "agx", "neutral"
 const char* toneMapName(ToneMap map);

@@ -279,7 +279,8 @@ glm::vec3 environmentDiffuse(const Scene& scene, const glm::vec3& n) {
          scene.environment->light->irradiance(scene.environment->fromScene * (n / len));
 }
 
-glm::vec3 environmentSpecular(const Scene& scene, const Material& m, const glm::vec3& n, const glm::vec3& v) {
+glm::vec3 environmentSpecular(const Scene& scene, const Material& m, const glm::vec3& n, const glm::vec3& v,
+                              const glm::vec3& irradiance) {
   if (!scene.environment || !scene.environment->light || m.specularModel != SpecularModel::Ggx)
     return glm::vec3(0.0f);
   const float roughness = std::clamp(m.roughness, kMinRoughness, 1.0f), a2 = roughness * roughness * roughness * roughness;
@@ -287,9 +288,9 @@ glm::vec3 environmentSpecular(const Scene& scene, const Material& m, const glm::
   // rough lobe's light comes from nearer the normal than the mirror's.
   const glm::vec3 r = glm::normalize(glm::mix(glm::reflect(-v, n), n, a2));
   const Scattering s = splitScattering(m.specular, m.specularF90, roughness, glm::dot(n, v));
-  const glm::mat3 toMap = scene.environment->fromScene;
+  const glm::mat3& toMap = scene.environment->fromScene;
   const ImageLight& light = *scene.environment->light;
-  return scene.environment->intensity * (light.radiance(toMap * r, roughness) * s.single + light.irradiance(toMap * n) * s.multiple);
+  return scene.environment->intensity * light.radiance(toMap * r, roughness) * s.single + irradiance * s.multiple;
 }
 
 const char* glslEnvironmentDiffuse() {

@@ -87,9 +87,10 @@ glm::vec3 environmentDiffuse(const Scene& scene, const glm::vec3& n);
 // A Ggx material's specular from the environment for unit n and v (three.js's
 // RE_IndirectSpecular): the prefiltered radiance round reflect(-v, n)
 // times the lobe's single scattering, plus its multiple scattering of the
-// irradiance. 0 for other models and without an environment.
+// irradiance (environmentDiffuse(scene, n), which the caller has). 0 for
+// other models and without an environment.
 glm::vec3 environmentSpecular(const Scene& scene, const Material& material, const glm::vec3& n,
-                              const glm::vec3& v);
+                              const glm::vec3& v, const glm::vec3& irradiance);
 
 // GLSL under ENVIRONMENT (ShadingPlan::glslDefines), for glslLighting():
 // uniforms and `vec3 environmentDiffuse(vec3 n)`.

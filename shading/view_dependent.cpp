@@ -27,20 +27,12 @@ float modelCode(SpecularModel model) {
 
 }  // namespace
 
-// Keep in step with the GLSL below.
-glm::vec3 specularLight(const Scene& scene, const Material& m, const glm::vec3& p,
-                        const glm::vec3& nIn, const glm::vec3& eye) {
-  const float len = glm::length(nIn), dist = glm::length(eye - p);
-  if (m.specular == glm::vec3(0.0f) || !(len > 1e-20f) || !(dist > 1e-20f)) return glm::vec3(0.0f);
-  const glm::vec3 n = nIn / len, v = (eye - p) / dist;
+namespace {
+
+// Phong and Blinn-Phong: the highlight from every light, for unit n and v.
+glm::vec3 phongLight(const Scene& scene, const Material& m, const glm::vec3& p, const glm::vec3& n,
+                     const glm::vec3& v) {
   glm::vec3 sum(0.0f);
-  if (m.specularModel == SpecularModel::Ggx) {
-    for (const Light& light : scene.lights) {
-      const glm::vec3 l = towardsLight(light, p);
-      sum += incidentLight(light, p, l) * ggxLobe(m.specular, m.specularF90, m.roughness, n, l, v);
-    }
-    return sum * multiScatterCompensation(m.specular, m.roughness, glm::dot(n, v)) + environmentSpecular(scene, m, n, v);
-  }
   for (const Light& light : scene.lights) {
     const glm::vec3 l = towardsLight(light, p);
     if (glm::dot(n, l) <= 0.0f) continue;
@@ -52,20 +44,44 @@ glm::vec3 specularLight(const Scene& scene, const Material& m, const glm::vec3& 
   return m.specular * sum;
 }
 
-// Keep in step with the GLSL below.
-glm::vec3 diffuseFresnelLoss(const Scene& scene, const Material& m, const glm::vec3& albedo, const glm::vec3& p,
-                             const glm::vec3& nIn, const glm::vec3& eye) {
+}  // namespace
+
+// Keep in step with the GLSL below. One pass over the lights gives a Ggx
+// material's lobe and its Fresnel loss: the direction, the light reaching
+// p and the irradiance are found once.
+ViewDependentLight viewDependentLight(const Scene& scene, const Material& m, const glm::vec3& albedo,
+                                      const glm::vec3& p, const glm::vec3& nIn, const glm::vec3& eye) {
   const float len = glm::length(nIn), dist = glm::length(eye - p);
-  if (m.specularModel != SpecularModel::Ggx || m.unlit || !(len > 1e-20f) || !(dist > 1e-20f)) return glm::vec3(0.0f);
+  if (!(len > 1e-20f) || !(dist > 1e-20f)) return {};
   const glm::vec3 n = nIn / len, v = (eye - p) / dist;
-  glm::vec3 sum = (scene.ambient + environmentDiffuse(scene, n)) * scatteredShare(m.dielectricF0, m.specularF90, m.roughness, glm::dot(n, v));
+  const bool lobe = m.specular != glm::vec3(0.0f);
+  if (m.specularModel != SpecularModel::Ggx) return {lobe ? phongLight(scene, m, p, n, v) : glm::vec3(0.0f), {}};
+  const bool loses = !m.unlit;
+  const float nv = glm::dot(n, v);
+  const glm::vec3 irradiance = environmentDiffuse(scene, n);
+  glm::vec3 specular(0.0f), lost(0.0f);
+  if (loses) lost = (scene.ambient + irradiance) * scatteredShare(m.dielectricF0, m.specularF90, m.roughness, nv);
   for (const Light& light : scene.lights) {
-    const glm::vec3 l = towardsLight(light, p);
+    const glm::vec3 l = towardsLight(light, p), c = incidentLight(light, p, l);
+    if (lobe) specular += c * ggxLobe(m.specular, m.specularF90, m.roughness, n, l, v);
     const float nl = glm::dot(n, l);
-    if (nl <= 0.0f) continue;
-    sum += incidentLight(light, p, l) * nl * schlickFresnel(m.dielectricF0, m.specularF90, glm::dot(v, glm::normalize(l + v)));
+    if (loses && nl > 0.0f)
+      lost += c * nl * schlickFresnel(m.dielectricF0, m.specularF90, glm::dot(v, glm::normalize(l + v)));
   }
-  return albedo * sum;
+  if (lobe)
+    specular = specular * multiScatterCompensation(m.specular, m.roughness, nv) +
+               environmentSpecular(scene, m, n, v, irradiance);
+  return {specular, albedo * lost};
+}
+
+glm::vec3 specularLight(const Scene& scene, const Material& m, const glm::vec3& p, const glm::vec3& n,
+                        const glm::vec3& eye) {
+  return viewDependentLight(scene, m, glm::vec3(0.0f), p, n, eye).specular;
+}
+
+glm::vec3 diffuseFresnelLoss(const Scene& scene, const Material& m, const glm::vec3& albedo, const glm::vec3& p,
+                             const glm::vec3& n, const glm::vec3& eye) {
+  return viewDependentLight(scene, m, albedo, p, n, eye).fresnelLoss;
 }
 
 const char* glslMaterials() {
@@ -93,32 +109,17 @@ const std::string& glslSpecular() {
 
 #ifdef ENVIRONMENT
 // environmentSpecular in C++ (shading/image_light.h).
-vec3 environmentSpecular(Material m, vec3 n, vec3 v) {
+vec3 environmentSpecular(Material m, vec3 n, vec3 v, vec3 irradiance) {
   float roughness = clamp(m.specular.w, kMinRoughness, 1.0), a2 = roughness * roughness * roughness * roughness;
   vec3 r = normalize(mix(reflect(-v, n), n, a2));
   vec3 single, multiple;
   splitScattering(m.specular.rgb, m.glow.w, roughness, dot(n, v), single, multiple);
-  return environmentRadiance(r, roughness) * single + environmentDiffuse(n) * multiple;
+  return environmentRadiance(r, roughness) * single + irradiance * multiple;
 }
 #endif
 
-vec3 specularLight(int material, vec3 p, vec3 nIn, vec3 eye) {
-  Material m = uMaterials[material];
-  float len = length(nIn), dist = length(eye - p);
-  if (m.specular.rgb == vec3(0.0) || !(len > 1e-20) || !(dist > 1e-20)) return vec3(0.0);
-  vec3 n = nIn / len, v = (eye - p) / dist;
+vec3 phongLight(Material m, vec3 p, vec3 n, vec3 v) {
   vec3 sum = vec3(0.0);
-  if (m.params.x == 2.0) {
-    for (int i = 0; i < uLightCount; ++i) {
-      vec3 l = towardsLight(i, p);
-      sum += lightColor(i, p, l) * ggxLobe(m.specular.rgb, m.glow.w, m.specular.w, n, l, v);
-    }
-    sum *= multiScatterCompensation(m.specular.rgb, m.specular.w, dot(n, v));
-#ifdef ENVIRONMENT
-    sum += environmentSpecular(m, n, v);
-#endif
-    return sum;
-  }
   for (int i = 0; i < uLightCount; ++i) {
     vec3 l = towardsLight(i, p);
     if (dot(n, l) <= 0.0) continue;
@@ -128,23 +129,51 @@ vec3 specularLight(int material, vec3 p, vec3 nIn, vec3 eye) {
   return m.specular.rgb * sum;
 }
 
-vec3 diffuseFresnelLoss(int material, vec3 albedo, vec3 p, vec3 nIn, vec3 eye) {
+void viewDependentLight(int material, vec3 albedo, vec3 p, vec3 nIn, vec3 eye, out vec3 specular, out vec3 loss) {
   Material m = uMaterials[material];
+  specular = vec3(0.0);
+  loss = vec3(0.0);
   float len = length(nIn), dist = length(eye - p);
-  if (m.params.x != 2.0 || m.glow.x != 0.0 || !(len > 1e-20) || !(dist > 1e-20)) return vec3(0.0);
+  if (!(len > 1e-20) || !(dist > 1e-20)) return;
   vec3 n = nIn / len, v = (eye - p) / dist;
-  vec3 sum = uAmbient;
-#ifdef ENVIRONMENT
-  sum += environmentDiffuse(n);
-#endif
-  sum *= scatteredShare(m.dielectric.rgb, m.glow.w, m.specular.w, dot(n, v));
-  for (int i = 0; i < uLightCount; ++i) {
-    vec3 l = towardsLight(i, p);
-    float nl = dot(n, l);
-    if (nl <= 0.0) continue;
-    sum += lightColor(i, p, l) * nl * schlickFresnel(m.dielectric.rgb, m.glow.w, dot(v, normalize(l + v)));
+  bool lobe = m.specular.rgb != vec3(0.0);
+  if (m.params.x != 2.0) {
+    if (lobe) specular = phongLight(m, p, n, v);
+    return;
   }
-  return albedo * sum;
+  bool loses = m.glow.x == 0.0;
+  float nv = dot(n, v);
+  vec3 irradiance = vec3(0.0);
+#ifdef ENVIRONMENT
+  irradiance = environmentDiffuse(n);
+#endif
+  vec3 lost = vec3(0.0);
+  if (loses) lost = (uAmbient + irradiance) * scatteredShare(m.dielectric.rgb, m.glow.w, m.specular.w, nv);
+  for (int i = 0; i < uLightCount; ++i) {
+    vec3 l = towardsLight(i, p), c = lightColor(i, p, l);
+    if (lobe) specular += c * ggxLobe(m.specular.rgb, m.glow.w, m.specular.w, n, l, v);
+    float nl = dot(n, l);
+    if (loses && nl > 0.0) lost += c * nl * schlickFresnel(m.dielectric.rgb, m.glow.w, dot(v, normalize(l + v)));
+  }
+  if (lobe) {
+    specular *= multiScatterCompensation(m.specular.rgb, m.specular.w, nv);
+#ifdef ENVIRONMENT
+    specular += environmentSpecular(m, n, v, irradiance);
+#endif
+  }
+  loss = albedo * lost;
+}
+
+vec3 specularLight(int material, vec3 p, vec3 n, vec3 eye) {
+  vec3 specular, loss;
+  viewDependentLight(material, vec3(0.0), p, n, eye, specular, loss);
+  return specular;
+}
+
+vec3 diffuseFresnelLoss(int material, vec3 albedo, vec3 p, vec3 n, vec3 eye) {
+  vec3 specular, loss;
+  viewDependentLight(material, albedo, p, n, eye, specular, loss);
+  return loss;
 }
 )";
   return src;

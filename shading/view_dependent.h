@@ -15,15 +15,24 @@
 
 namespace mvr::shading {
 
-// Specular light leaving point p with normal n (any length) towards eye.
+// What the view-dependent pass adds and takes off at point p with normal n
+// (any length) for the eye: the specular light leaving towards it, and
+// (glTF's fresnel_mix) the diffuse light that a Ggx material's Fresnel
+// term (its dielectric F0) reflects off instead, from every light and from
+// the ambient and environment (their scattered share); the pass takes
+// that off the view-independent diffuse, which is albedo times its light.
+// Zero loss for other models. One pass over the lights for both.
+struct ViewDependentLight {
+  glm::vec3 specular{0.0f}, fresnelLoss{0.0f};
+};
+ViewDependentLight viewDependentLight(const Scene& scene, const Material& material, const glm::vec3& albedo,
+                                      const glm::vec3& p, const glm::vec3& n, const glm::vec3& eye);
+
+// Its specular light alone.
 glm::vec3 specularLight(const Scene& scene, const Material& material, const glm::vec3& p,
                         const glm::vec3& n, const glm::vec3& eye);
 
-// glTF's fresnel_mix: the diffuse light that a Ggx material's Fresnel
-// term (its dielectric F0) reflects off instead, from every light and from
-// the ambient (its scattered share), for the eye; the view-dependent pass
-// takes it off the view-independent diffuse (which is albedo times its
-// light). Zero for other models.
+// Its Fresnel loss alone (deferred's separate-highlights lighting pass).
 glm::vec3 diffuseFresnelLoss(const Scene& scene, const Material& material, const glm::vec3& albedo,
                              const glm::vec3& p, const glm::vec3& n, const glm::vec3& eye);
 
@@ -35,8 +44,10 @@ glm::vec3 diffuseFresnelLoss(const Scene& scene, const Material& material, const
 const char* glslMaterials();
 
 // GLSL: glslMaterials() and
-// `vec3 specularLight(int material, vec3 p, vec3 n, vec3 eye)` and
-// `vec3 diffuseFresnelLoss(int material, vec3 albedo, vec3 p, vec3 n, vec3 eye)`; needs
+// `void viewDependentLight(int material, vec3 albedo, vec3 p, vec3 n, vec3 eye,
+// out vec3 specular, out vec3 loss)`, and its halves `vec3 specularLight(int
+// material, vec3 p, vec3 n, vec3 eye)` and `vec3 diffuseFresnelLoss(int
+// material, vec3 albedo, vec3 p, vec3 n, vec3 eye)`; needs
 // glslLighting() before it for the light uniforms.
 const std::string& glslSpecular();
 

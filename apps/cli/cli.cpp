@@ -9,6 +9,7 @@
 #include "mvr/gl/gl_context.h"
 #include "mvr/assets/scene_io.h"
 #include "mvr/parallel.h"
+#include "mvr/tone_map.h"
 #include "shading/image_light.h"
 #include "shading/lighting.h"
 
@@ -148,6 +149,18 @@ void addLookOptions(CLI::App& app, LookOptions& look) {
                  "turns the environment by DEG about +y (after a scene file's rotation)")
       ->check(CLI::Range(-1e6f, 1e6f))
       ->type_name("DEG");
+}
+
+CLI::Option* addToneMapOption(CLI::App& app, std::string& name) {
+  std::vector<std::string> names;
+  for (ToneMap m : kToneMaps) names.push_back(toneMapName(m));
+  return app
+      .add_option("--tonemap", name,
+                  "display transform before the output encoding: none, aces (filmic), agx or neutral (Khronos "
+                  "PBR Neutral), as three.js draws them; shades in float without clamping. Not with exr, "
+                  "which keeps linear radiance")
+      ->check(CLI::IsMember(names))
+      ->capture_default_str();
 }
 
 namespace {

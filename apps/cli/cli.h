@@ -56,6 +56,8 @@ struct LookOptions {
 };
 // --exposure, --environment, --environment-intensity and --environment-rotation.
 void addLookOptions(CLI::App& app, LookOptions& look);
+// --tonemap NAME (mvr/tone_map.h), one of toneMapName's.
+CLI::Option* addToneMapOption(CLI::App& app, std::string& name);
 
 // The scene a command renders (a .json scene or a bare mesh), with its
 // environment loaded (which takes the place of the default light and

@@ -33,6 +33,7 @@
 #include "mvr/error.h"
 #include "mvr/gl/gl_api.h"
 #include "mvr/gl/gl_context.h"
+#include "mvr/tone_map.h"
 #include "mvr/gl/glfw_window.h"
 #include "mvr/gl/quilt_screen.h"
 #include "mvr/gl/view_layers.h"
@@ -138,6 +139,7 @@ struct LiveFlags {
   std::pair<int, int> size{0, 0};  // 0 x 0: the preset's tile
   double turntable = 0.0;  // degrees a second
   LookOptions look;
+  std::string tonemap = "none";
   BackendFlags backend;
   CameraFlags camera;
 
@@ -170,6 +172,7 @@ struct LiveFlags {
         ->check(CLI::IsMember({"auto", "gpu", "cpu"}))
         ->type_name("auto|gpu|cpu");
     addLookOptions(app, look);
+    addToneMapOption(app, tonemap);
     backend.add(app);
     camera.add(app);
   }
@@ -194,6 +197,7 @@ RenderJob liveJob(const LiveFlags& f, QuiltLayout display) {
   job.camera.validate();
   job.scenePath = f.source.empty() ? defaultScenePath() : f.source;
   job.look = f.look;
+  job.toneMap = *toneMapNamed(f.tonemap);
   job.quilt = display;
   job.views = display.columns * display.rows;
   job.width = display.tileWidth(), job.height = display.tileHeight();

@@ -65,12 +65,7 @@ void RenderFlags::addOutputShape(CLI::App& app) {
   if (!app.get_option_no_throw("--from")) {
     addStrictOption(app, strict_);
     addLookOptions(app, look_);
-    app.add_option("--tonemap", tonemap_,
-                   "display transform before the output encoding: none, aces (filmic), agx or neutral (Khronos "
-                   "PBR Neutral), as three.js draws them; shades in float without clamping. Not with exr, "
-                   "which keeps linear radiance")
-        ->check(CLI::IsMember({"none", "aces", "agx", "neutral"}))
-        ->capture_default_str();
+    addToneMapOption(app, tonemap_);
   }
   app.add_flag("--linear", linear_,
                "write linear values to png and tiff files (and 8-bit streams) instead of "

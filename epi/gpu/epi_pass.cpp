@@ -325,13 +325,16 @@ void main() {
   prepare();
   vec3 eye = uEye0 + gView * uEyeStep;
   int material = int(vFlat.y);
-  vec3 c = specularLight(material, attr3(0), attr3(3) * vFlat.x, eye);
 #ifdef GGX
-  c -= diffuseFresnelLoss(material, attr3(6), attr3(0), attr3(3) * vFlat.x, eye);
+  vec3 albedo = attr3(6);
   const int kReflect = 9;
 #else
+  vec3 albedo = vec3(0.0);
   const int kReflect = 6;
 #endif
+  vec3 c, loss;
+  viewDependentLight(material, albedo, attr3(0), attr3(3) * vFlat.x, eye, c, loss);
+  c -= loss;
 #ifdef REFLECT
   c += environmentLight(material, reflectionVector(attr3(kReflect), attr3(kReflect + 3), attr3(kReflect + 6), eye));
 #endif

@@ -156,9 +156,11 @@ void main() {
   c += materialEmission(int(normal.w + 0.5));
 #endif
 #if defined(VIEW_DEPENDENT) && !defined(SEPARATE_HIGHLIGHTS)
-  c += specularLight(int(normal.w + 0.5), p, n, uEye);
-#endif
-#ifdef GGX
+  vec3 specular, loss;
+  viewDependentLight(int(normal.w + 0.5), albedo.rgb, p, n, uEye, specular, loss);
+  c += specular;
+  c -= loss;
+#elif defined(GGX)
   c -= diffuseFresnelLoss(int(normal.w + 0.5), albedo.rgb, p, n, uEye);
 #endif
 #ifdef REFLECT

@@ -68,6 +68,22 @@ TEST(Live, QuiltFileIsShownAsItIs) {
   EXPECT_EQ(shown.bytes, q.bytes);
 }
 
+// A tone map and an exposure reach the live quilt as they reach render's.
+TEST(Live, ToneMapsAsRenderDoes) {
+  const fs::path dir = test::freshDir("live_tonemap");
+  fs::create_directories(dir);
+  const std::string look = " --tonemap aces --exposure 1", shot = (dir / "shot.png").string();
+  const test::CliResult r = test::shell("env -u DISPLAY " + test::mvrBinary() + " live " + kScene +
+                                        " --display 2x2 --size 48x32 --frames 1 --screenshot " + shot + look);
+  ASSERT_TRUE(test::succeeded(r)) << r.err;
+  ASSERT_TRUE(test::succeeded(test::runMvr("render " + kScene + " --views 4 --size 48x32 --quilt 2x2 --quilt-only" + look +
+                                           " --out " + (dir / "set").string())));
+  Image q = readImage((dir / "set" / "quilt_qs2x2a1.50.png").string());
+  const Image shown = readImage(shot);
+  for (size_t i = 3; i < q.bytes.size(); i += 4) q.bytes[i] = 255;
+  EXPECT_EQ(shown.bytes, q.bytes);
+}
+
 // In a window under Xvfb, a turntable of 90 degrees a second: frame 3 (t =
 // 0.1 s) shows the scene turned 9 degrees, as frame 1 of a 10-frame
 // render --turntable 90 does.

@@ -115,14 +115,17 @@ void main() {
   c += glow;
 #endif
 #ifdef VIEW_DEPENDENT
-  c += specularLight(int(vMaterial), vPosition, gl_FrontFacing ? vNormal : -vNormal, vEye);
-#endif
+  vec3 albedo = vec3(0.0);
 #ifdef GGX
-  vec3 albedo = vAlbedo;
+  albedo = vAlbedo;
 #ifdef TEXTURE
   albedo *= texel.rgb;
 #endif
-  c -= diffuseFresnelLoss(int(vMaterial), albedo, vPosition, gl_FrontFacing ? vNormal : -vNormal, vEye);
+#endif
+  vec3 specular, loss;
+  viewDependentLight(int(vMaterial), albedo, vPosition, gl_FrontFacing ? vNormal : -vNormal, vEye, specular, loss);
+  c += specular;
+  c -= loss;
 #endif
 #ifdef REFLECT
   c += environmentLight(int(vMaterial), vReflect);
