@@ -20,13 +20,27 @@ namespace {
 constexpr float kPi = float(M_PI);
 
 // The source as linear RGB, read with bilinear filtering, wrapped in u and
-// clamped at the poles.
+// clamped at the poles. Channels outside [0, kMaxRadiance] (NaN, infinite,
+// negative, or beyond half float's range, which the GL copy has) are
+// brought into it and counted: one bad texel would otherwise spread
+// through the harmonics and every prefiltered level.
 class Equirect {
  public:
   explicit Equirect(const Image& img) : w_(img.width), h_(img.height), px_(size_t(w_) * h_) {
     for (int y = 0; y < h_; ++y)
-      for (int x = 0; x < w_; ++x) px_[size_t(y) * w_ + x] = glm::vec3(img.linear(x, y));
+      for (int x = 0; x < w_; ++x) {
+        glm::vec3 c(img.linear(x, y));
+        bool bad = false;
+        for (int k = 0; k < 3; ++k) {
+          const float v = std::isnan(c[k]) || c[k] < 0.0f ? 0.0f : std::min(c[k], ImageLight::kMaxRadiance);
+          bad |= v != c[k];
+          c[k] = v;
+        }
+        changed_ += bad;
+        px_[size_t(y) * w_ + x] = c;
+      }
   }
+  size_t changed() const { return changed_; }
 
   glm::vec3 sample(const glm::vec3& dir) const {
     const glm::vec3 d = glm::normalize(dir);
@@ -45,6 +59,7 @@ class Equirect {
  private:
   int w_, h_;
   std::vector<glm::vec3> px_;
+  size_t changed_ = 0;
 };
 
 // The unpadded base faces and their box-filtered halvings down to 1 x 1:
@@ -177,6 +192,7 @@ float ImageLight::levelOf(float roughness) {
 ImageLight::ImageLight(const Image& equirect, int samples) {
   if (equirect.width < 2 || equirect.height < 1) fail("environment", "the map is empty");
   const Equirect source(equirect);
+  changedTexels_ = source.changed();
   // The mirror level: 2 x 2 samples of the map a texel.
   const int s0 = levelSize(0);
   levels_.push_back(fillLevel(s0, [&](int face, int x, int y) {
@@ -268,6 +284,9 @@ void loadEnvironment(Scene& scene) {
   const std::lock_guard lock(mutex);
   std::shared_ptr<const ImageLight> light = loaded[scene.environment->file].lock();
   if (!light) loaded[scene.environment->file] = light = ImageLight::load(scene.environment->file);
+  if (light->changedTexels())
+    scene.warnings.push_back(scene.environment->file + ": " + std::to_string(light->changedTexels()) +
+                             " texels are not numbers, negative or above 65504: read as 0 or 65504");
   scene.environment->light = std::move(light);
 }
 

@@ -43,6 +43,9 @@ class ImageLight {
   // kMaxSamples: a wider lobe needs more, on fewer texels (the cost stays
   // about even; fewer leave the rough levels 5% off their integral).
   static constexpr int kSamples = 64, kMaxSamples = 2048;
+  // Half float's largest value, which the GL copy stores: texels above it
+  // are clamped to it (and NaN and negative ones read as 0) on the CPU too.
+  static constexpr float kMaxRadiance = 65504.0f;
 
   // From linear RGB, any size of at least 2 x 1 (the map is read with
   // bilinear filtering, wrapped round in u).
@@ -66,6 +69,8 @@ class ImageLight {
   // The nine coefficients irradiance() weighs 1, y, z, x, xy, yz,
   // 3z^2 - 1, xz, x^2 - y^2 by.
   const std::array<glm::vec3, 9>& harmonics() const { return sh_; }
+  // How many of the map's texels were brought into [0, kMaxRadiance].
+  size_t changedTexels() const { return changedTexels_; }
 
   // Needs a current context: the 2D array, RGBA16F, bilinear.
   gl::Texture upload() const;
@@ -75,6 +80,7 @@ class ImageLight {
 
   std::vector<std::vector<glm::vec3>> levels_;  // per level: 6 padded faces, row after row
   std::array<glm::vec3, 9> sh_{};
+  size_t changedTexels_ = 0;
 };
 
 // Loads the scene's environment's maps if it has one and they are not

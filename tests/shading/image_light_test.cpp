@@ -7,6 +7,7 @@
 // metallic-roughness scene.
 #include <cmath>
 #include <fstream>
+#include <limits>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
@@ -109,6 +110,28 @@ TEST(ImageLight, PrefilteredLevelsMatchBruteForceIntegration) {
       const glm::vec3 got = light.levelRadiance(r, k);
       EXPECT_NEAR(got.r, want.r, 0.03f * want.r + 0.005f) << "level " << k;
     }
+}
+
+TEST(ImageLight, BadTexelsAreBroughtIntoRange) {
+  // A NaN, an infinity and a negative texel in a constant sky of 0.5: the
+  // first and last read as 0, the infinity as half float's largest; the
+  // harmonics stay finite and near the rest's.
+  Image map = equirect(64, [](glm::vec3) { return glm::vec3(0.5f); });
+  map.setLinear(3, 5, glm::vec4(std::nanf(""), 0.5f, 0.5f, 1.0f));
+  map.setLinear(10, 20, glm::vec4(-1.0f, 0.5f, 0.5f, 1.0f));
+  map.setLinear(40, 1, glm::vec4(0.5f, std::numeric_limits<float>::infinity(), 0.5f, 1.0f));
+  const ImageLight light(map);
+  EXPECT_EQ(light.changedTexels(), 3u);
+  for (const glm::vec3& d : someDirections()) {
+    EXPECT_NEAR(light.irradiance(d).r, 0.5f, 0.01f);
+    EXPECT_TRUE(std::isfinite(light.irradiance(d).g));
+    EXPECT_TRUE(std::isfinite(light.radiance(d, 0.5f).g));
+  }
+  // The smallest map there is, 2 x 1, still lights.
+  Image tiny(2, 1, PixelType::F32);
+  tiny.setLinear(0, 0, glm::vec4(1.0f));
+  tiny.setLinear(1, 0, glm::vec4(1.0f));
+  EXPECT_NEAR(ImageLight(tiny).irradiance(glm::vec3(0, 0, 1)).r, 1.0f, 1e-3f);
 }
 
 TEST(ImageLight, ReadsARadianceHdrFile) {
