@@ -213,6 +213,37 @@ TEST_F(ImageLightRender, AWhiteFurnaceLightsADiffuseSphereEvenly) {
   }
 }
 
+TEST_F(ImageLightRender, AMirrorShowsTheMap) {
+  // A mirror (metal, base 1, roughness 0) square on the image plane under
+  // L(d) = 0.5 + 0.4 d: the centre view's centre pixel sees the map
+  // straight back, towards +z, times the lobe's directional albedo at
+  // normal incidence (A + B, about 1); the left view's mirror direction
+  // leans to +x (redder), the right view's to -x.
+  Scene s = loadScene(test::assetPath("plane.obj"));
+  s.materials.assign(1, Material{});
+  s.materials[0].setMetallicRoughness(glm::vec3(1.0f), 1.0f, 0.0f);
+  s.materialIds.assign(s.triangleCount(), 0);
+  s.colors.assign(s.vertexCount(), glm::vec3(1.0f));
+  s.lights.clear();
+  s.ambient = glm::vec3(0.0f);
+  s.environment = Environment{"map"};
+  s.environment->light = std::make_shared<const ImageLight>(equirect(256, [](glm::vec3 d) { return glm::vec3(0.5f) + 0.4f * d; }));
+  CameraSpec spec;
+  spec.distance = 3.0, spec.planeWidth = 1.2, spec.trackLeft = -1.0, spec.trackRight = 1.0;
+  spec.nearDistance = 1.0, spec.farDistance = 5.0;
+  const ShearingCamera cam(spec, 64, 48, 3);
+  const glm::vec2 e = shading::dfg(0.0f, 1.0f);
+  for (const char* backend : {"svr", "mvr:cpu", "mvr:exact"}) {
+    const test::CaptureSink views = test::renderSpec(backend, s, cam);
+    const glm::vec4 centre = views.views.at({0, 1}).linear(32, 24);
+    EXPECT_NEAR(centre.r, 0.5f * (e.x + e.y), 0.02f) << backend;
+    EXPECT_NEAR(centre.b, 0.9f * (e.x + e.y), 0.02f) << backend;
+    const float left = views.views.at({0, 0}).linear(32, 24).r, right = views.views.at({0, 2}).linear(32, 24).r;
+    EXPECT_GT(left, centre.r + 0.05f) << backend;
+    EXPECT_LT(right, centre.r - 0.05f) << backend;
+  }
+}
+
 TEST_F(ImageLightRender, EveryModeMatchesSvrUnderAnEnvironment) {
   const glm::vec3 sun = glm::normalize(glm::vec3(0.4f, 0.6f, 0.7f));
   const Scene s = furnaceScene(equirect(256, [&](glm::vec3 d) {
