@@ -243,27 +243,34 @@ glm::vec3 ImageLight::texel(int level, int face, int x, int y) const {
 }
 
 // Keep in step with the GLSL below.
+glm::vec3 ImageLight::faceRadiance(int level, int face, const glm::vec2& st) const {
+  const int s = levelSize(level), p = s + 2;
+  const float fx = st.x * float(s) + 0.5f, fy = st.y * float(s) + 0.5f;  // padded texels, centres at +0.5
+  const float x0 = std::floor(fx), y0 = std::floor(fy), tx = fx - x0, ty = fy - y0;
+  // st in [0, 1]: the four texels lie within the padded face.
+  const int x = std::clamp(int(x0), 0, s), y = std::clamp(int(y0), 0, s);
+  const glm::vec3* t = levels_[size_t(level)].data() + (size_t(face) * p + y) * p + x;
+  return glm::mix(glm::mix(t[0], t[1], tx), glm::mix(t[p], t[p + 1], tx), ty);
+}
+
 glm::vec3 ImageLight::levelRadiance(const glm::vec3& r, int level) const {
   glm::vec2 st;
   const int face = cubeFace(r, st);
-  const float s = float(levelSize(level));
-  const float fx = st.x * s + 0.5f, fy = st.y * s + 0.5f;  // padded texels, centres at +0.5
-  const float x0 = std::floor(fx), y0 = std::floor(fy), tx = fx - x0, ty = fy - y0;
-  const int x = int(x0), y = int(y0);
-  return glm::mix(glm::mix(texel(level, face, x, y), texel(level, face, x + 1, y), tx),
-                  glm::mix(texel(level, face, x, y + 1), texel(level, face, x + 1, y + 1), tx), ty);
+  return faceRadiance(level, face, st);
 }
 
 glm::vec3 ImageLight::radiance(const glm::vec3& r, float roughness) const {
   const float lod = levelOf(roughness);
   const int k = std::min(int(lod), kLevels - 2);
-  return glm::mix(levelRadiance(r, k), levelRadiance(r, k + 1), lod - float(k));
+  glm::vec2 st;
+  const int face = cubeFace(r, st);
+  return glm::mix(faceRadiance(k, face, st), faceRadiance(k + 1, face, st), lod - float(k));
 }
 
 glm::vec3 ImageLight::irradiance(const glm::vec3& n) const {
-  const std::array<float, 9> b = shBasis(n);
-  glm::vec3 e(0.0f);
-  for (int i = 0; i < 9; ++i) e += sh_[size_t(i)] * b[size_t(i)];
+  const std::array<glm::vec3, 9>& c = sh_;
+  const glm::vec3 e = c[0] + c[1] * n.y + c[2] * n.z + c[3] * n.x + c[4] * (n.x * n.y) + c[5] * (n.y * n.z) +
+                      c[6] * (3.0f * n.z * n.z - 1.0f) + c[7] * (n.x * n.z) + c[8] * (n.x * n.x - n.y * n.y);
   return glm::max(e, glm::vec3(0.0f));
 }
 

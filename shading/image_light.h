@@ -77,6 +77,7 @@ class ImageLight {
 
  private:
   glm::vec3 texel(int level, int face, int x, int y) const;
+  glm::vec3 faceRadiance(int level, int face, const glm::vec2& st) const;
 
   std::vector<std::vector<glm::vec3>> levels_;  // per level: 6 padded faces, row after row
   std::array<glm::vec3, 9> sh_{};
