@@ -103,20 +103,22 @@ glm::vec2 dfg(float roughness, float nv) {
 }
 
 glm::vec3 multiScatterCompensation(const glm::vec3& f0, float roughness, float nv) {
-  const glm::vec2 e = dfg(roughness, nv);
+  return multiScatterCompensation(f0, dfg(roughness, nv));
+}
+
+glm::vec3 multiScatterCompensation(const glm::vec3& f0, const glm::vec2& e) {
   return 1.0f + f0 * (1.0f / std::max(e.x + e.y, 1e-3f) - 1.0f);
 }
 
-Scattering splitScattering(const glm::vec3& f0, float f90, float roughness, float nv) {
-  const glm::vec2 e = dfg(roughness, nv);
+Scattering splitScattering(const glm::vec3& f0, float f90, const glm::vec2& e) {
   const glm::vec3 single = f0 * e.x + f90 * e.y;
   const float lost = 1.0f - e.x - e.y;
   const glm::vec3 average = f0 + (1.0f - f0) * (1.0f / 21.0f);
   return {single, single * average / (1.0f - lost * average) * lost};
 }
 
-glm::vec3 scatteredShare(const glm::vec3& f0, float f90, float roughness, float nv) {
-  const Scattering s = splitScattering(f0, f90, roughness, nv);
+glm::vec3 scatteredShare(const glm::vec3& f0, float f90, const glm::vec2& e) {
+  const Scattering s = splitScattering(f0, f90, e);
   return s.single + s.multiple;
 }
 
@@ -150,20 +152,21 @@ vec2 dfg(float roughness, float nv) {
   float fx = x - float(x0), fy = y - float(y0);
   return mix(mix(dfgAt(x0, y0), dfgAt(x0 + 1, y0), fx), mix(dfgAt(x0, y0 + 1), dfgAt(x0 + 1, y0 + 1), fx), fy);
 }
-vec3 multiScatterCompensation(vec3 f0, float roughness, float nv) {
-  vec2 e = dfg(roughness, nv);
+vec3 multiScatterCompensation(vec3 f0, vec2 e) {
   return 1.0 + f0 * (1.0 / max(e.x + e.y, 1e-3) - 1.0);
 }
-void splitScattering(vec3 f0, float f90, float roughness, float nv, out vec3 single, out vec3 multiple) {
-  vec2 e = dfg(roughness, nv);
+vec3 multiScatterCompensation(vec3 f0, float roughness, float nv) {
+  return multiScatterCompensation(f0, dfg(roughness, nv));
+}
+void splitScattering(vec3 f0, float f90, vec2 e, out vec3 single, out vec3 multiple) {
   single = f0 * e.x + f90 * e.y;
   float lost = 1.0 - e.x - e.y;
   vec3 average = f0 + (1.0 - f0) * (1.0 / 21.0);
   multiple = single * average / (1.0 - lost * average) * lost;
 }
-vec3 scatteredShare(vec3 f0, float f90, float roughness, float nv) {
+vec3 scatteredShare(vec3 f0, float f90, vec2 e) {
   vec3 single, multiple;
-  splitScattering(f0, f90, roughness, nv, single, multiple);
+  splitScattering(f0, f90, e, single, multiple);
   return single + multiple;
 }
 vec3 ggxLobe(vec3 f0, float f90, float roughness, vec3 n, vec3 l, vec3 v) {

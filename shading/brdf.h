@@ -56,6 +56,9 @@ glm::vec2 dfg(float roughness, float nv);
 // What the lobe loses to its single scattering, given back (Turquin 2019,
 // three.js's direct light): 1 + F0 (1 / E_white - 1), E_white = A + B.
 glm::vec3 multiScatterCompensation(const glm::vec3& f0, float roughness, float nv);
+// The same from the table's value e = dfg(roughness, nv), for a caller that
+// needs it more than once a pixel (splitScattering's too).
+glm::vec3 multiScatterCompensation(const glm::vec3& f0, const glm::vec2& e);
 
 // The Blinn-Phong exponent whose lobe is about as wide as GGX's at this
 // roughness (Walter et al. 2007: 2 / alpha^2 - 2): where the highlight
@@ -64,19 +67,22 @@ float ggxBlinnExponent(float roughness);
 
 // The share of a uniform surround's light the lobe reflects towards v,
 // single and multiple scattering (Fdez-Aguera 2019; three.js's
-// computeMultiscattering): what a diffuse layer under it does not get.
-glm::vec3 scatteredShare(const glm::vec3& f0, float f90, float roughness, float nv);
+// computeMultiscattering), from the table's value e = dfg(roughness, n.v):
+// what a diffuse layer under it does not get.
+glm::vec3 scatteredShare(const glm::vec3& f0, float f90, const glm::vec2& e);
 // The same in its two parts: single scattering F0 A + F90 B, which weighs
 // the prefiltered radiance, and the multiple scattering that weighs the
 // irradiance (shading/image_light.h).
 struct Scattering {
   glm::vec3 single, multiple;
 };
-Scattering splitScattering(const glm::vec3& f0, float f90, float roughness, float nv);
+Scattering splitScattering(const glm::vec3& f0, float f90, const glm::vec2& e);
 
 // GLSL: `vec3 ggxLobe(vec3 f0, float f90, float roughness, vec3 n, vec3 l, vec3 v)`,
-// and `vec2 dfg(float roughness, float nv)` and multiScatterCompensation
-// over uDfg, the table that the Materials block (glslMaterials) opens with.
+// and `vec2 dfg(float roughness, float nv)` over uDfg, the table that the
+// Materials block (glslMaterials) opens with; multiScatterCompensation (of
+// roughness and n.v, or of dfg's e), and splitScattering and
+// scatteredShare of dfg's e.
 const char* glslBrdf();
 
 }  // namespace mvr::shading

@@ -7,6 +7,7 @@
 #include "mvr/error.h"
 #include "mvr/image.h"
 #include "mvr/images/image_file.h"
+#include "shading/bilinear.h"
 #include "shading/cube_faces.h"
 
 namespace mvr::shading {
@@ -86,12 +87,8 @@ glm::vec3 EnvironmentSet::texel(const std::vector<uint8_t>& texels, int size, in
 
 glm::vec3 EnvironmentSet::bilinear(const std::vector<uint8_t>& texels, int size, int layer,
                                    glm::vec2 st) const {
-  const glm::vec2 s = st * float(size) - 0.5f, f0 = glm::floor(s), f = s - f0;
-  const int x = int(f0.x), y = int(f0.y);
-  return glm::mix(glm::mix(texel(texels, size, layer, x, y), texel(texels, size, layer, x + 1, y), f.x),
-                  glm::mix(texel(texels, size, layer, x, y + 1),
-                           texel(texels, size, layer, x + 1, y + 1), f.x),
-                  f.y);
+  return shading::bilinear(st.x * float(size) - 0.5f, st.y * float(size) - 0.5f,
+                           [&](int x, int y) { return texel(texels, size, layer, x, y); });
 }
 
 glm::vec3 EnvironmentSet::sample(const Map& map, glm::vec3 r) const {

@@ -11,6 +11,7 @@
 #include "mvr/image.h"
 #include "mvr/images/image_file.h"
 #include "mvr/parallel.h"
+#include "shading/bilinear.h"
 #include "shading/brdf.h"
 #include "shading/cube_faces.h"
 
@@ -46,14 +47,10 @@ class Equirect {
     const glm::vec3 d = glm::normalize(dir);
     const float u = std::atan2(d.z, d.x) / (2.0f * kPi) + 0.5f;
     const float v = std::asin(std::clamp(d.y, -1.0f, 1.0f)) / kPi + 0.5f;
-    const float fx = u * float(w_) - 0.5f, fy = (1.0f - v) * float(h_) - 0.5f;
-    const float x0 = std::floor(fx), y0 = std::floor(fy), tx = fx - x0, ty = fy - y0;
-    auto at = [&](int x, int y) {
+    return bilinear(u * float(w_) - 0.5f, (1.0f - v) * float(h_) - 0.5f, [&](int x, int y) {
       x = ((x % w_) + w_) % w_, y = std::clamp(y, 0, h_ - 1);
       return px_[size_t(y) * w_ + x];
-    };
-    const int x = int(x0), y = int(y0);
-    return glm::mix(glm::mix(at(x, y), at(x + 1, y), tx), glm::mix(at(x, y + 1), at(x + 1, y + 1), tx), ty);
+    });
   }
 
  private:
@@ -90,22 +87,18 @@ class CubePyramid {
     const int face = cubeFace(dir, st);
     const float l = std::clamp(lod, 0.0f, float(levels_.size() - 1));
     const int k = std::min(int(l), int(levels_.size()) - 2);
-    if (k < 0) return bilinear(0, face, st);
-    return glm::mix(bilinear(k, face, st), bilinear(k + 1, face, st), l - float(k));
+    if (k < 0) return faceTexels(0, face, st);
+    return glm::mix(faceTexels(k, face, st), faceTexels(k + 1, face, st), l - float(k));
   }
 
  private:
-  glm::vec3 bilinear(int level, int face, const glm::vec2& st) const {
+  glm::vec3 faceTexels(int level, int face, const glm::vec2& st) const {
     const int n = sizes_[size_t(level)];
     const std::vector<glm::vec3>& t = levels_[size_t(level)];
-    const float fx = st.x * float(n) - 0.5f, fy = st.y * float(n) - 0.5f;
-    const float x0 = std::floor(fx), y0 = std::floor(fy), tx = fx - x0, ty = fy - y0;
-    auto at = [&](int x, int y) {
+    return bilinear(st.x * float(n) - 0.5f, st.y * float(n) - 0.5f, [&](int x, int y) {
       x = std::clamp(x, 0, n - 1), y = std::clamp(y, 0, n - 1);
       return t[(size_t(face) * n + y) * n + x];
-    };
-    const int x = int(x0), y = int(y0);
-    return glm::mix(glm::mix(at(x, y), at(x + 1, y), tx), glm::mix(at(x, y + 1), at(x + 1, y + 1), tx), ty);
+    });
   }
 
   std::vector<std::vector<glm::vec3>> levels_;
@@ -245,12 +238,12 @@ glm::vec3 ImageLight::texel(int level, int face, int x, int y) const {
 // Keep in step with the GLSL below.
 glm::vec3 ImageLight::faceRadiance(int level, int face, const glm::vec2& st) const {
   const int s = levelSize(level), p = s + 2;
-  const float fx = st.x * float(s) + 0.5f, fy = st.y * float(s) + 0.5f;  // padded texels, centres at +0.5
-  const float x0 = std::floor(fx), y0 = std::floor(fy), tx = fx - x0, ty = fy - y0;
-  // st in [0, 1]: the four texels lie within the padded face.
-  const int x = std::clamp(int(x0), 0, s), y = std::clamp(int(y0), 0, s);
-  const glm::vec3* t = levels_[size_t(level)].data() + (size_t(face) * p + y) * p + x;
-  return glm::mix(glm::mix(t[0], t[1], tx), glm::mix(t[p], t[p + 1], tx), ty);
+  const glm::vec3* t = levels_[size_t(level)].data() + size_t(face) * p * p;
+  // Padded texels, centres at +0.5; st in [0, 1] keeps the four within the
+  // padded face (the clamp only catches rounding).
+  return bilinear(st.x * float(s) + 0.5f, st.y * float(s) + 0.5f, [&](int x, int y) {
+    return t[std::clamp(y, 0, p - 1) * p + std::clamp(x, 0, p - 1)];
+  });
 }
 
 glm::vec3 ImageLight::levelRadiance(const glm::vec3& r, int level) const {
@@ -306,14 +299,13 @@ glm::vec3 environmentDiffuse(const Scene& scene, const glm::vec3& n) {
 }
 
 glm::vec3 environmentSpecular(const Scene& scene, const Material& m, const glm::vec3& n, const glm::vec3& v,
-                              const glm::vec3& irradiance) {
+                              const glm::vec3& irradiance, const Scattering& s) {
   if (!scene.environment || !scene.environment->light || m.specularModel != SpecularModel::Ggx)
     return glm::vec3(0.0f);
   const float roughness = std::clamp(m.roughness, kMinRoughness, 1.0f), a2 = roughness * roughness * roughness * roughness;
   // Towards the normal as the lobe widens (three.js's getIBLRadiance): a
   // rough lobe's light comes from nearer the normal than the mirror's.
   const glm::vec3 r = glm::normalize(glm::mix(glm::reflect(-v, n), n, a2));
-  const Scattering s = splitScattering(m.specular, m.specularF90, roughness, glm::dot(n, v));
   const glm::mat3& toMap = scene.environment->fromScene;
   const ImageLight& light = *scene.environment->light;
   return scene.environment->intensity * light.radiance(toMap * r, roughness) * s.single + irradiance * s.multiple;

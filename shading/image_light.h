@@ -29,6 +29,7 @@
 
 #include "mvr/gl/gl_handles.h"
 #include "mvr/scene.h"
+#include "shading/brdf.h"
 
 namespace mvr {
 struct Image;
@@ -94,10 +95,11 @@ glm::vec3 environmentDiffuse(const Scene& scene, const glm::vec3& n);
 // A Ggx material's specular from the environment for unit n and v (three.js's
 // RE_IndirectSpecular): the prefiltered radiance round reflect(-v, n)
 // times the lobe's single scattering, plus its multiple scattering of the
-// irradiance (environmentDiffuse(scene, n), which the caller has). 0 for
-// other models and without an environment.
+// irradiance (environmentDiffuse(scene, n)); the caller has both, the
+// scattering as splitScattering(F0, F90, dfg(roughness, n.v)). 0 for other
+// models and without an environment.
 glm::vec3 environmentSpecular(const Scene& scene, const Material& material, const glm::vec3& n,
-                              const glm::vec3& v, const glm::vec3& irradiance);
+                              const glm::vec3& v, const glm::vec3& irradiance, const Scattering& scattering);
 
 // GLSL under ENVIRONMENT (ShadingPlan::glslDefines), for glslLighting():
 // uniforms and `vec3 environmentDiffuse(vec3 n)`.

@@ -59,8 +59,9 @@ ViewDependentLight viewDependentLight(const Scene& scene, const Material& m, con
   const bool loses = !m.unlit;
   const float nv = glm::dot(n, v);
   const glm::vec3 irradiance = environmentDiffuse(scene, n);
+  const glm::vec2 e = dfg(m.roughness, nv);  // the table, read once for the three uses below
   glm::vec3 specular(0.0f), lost(0.0f);
-  if (loses) lost = (scene.ambient + irradiance) * scatteredShare(m.dielectricF0, m.specularF90, m.roughness, nv);
+  if (loses) lost = (scene.ambient + irradiance) * scatteredShare(m.dielectricF0, m.specularF90, e);
   for (const Light& light : scene.lights) {
     const glm::vec3 l = towardsLight(light, p), c = incidentLight(light, p, l);
     if (lobe) specular += c * ggxLobe(m.specular, m.specularF90, m.roughness, n, l, v);
@@ -69,8 +70,8 @@ ViewDependentLight viewDependentLight(const Scene& scene, const Material& m, con
       lost += c * nl * schlickFresnel(m.dielectricF0, m.specularF90, glm::dot(v, glm::normalize(l + v)));
   }
   if (lobe)
-    specular = specular * multiScatterCompensation(m.specular, m.roughness, nv) +
-               environmentSpecular(scene, m, n, v, irradiance);
+    specular = specular * multiScatterCompensation(m.specular, e) +
+               environmentSpecular(scene, m, n, v, irradiance, splitScattering(m.specular, m.specularF90, e));
   return {specular, albedo * lost};
 }
 
@@ -109,11 +110,11 @@ const std::string& glslSpecular() {
 
 #ifdef ENVIRONMENT
 // environmentSpecular in C++ (shading/image_light.h).
-vec3 environmentSpecular(Material m, vec3 n, vec3 v, vec3 irradiance) {
+vec3 environmentSpecular(Material m, vec3 n, vec3 v, vec3 irradiance, vec2 e) {
   float roughness = clamp(m.specular.w, kMinRoughness, 1.0), a2 = roughness * roughness * roughness * roughness;
   vec3 r = normalize(mix(reflect(-v, n), n, a2));
   vec3 single, multiple;
-  splitScattering(m.specular.rgb, m.glow.w, roughness, dot(n, v), single, multiple);
+  splitScattering(m.specular.rgb, m.glow.w, e, single, multiple);
   return environmentRadiance(r, roughness) * single + irradiance * multiple;
 }
 #endif
@@ -147,8 +148,9 @@ void viewDependentLight(int material, vec3 albedo, vec3 p, vec3 nIn, vec3 eye, o
 #ifdef ENVIRONMENT
   irradiance = environmentDiffuse(n);
 #endif
+  vec2 e = dfg(m.specular.w, nv);  // the table, read once for the three uses below
   vec3 lost = vec3(0.0);
-  if (loses) lost = (uAmbient + irradiance) * scatteredShare(m.dielectric.rgb, m.glow.w, m.specular.w, nv);
+  if (loses) lost = (uAmbient + irradiance) * scatteredShare(m.dielectric.rgb, m.glow.w, e);
   for (int i = 0; i < uLightCount; ++i) {
     vec3 l = towardsLight(i, p), c = lightColor(i, p, l);
     if (lobe) specular += c * ggxLobe(m.specular.rgb, m.glow.w, m.specular.w, n, l, v);
@@ -156,18 +158,12 @@ void viewDependentLight(int material, vec3 albedo, vec3 p, vec3 nIn, vec3 eye, o
     if (loses && nl > 0.0) lost += c * nl * schlickFresnel(m.dielectric.rgb, m.glow.w, dot(v, normalize(l + v)));
   }
   if (lobe) {
-    specular *= multiScatterCompensation(m.specular.rgb, m.specular.w, nv);
+    specular *= multiScatterCompensation(m.specular.rgb, e);
 #ifdef ENVIRONMENT
-    specular += environmentSpecular(m, n, v, irradiance);
+    specular += environmentSpecular(m, n, v, irradiance, e);
 #endif
   }
   loss = albedo * lost;
-}
-
-vec3 specularLight(int material, vec3 p, vec3 n, vec3 eye) {
-  vec3 specular, loss;
-  viewDependentLight(material, vec3(0.0), p, n, eye, specular, loss);
-  return specular;
 }
 
 vec3 diffuseFresnelLoss(int material, vec3 albedo, vec3 p, vec3 n, vec3 eye) {

@@ -45,9 +45,9 @@ const char* glslMaterials();
 
 // GLSL: glslMaterials() and
 // `void viewDependentLight(int material, vec3 albedo, vec3 p, vec3 n, vec3 eye,
-// out vec3 specular, out vec3 loss)`, and its halves `vec3 specularLight(int
-// material, vec3 p, vec3 n, vec3 eye)` and `vec3 diffuseFresnelLoss(int
-// material, vec3 albedo, vec3 p, vec3 n, vec3 eye)`; needs
+// out vec3 specular, out vec3 loss)`, and its loss alone, `vec3
+// diffuseFresnelLoss(int material, vec3 albedo, vec3 p, vec3 n, vec3 eye)`
+// (deferred's separate-highlights pass); needs
 // glslLighting() before it for the light uniforms.
 const std::string& glslSpecular();
 
